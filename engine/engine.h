@@ -1,0 +1,120 @@
+/* engine.h -- the envelope core (fast path, double precision).
+ *
+ * Role: cutters of revolution given by their support function, the
+ * characteristic curves of a moving cutter at a time step (the closed form of
+ * shared/docs/ENVELOPE.md, Fact 2) and, per move, the signed distance to the
+ * swept volume that the stock rasterizes.
+ *
+ * Frames: the cutter frame has the tip (bottom centre) at the origin and the
+ * axis along +z. A motion (toolpath.h) carries it into the workpiece frame.
+ * Units: mm and radians. All functions are pure or work on caller-owned
+ * values: thread-safe for distinct outputs.
+ */
+#ifndef SWARF_ENGINE_H
+#define SWARF_ENGINE_H
+
+#include <stddef.h>
+
+#include "toolpath.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Cutters ------------------------------------------------------------ */
+
+typedef enum {
+  SWARF_CUTTER_FLAT, /* flat end mill: corner radius 0 */
+  SWARF_CUTTER_BALL, /* ball end mill: corner radius D/2 */
+  SWARF_CUTTER_BULL  /* bull nose: 0 < corner radius < D/2 */
+} swarf_cutter_shape;
+
+/* A cutter of revolution: the body swept by the cutting edges, from the tip
+ * (z = 0) to z = length. It is the Minkowski sum of a solid cylinder of
+ * radius a = D/2 - R spanning z in [R, length - R] and a ball of radius R, so
+ * its support function is
+ *   h(n) = phi(n_z),  phi(z) = a sqrt(1 - z^2) + R + (z >= 0 ? (length - R) z : R z).
+ * (The top rim is rounded like the bottom one; it never cuts in practice.) */
+typedef struct {
+  swarf_cutter_shape shape;
+  double diameter;      /* D, mm */
+  double corner_radius; /* R, mm */
+  double length;        /* cutting body above the tip, mm, >= D */
+} swarf_cutter;
+
+/* Validate and fill a cutter. corner_radius is ignored for flat and ball.
+ * length <= 0 selects the default, 4 * diameter. Returns 0, or -1 with a
+ * reason in `why` (if not NULL) when the dimensions are impossible. */
+int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
+                      double corner_radius, double length, const char **why);
+
+/* Support function on the unit sphere, h(n), and its profile phi(z), phi'(z)
+ * (phi' is one-sided at the kinks z = 0 and unbounded at z = +-1 when a > 0;
+ * the value returned there is the limit from inside (-1, 1)). */
+double swarf_cutter_support(const swarf_cutter *c, const double n[3]);
+void swarf_cutter_profile(const swarf_cutter *c, double z, double *phi, double *dphi);
+
+/* Surface point x_h(n) = h(n) n + grad_S h(n) for a unit normal n (paper eq. 1-2).
+ * Where the support function has a kink (a flat face or a ruling), returns the
+ * point of that face given by continuity from n_z -> 0+ / n_z -> +-1. */
+void swarf_cutter_point(const swarf_cutter *c, const double n[3], double x[3]);
+
+/* Signed distance from p (cutter frame) to the cutter: < 0 inside. Exact. */
+double swarf_cutter_sdf(const swarf_cutter *c, const double p[3]);
+
+/* ---- Characteristic curves ---------------------------------------------- */
+
+/* One point of a characteristic curve. */
+typedef struct {
+  double n[3]; /* unit normal, moving (cutter) frame */
+  double x[3]; /* surface point x_h(n), cutter frame, mm */
+  double w[3]; /* world point t + U x, mm */
+} swarf_char_point;
+
+/* Characteristic curves at one time step: ordered polylines, one per
+ * component. Component k holds points [start[k], start[k+1]). Init/clear pair. */
+typedef struct {
+  swarf_char_point *pts;
+  size_t len, cap;
+  size_t *start; /* ncomp + 1 entries */
+  size_t ncomp, start_cap;
+} swarf_char_curve;
+
+void swarf_char_curve_init(swarf_char_curve *cc);
+void swarf_char_curve_clear(swarf_char_curve *cc);
+
+/* The characteristic curve of cutter c at the pose (t, U) with moving-frame
+ * velocity v and angular velocity omega (ENVELOPE.md, Fact 2), sampled so
+ * that the chord error on the surface stays under `tol` mm. Replaces the
+ * contents of cc. Returns the number of components (0 when the cutter does
+ * not move, or only turns about its own axis), or -1 when out of memory. */
+int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c, const double t[3],
+                             const double U[9], const double v[3], const double omega[3],
+                             double tol);
+
+/* ---- Swept volume of one move ------------------------------------------- */
+
+/* The volume swept by cutter c along motion m (a value; it points at both,
+ * which must outlive it). */
+typedef struct {
+  const swarf_cutter *cutter;
+  const swarf_motion *motion;
+  int method;       /* internal: which evaluator applies */
+  double aux[16];   /* internal: precomputed per-move constants */
+} swarf_sweep;
+
+void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m);
+
+/* Axis-aligned bounds of the swept volume, workpiece frame, mm. */
+void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
+
+/* Signed distance from p (workpiece frame) to the swept volume: < 0 inside.
+ * Exact outside the volume; inside, exact for the closed-form cases and never
+ * larger in magnitude than the true depth otherwise. 1-Lipschitz. If alpha is
+ * not NULL it receives the time of the nearest cutter instance. */
+double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

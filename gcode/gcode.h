@@ -1,0 +1,116 @@
+/* gcode.h -- the G-code front end: a streaming RS274/NGC interpreter.
+ *
+ * Role: turn program text (LinuxCNC dialect) into canonical moves, each with
+ * the source line and column of the block that produced it. The parser is
+ * streaming, in cmark's shape: new, feed(buffer, length) any number of times,
+ * finish, free. Moves are handed to a callback as soon as they are produced;
+ * memory does not grow with the length of the program.
+ *
+ * Units at this boundary: positions in mm (G20 programs are converted),
+ * rotary axes in degrees, feed in mm/min, spindle in rpm, dwell in seconds.
+ * Positions are in the machine frame (program coordinates after offsets;
+ * in this first version no offsets are active, so the two coincide).
+ *
+ * Thread safety: a parser is used by one thread at a time; distinct parsers
+ * are independent.
+ */
+#ifndef SWARF_GCODE_H
+#define SWARF_GCODE_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Axis indices into the 6-vectors of a move. */
+enum { SWARF_AXIS_X, SWARF_AXIS_Y, SWARF_AXIS_Z, SWARF_AXIS_A, SWARF_AXIS_B, SWARF_AXIS_C };
+#define SWARF_NAXES 6
+
+typedef enum {
+  SWARF_MOVE_RAPID,      /* G0: straight traverse */
+  SWARF_MOVE_LINE,       /* G1: straight feed */
+  SWARF_MOVE_ARC,        /* G2/G3: circular or helical feed */
+  SWARF_MOVE_DWELL,      /* G4: no motion, `dwell` seconds */
+  SWARF_MOVE_TOOL_CHANGE /* M6: tool `tool` is now in the spindle; no motion */
+} swarf_move_kind;
+
+/* One canonical move. For an arc, the motion is
+ *   p(a) = center + Rot(normal, a * angle) (start - center) + a * rise * normal,
+ * for a in [0, 1], where Rot(n, th) turns by th about n by the right-hand
+ * rule; `angle` > 0 (radians) includes full extra turns; `rise` is the
+ * displacement along `normal` (mm); `center` lies in the plane of `start`.
+ * For G2 in G17 normal = (0,0,-1), for G3 normal = (0,0,1). */
+typedef struct {
+  swarf_move_kind kind;
+  double start[SWARF_NAXES]; /* mm, degrees */
+  double end[SWARF_NAXES];   /* mm, degrees */
+  double center[3];          /* arcs only, mm */
+  double normal[3];          /* arcs only, unit */
+  double angle;              /* arcs only, radians, > 0 */
+  double rise;               /* arcs only, mm */
+  double feed;               /* mm/min; 0 for rapids */
+  double spindle;            /* rpm, signed: negative for M4 */
+  double dwell;              /* seconds, dwell moves only */
+  int tool;                  /* tool in the spindle (0: none) */
+  long line;                 /* 1-based source line of the block */
+  int column;                /* 1-based column of the block's motion word */
+} swarf_move;
+
+/* Where and why a program was rejected. */
+typedef struct {
+  char file[256];
+  long line;    /* 1-based; 0 when not tied to a line */
+  int column;   /* 1-based */
+  char message[256];
+} swarf_gcode_error;
+
+/* Status codes of the front end. */
+typedef enum {
+  SWARF_GCODE_OK = 0,
+  SWARF_GCODE_ERR_SYNTAX = 1,   /* malformed word, number, comment */
+  SWARF_GCODE_ERR_SEMANTIC = 2, /* valid words that make no sense together */
+  SWARF_GCODE_ERR_STOPPED = 3,  /* the move callback asked to stop */
+  SWARF_GCODE_ERR_ARG = 4,      /* NULL or invalid argument */
+  SWARF_GCODE_ERR_MEMORY = 5
+} swarf_gcode_status;
+
+/* Called for every move, in program order. Return 0 to go on, non-zero to
+ * stop the parser (feed/finish then return SWARF_GCODE_ERR_STOPPED). The move
+ * is only valid during the call. */
+typedef int (*swarf_gcode_move_fn)(const swarf_move *move, void *user);
+
+typedef struct swarf_gcode_parser swarf_gcode_parser;
+
+/* A new parser for a program called `filename` (used in error messages; it is
+ * not opened). The machine starts at 0,0,0 (all axes), G17 G21 G90 G91.1 G94,
+ * feed 0, spindle off, no tool. Returns NULL when out of memory. */
+swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
+                                           void *user);
+
+/* Feed `len` bytes of program text (any split, CRLF or LF). Complete lines are
+ * interpreted at once. Returns SWARF_GCODE_OK or an error; after an error the
+ * parser refuses further input and swarf_gcode_parser_error says why. */
+int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
+
+/* Interpret the last, unterminated line if any, and end the program. */
+int swarf_gcode_parser_finish(swarf_gcode_parser *p);
+
+/* The error that stopped the parser, or NULL if none. Owned by the parser. */
+const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
+
+/* Number of lines read so far and whether the program ended (M2/M30/%). */
+long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
+int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
+
+void swarf_gcode_parser_free(swarf_gcode_parser *p);
+
+/* Convenience: stream a whole file through a parser. Returns a status code;
+ * on error *err (if not NULL) is filled. */
+int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
+                           swarf_gcode_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,114 @@
+/* test_motion.c -- the xyz machine's rigid motions against hand-computed values:
+ * line and helix positions, velocities by finite differences, bounds against
+ * dense sampling. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "toolpath.h"
+
+static swarf_move make_arc(double cx, double cy, double sign, double angle, double rise) {
+  swarf_move mv;
+  memset(&mv, 0, sizeof mv);
+  mv.kind = SWARF_MOVE_ARC;
+  mv.start[0] = cx + 5.0;
+  mv.start[1] = cy;
+  mv.start[2] = -1.0;
+  mv.center[0] = cx;
+  mv.center[1] = cy;
+  mv.center[2] = -1.0;
+  mv.normal[2] = sign;
+  mv.angle = angle;
+  mv.rise = rise;
+  mv.feed = 600.0;
+  return mv;
+}
+
+static void test_line(void) {
+  swarf_move mv;
+  swarf_motion m;
+  double t[3], U[9];
+  memset(&mv, 0, sizeof mv);
+  mv.kind = SWARF_MOVE_LINE;
+  mv.end[0] = 3.0;
+  mv.end[1] = 4.0;
+  mv.feed = 300.0;
+  CHECK(swarf_motion_from_move(&mv, &m) == 0, "line accepted");
+  swarf_motion_eval(&m, 0.5, t, U);
+  CHECK_NEAR(t[0], 1.5, 1e-15, "line midpoint x");
+  CHECK_NEAR(t[1], 2.0, 1e-15, "line midpoint y");
+  CHECK(U[0] == 1 && U[4] == 1 && U[8] == 1 && U[1] == 0, "U is the identity");
+  CHECK_NEAR(m.length, 5.0, 1e-15, "line length");
+  CHECK_NEAR(m.duration, 1.0, 1e-12, "5 mm at 300 mm/min takes 1 s");
+  mv.kind = SWARF_MOVE_DWELL;
+  CHECK(swarf_motion_from_move(&mv, &m) == -1, "dwell is no motion");
+}
+
+static void test_helix_quarter(void) {
+  /* G3 (normal +z) from (15,10) about (10,10), a quarter turn, rising 2 mm. */
+  swarf_move mv = make_arc(10.0, 10.0, 1.0, M_PI / 2, 2.0);
+  swarf_motion m;
+  double t[3];
+  CHECK(swarf_motion_from_move(&mv, &m) == 0, "arc accepted");
+  swarf_motion_eval(&m, 1.0, t, NULL);
+  CHECK_NEAR(t[0], 10.0, 1e-12, "G3 quarter ends at x = 10");
+  CHECK_NEAR(t[1], 15.0, 1e-12, "G3 quarter ends at y = 15");
+  CHECK_NEAR(t[2], 1.0, 1e-12, "rise 2 from z = -1");
+  CHECK_NEAR(m.length, hypot(5.0 * M_PI / 2, 2.0), 1e-12, "helix length");
+  /* G2: normal -z, rise along the normal lowers z. */
+  mv = make_arc(10.0, 10.0, -1.0, M_PI / 2, 2.0);
+  swarf_motion_from_move(&mv, &m);
+  swarf_motion_eval(&m, 1.0, t, NULL);
+  CHECK_NEAR(t[1], 5.0, 1e-12, "G2 quarter ends at y = 5");
+  CHECK_NEAR(t[2], -3.0, 1e-12, "G2 rise along -z");
+}
+
+static void test_velocity(void) {
+  swarf_move mv = make_arc(0.0, 0.0, 1.0, 5.0, 3.0);
+  swarf_motion m;
+  double a = 0.37, h = 1e-6, tp[3], tm[3], td[3], v[3], w[3];
+  swarf_motion_from_move(&mv, &m);
+  swarf_motion_eval(&m, a + h, tp, NULL);
+  swarf_motion_eval(&m, a - h, tm, NULL);
+  swarf_motion_velocity(&m, a, td, v, w);
+  for (int k = 0; k < 3; k++) {
+    CHECK_NEAR(td[k], (tp[k] - tm[k]) / (2 * h), 1e-6, "tdot by central difference");
+    CHECK(v[k] == td[k] && w[k] == 0.0, "xyz machine: v = tdot, omega = 0");
+  }
+}
+
+static void test_bounds(void) {
+  srand(7);
+  for (int trial = 0; trial < 200; trial++) {
+    double ang = 0.1 + 12.0 * rand() / RAND_MAX, rise = 20.0 * rand() / RAND_MAX - 10.0;
+    double n[3] = {rand() - RAND_MAX / 2.0, rand() - RAND_MAX / 2.0, rand() - RAND_MAX / 2.0};
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    swarf_move mv = make_arc(1.0, 2.0, 1.0, ang, rise);
+    swarf_motion m;
+    double lo[3], hi[3], slo[3] = {1e9, 1e9, 1e9}, shi[3] = {-1e9, -1e9, -1e9}, t[3];
+    for (int k = 0; k < 3; k++) mv.normal[k] = n[k] / len;
+    swarf_motion_from_move(&mv, &m);
+    swarf_motion_bounds(&m, lo, hi);
+    for (int i = 0; i <= 20000; i++) {
+      swarf_motion_eval(&m, i / 20000.0, t, NULL);
+      for (int k = 0; k < 3; k++) {
+        slo[k] = fmin(slo[k], t[k]);
+        shi[k] = fmax(shi[k], t[k]);
+      }
+    }
+    for (int k = 0; k < 3; k++) {
+      CHECK(lo[k] <= slo[k] + 1e-9 && hi[k] >= shi[k] - 1e-9, "bounds contain the path");
+      CHECK(slo[k] - lo[k] < 1e-4 && hi[k] - shi[k] < 1e-4, "bounds are tight (trial %d k %d: %g %g / %g %g)",
+            trial, k, lo[k], slo[k], hi[k], shi[k]);
+    }
+  }
+}
+
+int main(void) {
+  test_line();
+  test_helix_quarter();
+  test_velocity();
+  test_bounds();
+  return check_done();
+}

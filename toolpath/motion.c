@@ -1,0 +1,161 @@
+/* motion.c -- rigid motions of the cutter for the 3-axis (xyz) machine.
+ *
+ * A canonical move becomes t(alpha), U(alpha) = I: the tool tip follows the
+ * programmed straight line or helix exactly (no chords). Values only; the
+ * caller owns every struct passed in.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "toolpath.h"
+
+static const double pi = 3.14159265358979323846;
+
+static double dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const double a[3], const double b[3], double out[3]) {
+  double r[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  memcpy(out, r, sizeof r);
+}
+
+/* Rotate v by angle th about the unit axis n (right-hand rule). */
+static void rotate3(const double n[3], double th, const double v[3], double out[3]) {
+  double c = cos(th), s = sin(th), nxv[3], nv = dot3(n, v);
+  cross3(n, v, nxv);
+  for (int k = 0; k < 3; k++) out[k] = v[k] * c + nxv[k] * s + n[k] * nv * (1.0 - c);
+}
+
+static void set_identity(double U[9]) {
+  static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  memcpy(U, I, sizeof I);
+}
+
+static void fill_common(const swarf_move *mv, swarf_motion *m) {
+  memset(m, 0, sizeof *m);
+  for (int k = 0; k < 3; k++) {
+    m->p0[k] = mv->start[k];
+    m->p1[k] = mv->end[k];
+  }
+  m->tool = mv->tool;
+  m->rapid = mv->kind == SWARF_MOVE_RAPID;
+  m->line = mv->line;
+  m->column = mv->column;
+}
+
+static void fill_helix(const swarf_move *mv, swarf_motion *m) {
+  double r[3], nr;
+  m->kind = SWARF_MOTION_HELIX;
+  memcpy(m->axis, mv->normal, sizeof m->axis);
+  /* Keep the centre in the plane of p0 so that p0 - centre is radial. */
+  for (int k = 0; k < 3; k++) r[k] = m->p0[k] - mv->center[k];
+  nr = dot3(r, m->axis);
+  for (int k = 0; k < 3; k++) m->center[k] = mv->center[k] + nr * m->axis[k];
+  for (int k = 0; k < 3; k++) r[k] = m->p0[k] - m->center[k];
+  m->radius = sqrt(dot3(r, r));
+  m->angle = mv->angle;
+  m->rise = mv->rise;
+  m->length = hypot(m->radius * m->angle, m->rise);
+  /* The path is the exact helix; its end replaces the programmed end, which
+   * the front end allows to differ by the arc tolerance. */
+  swarf_motion_eval(m, 1.0, m->p1, NULL);
+}
+
+int swarf_motion_from_move(const swarf_move *mv, swarf_motion *m) {
+  double d[3];
+  if (mv == NULL || m == NULL) return -1;
+  if (mv->kind != SWARF_MOVE_RAPID && mv->kind != SWARF_MOVE_LINE && mv->kind != SWARF_MOVE_ARC)
+    return -1;
+  for (int k = SWARF_AXIS_A; k <= SWARF_AXIS_C; k++)
+    if (mv->start[k] != mv->end[k]) return -1;
+  fill_common(mv, m);
+  if (mv->kind == SWARF_MOVE_ARC) {
+    fill_helix(mv, m);
+  } else {
+    m->kind = SWARF_MOTION_LINE;
+    for (int k = 0; k < 3; k++) d[k] = m->p1[k] - m->p0[k];
+    m->length = sqrt(dot3(d, d));
+  }
+  if (m->rapid)
+    m->duration = m->length / SWARF_RAPID_RATE * 60.0;
+  else
+    m->duration = mv->feed > 0 ? m->length / mv->feed * 60.0 : 0.0;
+  return 0;
+}
+
+void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double U[9]) {
+  if (U != NULL) set_identity(U);
+  if (m->kind == SWARF_MOTION_LINE) {
+    for (int k = 0; k < 3; k++) t[k] = m->p0[k] + alpha * (m->p1[k] - m->p0[k]);
+    return;
+  }
+  double r[3], rr[3];
+  for (int k = 0; k < 3; k++) r[k] = m->p0[k] - m->center[k];
+  rotate3(m->axis, alpha * m->angle, r, rr);
+  for (int k = 0; k < 3; k++) t[k] = m->center[k] + rr[k] + alpha * m->rise * m->axis[k];
+}
+
+void swarf_motion_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
+                           double omega[3]) {
+  double d[3];
+  if (m->kind == SWARF_MOTION_LINE) {
+    for (int k = 0; k < 3; k++) d[k] = m->p1[k] - m->p0[k];
+  } else {
+    double r[3], rr[3], nxr[3];
+    for (int k = 0; k < 3; k++) r[k] = m->p0[k] - m->center[k];
+    rotate3(m->axis, alpha * m->angle, r, rr);
+    cross3(m->axis, rr, nxr);
+    for (int k = 0; k < 3; k++) d[k] = m->angle * nxr[k] + m->rise * m->axis[k];
+  }
+  if (tdot != NULL) memcpy(tdot, d, sizeof d);
+  if (v != NULL) memcpy(v, d, sizeof d); /* U = I: v = U^T tdot = tdot */
+  if (omega != NULL) omega[0] = omega[1] = omega[2] = 0.0;
+}
+
+/* Widen [lo, hi] in coordinate k by the helix at parameter theta (radians). */
+static void helix_include(const swarf_motion *m, double theta, double lo[3], double hi[3]) {
+  double t[3];
+  if (theta < 0.0 || theta > m->angle) return;
+  swarf_motion_eval(m, theta / m->angle, t, NULL);
+  for (int k = 0; k < 3; k++) {
+    if (t[k] < lo[k]) lo[k] = t[k];
+    if (t[k] > hi[k]) hi[k] = t[k];
+  }
+}
+
+/* Coordinate k of the helix is c + r rho cos(theta - theta_k) + s theta; its
+ * stationary points solve sin(theta - theta_k) = s / (r rho). */
+static void helix_extrema(const swarf_motion *m, int k, double lo[3], double hi[3]) {
+  double r[3], e2[3], a, b, rho, thk, s, q;
+  for (int j = 0; j < 3; j++) r[j] = m->p0[j] - m->center[j];
+  cross3(m->axis, r, e2);
+  a = r[k];  /* coefficient of cos(theta) */
+  b = e2[k]; /* coefficient of sin(theta) */
+  rho = hypot(a, b);
+  if (rho == 0.0) return;
+  thk = atan2(b, a);
+  s = m->rise * m->axis[k] / m->angle;
+  q = s / rho;
+  if (fabs(q) > 1.0) return;
+  double roots[2] = {thk + asin(q), thk + pi - asin(q)};
+  for (int i = 0; i < 2; i++) {
+    double th = roots[i] - 2.0 * pi * floor(roots[i] / (2.0 * pi));
+    for (; th <= m->angle; th += 2.0 * pi) helix_include(m, th, lo, hi);
+  }
+}
+
+void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]) {
+  for (int k = 0; k < 3; k++) {
+    lo[k] = fmin(m->p0[k], m->p1[k]);
+    hi[k] = fmax(m->p0[k], m->p1[k]);
+  }
+  if (m->kind != SWARF_MOTION_HELIX) return;
+  helix_include(m, m->angle, lo, hi);
+  for (int k = 0; k < 3; k++) helix_extrema(m, k, lo, hi);
+}
+
+int swarf_motion_is_null(const swarf_motion *m) {
+  if (m->kind == SWARF_MOTION_HELIX) return m->angle == 0.0 && m->rise == 0.0;
+  return m->p0[0] == m->p1[0] && m->p0[1] == m->p1[1] && m->p0[2] == m->p1[2];
+}

@@ -4,7 +4,7 @@
  * (negative inside material), remove swept volumes from it in place with
  * stock = max(stock, -sweep), and read and write it: .vdb, binary STL mesh,
  * PNG picture from OpenVDB's level-set ray tracer. The C++ behind this header
- * (stock/*.cc) is the only code that includes OpenVDB; no exception crosses
+ * (the .cc files in stock/) is the only code that includes OpenVDB; no exception crosses
  * into C: every function returns a status and fills a message.
  *
  * Units: mm in the workpiece frame; `voxel` is the voxel edge in mm; the

@@ -1,1 +1,44 @@
-/* placeholder until the module lands */
+/* main.c -- the `swarf` command: subcommands, options, progress, summary.
+ *
+ * Exit status: 0 success, 1 internal failure (I/O, memory), 2 bad input
+ * (options, G-code, files), with a message on stderr that says what to do.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+static const char usage[] =
+    "usage: swarf <command> [options]\n"
+    "\n"
+    "Simulates CNC milling: plays a G-code program through the machine, removes the\n"
+    "exact swept volume of the cutter from a voxel stock, and writes what remains.\n"
+    "\n"
+    "commands:\n"
+    "  simulate PROGRAM --stock box:... --tool T1=... --out FILE.vdb [...]\n"
+    "                     mill PROGRAM into a stock; write .vdb, mesh, picture\n"
+    "  parse PROGRAM      list the canonical moves of a program (checks it)\n"
+    "  info FILE.vdb      describe a stock grid: voxel, volume, bounds, validity\n"
+    "  render FILE.vdb --image FILE.png   picture of a stock grid\n"
+    "  help [COMMAND]     this text, or a command's options\n"
+    "\n"
+    "`swarf COMMAND --help` explains each command. Units: mm, degrees, seconds.\n";
+
+int main(int argc, char **argv) {
+  const char *cmd = argc > 1 ? argv[1] : NULL;
+  if (cmd == NULL || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) {
+    fputs(usage, cmd ? stdout : stderr);
+    return cmd ? 0 : 2;
+  }
+  if (!strcmp(cmd, "help")) {
+    if (argc > 2) return swarf_cli_help(argv[2]);
+    fputs(usage, stdout);
+    return 0;
+  }
+  if (!strcmp(cmd, "simulate")) return swarf_cli_simulate(argc - 1, argv + 1);
+  if (!strcmp(cmd, "parse")) return swarf_cli_parse(argc - 1, argv + 1);
+  if (!strcmp(cmd, "info")) return swarf_cli_info(argc - 1, argv + 1);
+  if (!strcmp(cmd, "render")) return swarf_cli_render(argc - 1, argv + 1);
+  fprintf(stderr, "swarf: unknown command \"%s\"; run `swarf --help` for the list\n", cmd);
+  return 2;
+}

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# cli_errors.sh SWARF -- bad input to `swarf simulate`: each case must exit 2,
+# say where the problem is (FILE:LINE:COL or the flag), and leave no output.
+set -u
+swarf=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+pass=0 fail=0
+
+# expect NAME REGEX PROGRAM-TEXT [extra options...]
+expect() {
+  local name=$1 regex=$2 text=$3
+  shift 3
+  printf '%b' "$text" > "$dir/prog.ngc"
+  rm -f "$dir"/out.* "$dir"/*.tmp*
+  "$swarf" simulate "$dir/prog.ngc" --out "$dir/out.vdb" --mesh "$dir/out.stl" --quiet "$@" \
+    > "$dir/stdout" 2> "$dir/stderr"
+  local rc=$? leftovers
+  leftovers=$(ls "$dir" | grep -v -E '^(prog.ngc|stdout|stderr)$')
+  if [ $rc -eq 2 ] && grep -qE "$regex" "$dir/stderr" && [ -z "$leftovers" ]; then
+    pass=$((pass + 1))
+  else
+    fail=$((fail + 1))
+    echo "FAIL $name: exit $rc, leftovers [$leftovers], stderr:"; cat "$dir/stderr"
+  fi
+}
+
+stock=(--stock box:0,0,-10,40,30,0)
+tool=(--tool T1=ball,D3,L12)
+expect unknown-word 'prog\.ngc:2:1: .*Q' 'G0 X1\nQ5\n' "${stock[@]}" "${tool[@]}"
+expect unknown-gcode 'prog\.ngc:1:1: .*G12' 'G12.5 X1\n' "${stock[@]}" "${tool[@]}"
+expect malformed-number 'prog\.ngc:3:(4|5|6|7|8|9):' 'G0 Z5\nG0 X1\nG1 X1.2.3 F100\n' "${stock[@]}" "${tool[@]}"
+expect bad-arc-radius 'prog\.ngc:2:[0-9]+: .*[Rr]adius' 'G0 X0 Y0 Z1\nG2 X10 Y0 I4 J0 F100\n' "${stock[@]}" "${tool[@]}"
+expect arc-r-too-small 'prog\.ngc:2:[0-9]+: ' 'G0 X0 Y0 Z1\nG2 X10 Y0 R2 F100\n' "${stock[@]}" "${tool[@]}"
+expect missing-tool 'prog\.ngc:3:[0-9]+: tool T3 is not in the tool table' 'G0 Z5\nG0 X1\nT3 M6\nG0 X2\n' \
+  "${stock[@]}" --tool T1=ball,D3 --tool T2=flat,D6
+expect stock-min-max '--stock: X min 10 is not below X max 0' 'G0 X1\n' --stock box:10,0,-10,0,30,0 "${tool[@]}"
+expect stock-garbage '--stock: ' 'G0 X1\n' --stock box:1,2,3 "${tool[@]}"
+expect tool-garbage '--tool: ' 'G0 X1\n' "${stock[@]}" --tool T1=sphere,D3
+expect bull-without-r '--tool: ' 'G0 X1\n' "${stock[@]}" --tool T1=bull,D6
+expect output-folder-missing 'cannot write' 'G0 X1\n' "${stock[@]}" "${tool[@]}" --image "$dir/nothere/x.png"
+# an error late in a program that already cut: still nothing written
+expect late-error 'prog\.ngc:5:1:' 'G0 Z1\nG0 X5 Y5\nG1 Z-2 F100\nG1 X30\nW1\n' "${stock[@]}" "${tool[@]}"
+
+# the program file itself is missing
+rm -f "$dir"/out.*
+"$swarf" simulate "$dir/missing.ngc" --out "$dir/out.vdb" "${stock[@]}" "${tool[@]}" 2> "$dir/stderr"
+if [ $? -eq 2 ] && grep -q 'missing.ngc: cannot open' "$dir/stderr" && [ ! -e "$dir/out.vdb" ]; then
+  pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL missing program file"; cat "$dir/stderr"; fi
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

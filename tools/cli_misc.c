@@ -1,0 +1,131 @@
+/* cli_misc.c -- `swarf parse`, `swarf info`, `swarf render` and `swarf help`.
+ *
+ * Small commands around the simulator: check and list a program's moves,
+ * describe a stock grid, draw one.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "gcode.h"
+#include "stock.h"
+
+static const char parse_help[] =
+    "usage: swarf parse PROGRAM [--quiet]\n"
+    "\n"
+    "Checks PROGRAM and lists its canonical moves, one per line:\n"
+    "  LINE KIND X Y Z [centre CX CY CZ normal NX NY NZ angle DEG rise MM] F feed T tool\n"
+    "in mm, mm/min and degrees (G20 programs converted). --quiet prints only the count.\n"
+    "Exit status 2 with FILE:LINE:COL: message on the first error.\n";
+
+static const char info_help[] =
+    "usage: swarf info FILE.vdb\n"
+    "\n"
+    "Describes a stock grid: voxel size, active voxels, enclosed volume, bounds, and\n"
+    "whether it is a valid narrow-band level set (OpenVDB's checkLevelSet).\n";
+
+static const char render_help[] =
+    "usage: swarf render FILE.vdb --image FILE.png [--size WIDTHxHEIGHT]\n"
+    "\n"
+    "Draws the stock in FILE.vdb with OpenVDB's level-set ray tracer (default 1024x768).\n";
+
+static int print_move(const swarf_move *m, void *user) {
+  static const char *kinds[] = {"RAPID", "LINE", "ARC", "DWELL", "TOOL"};
+  long *count = user;
+  (*count)++;
+  if (count[1]) return 0;
+  printf("%ld %s %.4f %.4f %.4f", m->line, kinds[m->kind], m->end[0], m->end[1], m->end[2]);
+  if (m->kind == SWARF_MOVE_ARC)
+    printf(" centre %.4f %.4f %.4f normal %g %g %g angle %.4f rise %.4f", m->center[0],
+           m->center[1], m->center[2], m->normal[0], m->normal[1], m->normal[2],
+           m->angle * 57.29577951308232, m->rise);
+  if (m->kind == SWARF_MOVE_DWELL) printf(" dwell %.4f", m->dwell);
+  printf(" F %.4f T %d\n", m->feed, m->tool);
+  return 0;
+}
+
+int swarf_cli_parse(int argc, char **argv) {
+  long count[2] = {0, 0};
+  const char *program = NULL;
+  swarf_gcode_error err;
+  int rc;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(parse_help, stdout), 0;
+    if (!strcmp(argv[i], "--quiet")) count[1] = 1;
+    else if (argv[i][0] == '-' || program) {
+      fprintf(stderr, "swarf parse: unexpected \"%s\"\n%s", argv[i], parse_help);
+      return 2;
+    } else program = argv[i];
+  }
+  if (program == NULL) return fputs(parse_help, stderr), 2;
+  rc = swarf_gcode_parse_file(program, print_move, count, &err);
+  if (rc != SWARF_GCODE_OK) {
+    if (err.line > 0) fprintf(stderr, "%s:%ld:%d: %s\n", err.file, err.line, err.column, err.message);
+    else fprintf(stderr, "%s: %s\n", err.file, err.message);
+    return rc == SWARF_GCODE_ERR_MEMORY ? 1 : 2;
+  }
+  fprintf(count[1] ? stdout : stderr, "%s: %ld moves\n", program, count[0]);
+  return 0;
+}
+
+static swarf_stock *open_grid(const char *cmd, const char *path) {
+  char msg[512];
+  swarf_stock *s = swarf_stock_read(path, msg, sizeof msg);
+  if (s == NULL) fprintf(stderr, "swarf %s: %s\n", cmd, msg);
+  return s;
+}
+
+int swarf_cli_info(int argc, char **argv) {
+  double lo[3], hi[3];
+  char msg[1024];
+  swarf_stock *s;
+  if (argc != 2 || argv[1][0] == '-') {
+    fputs(info_help, argc == 2 && !strcmp(argv[1], "--help") ? stdout : stderr);
+    return argc == 2 && !strcmp(argv[1], "--help") ? 0 : 2;
+  }
+  if ((s = open_grid("info", argv[1])) == NULL) return 2;
+  swarf_stock_bounds(s, lo, hi);
+  printf("file %s\ngrid stock (level set)\nvoxel %g mm\nband %d voxels\n", argv[1],
+         swarf_stock_voxel(s), swarf_stock_half_width(s));
+  printf("active_voxels %llu\nvolume %.3f mm^3\n", swarf_stock_active_voxels(s),
+         swarf_stock_volume(s));
+  printf("bounds %.3f %.3f %.3f %.3f %.3f %.3f mm\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+  if (swarf_stock_check(s, msg, sizeof msg) == 0) printf("level_set valid\n");
+  else printf("level_set INVALID: %s\n", msg);
+  swarf_stock_free(s);
+  return 0;
+}
+
+int swarf_cli_render(int argc, char **argv) {
+  const char *in = NULL, *out = NULL;
+  int w = 1024, h = 768, rc;
+  char msg[512];
+  swarf_stock *s;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help")) return fputs(render_help, stdout), 0;
+    if (!strcmp(argv[i], "--image") && i + 1 < argc) out = argv[++i];
+    else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
+      if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 16 || h < 16 || w > 8192 || h > 8192)
+        return fprintf(stderr, "swarf render: --size WIDTHxHEIGHT, 16 to 8192\n"), 2;
+    } else if (argv[i][0] != '-' && !in) in = argv[i];
+    else return fprintf(stderr, "swarf render: unexpected \"%s\"\n%s", argv[i], render_help), 2;
+  }
+  if (!in || !out) return fputs(render_help, stderr), 2;
+  if ((s = open_grid("render", in)) == NULL) return 2;
+  rc = swarf_stock_write_png(s, out, w, h, msg, sizeof msg);
+  if (rc != 0) fprintf(stderr, "swarf render: %s\n", msg);
+  swarf_stock_free(s);
+  return rc == 0 ? 0 : 1;
+}
+
+int swarf_cli_help(const char *command) {
+  char *argv[] = {(char *)command, "--help", NULL};
+  if (!strcmp(command, "simulate")) return swarf_cli_simulate(2, argv);
+  if (!strcmp(command, "parse")) return fputs(parse_help, stdout), 0;
+  if (!strcmp(command, "info")) return fputs(info_help, stdout), 0;
+  if (!strcmp(command, "render")) return fputs(render_help, stdout), 0;
+  fprintf(stderr, "swarf help: unknown command \"%s\"\n", command);
+  return 2;
+}

@@ -1,0 +1,223 @@
+/* cli_simulate.c -- `swarf simulate`: options, the run, outputs and summary.
+ *
+ * Every option is checked before any work starts (so a typo costs nothing),
+ * output folders are checked before the simulation, and outputs are written
+ * by the stock module atomically (temporary name, then rename).
+ */
+#include <errno.h>
+#include <libgen.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "sim.h"
+
+static const char help[] =
+    "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
+    "                      --tool T<n>=<shape>,D<diameter>[,R<corner>][,L<length>] ...\n"
+    "                      --out FILE.vdb [--mesh FILE.stl] [--image FILE.png]\n"
+    "                      [--voxel MM] [--band VOXELS] [--quiet]\n"
+    "\n"
+    "Plays PROGRAM (RS274/NGC, LinuxCNC dialect) on a 3-axis machine, removes the exact\n"
+    "volume swept by the cutter from the stock and writes the remaining material.\n"
+    "\n"
+    "  --stock box:...  stock block in the program frame, mm (G20 programs are still\n"
+    "                   converted to mm: give the stock in mm)\n"
+    "  --tool T1=ball,D3.175,L25   a cutter: shape ball, flat or bull; D diameter,\n"
+    "                   R corner radius (bull), L cutting length above the tip\n"
+    "                   (default 4*D). Repeat for several tools; a single tool is\n"
+    "                   loaded at the start, otherwise T<n> M6 selects one.\n"
+    "                   The controlled point is the tool tip (bottom centre).\n"
+    "  --voxel MM       voxel edge (default 0.2); halving it takes ~4x the time\n"
+    "  --band N         narrow band half width in voxels (default 3, at least 3)\n"
+    "  --out FILE.vdb   remaining material: OpenVDB float level set named \"stock\"\n"
+    "  --mesh FILE.stl  its surface as a binary STL\n"
+    "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer)\n"
+    "  --quiet          no progress bar and no summary\n"
+    "\n"
+    "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ...), 1 on an\n"
+    "internal failure. Nothing is written unless the whole program ran.\n";
+
+typedef struct {
+  const char *program, *out, *mesh, *image;
+  int quiet;
+  swarf_sim_config cfg;
+} sim_options;
+
+static int usage_error(const char *what) {
+  fprintf(stderr, "swarf simulate: %s\n(run `swarf simulate --help` for the options)\n", what);
+  return 2;
+}
+
+static int read_double(const char *flag, const char *text, double lo, double *out) {
+  char *end, what[160];
+  errno = 0;
+  *out = strtod(text, &end);
+  if (end == text || *end != '\0' || errno || !isfinite(*out) || *out < lo) {
+    snprintf(what, sizeof what, "%s: \"%s\" is not a number >= %g", flag, text, lo);
+    return usage_error(what);
+  }
+  return 0;
+}
+
+/* One option at argv[*i]; advances *i past its value. */
+static int parse_option(sim_options *o, int argc, char **argv, int *i) {
+  const char *flag = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+  char msg[256];
+  double d;
+  if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
+  if (val == NULL) {
+    snprintf(msg, sizeof msg, "%s needs a value", flag);
+    return usage_error(msg);
+  }
+  (*i)++;
+  if (!strcmp(flag, "--out")) return o->out = val, 0;
+  if (!strcmp(flag, "--mesh")) return o->mesh = val, 0;
+  if (!strcmp(flag, "--image")) return o->image = val, 0;
+  if (!strcmp(flag, "--voxel")) {
+    if (read_double(flag, val, 1e-3, &o->cfg.voxel)) return 2;
+    return 0;
+  }
+  if (!strcmp(flag, "--band")) {
+    if (read_double(flag, val, 3, &d) || d > 64) return usage_error("--band: give 3 to 64 voxels");
+    return o->cfg.half_width = (int)d, 0;
+  }
+  if (!strcmp(flag, "--batch")) {
+    if (read_double(flag, val, 1, &d)) return 2;
+    return o->cfg.batch = (int)d, 0;
+  }
+  if (!strcmp(flag, "--stock")) {
+    if (swarf_sim_parse_box(val, o->cfg.stock_lo, o->cfg.stock_hi, msg, sizeof msg))
+      return usage_error(msg);
+    return 0;
+  }
+  if (!strcmp(flag, "--tool")) return -1; /* handled by the caller */
+  snprintf(msg, sizeof msg, "unknown option \"%s\"", flag);
+  return usage_error(msg);
+}
+
+static int add_tool(sim_options *o, const char *spec) {
+  char msg[256];
+  swarf_sim_tool t;
+  if (o->cfg.ntools == SWARF_SIM_MAX_TOOLS) return usage_error("--tool: too many tools");
+  if (swarf_sim_parse_tool(spec, &t, msg, sizeof msg)) return usage_error(msg);
+  for (int i = 0; i < o->cfg.ntools; i++)
+    if (o->cfg.tools[i].number == t.number) {
+      snprintf(msg, sizeof msg, "--tool: T%d is given twice", t.number);
+      return usage_error(msg);
+    }
+  o->cfg.tools[o->cfg.ntools++] = t;
+  return 0;
+}
+
+/* Refuse an output whose folder does not exist or is not writable. */
+static int check_output(const char *flag, const char *path) {
+  char copy[4096], what[4200];
+  if (path == NULL) return 0;
+  snprintf(copy, sizeof copy, "%s", path);
+  if (access(dirname(copy), W_OK) == 0) return 0;
+  snprintf(what, sizeof what, "%s: cannot write \"%s\": %s", flag, path, strerror(errno));
+  return usage_error(what);
+}
+
+static int parse_args(sim_options *o, int argc, char **argv) {
+  int have_stock = 0, rc;
+  memset(o, 0, sizeof *o);
+  o->cfg.voxel = 0.2;
+  o->cfg.half_width = 3;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), 1;
+    if (argv[i][0] != '-' || argv[i][1] == '\0') {
+      if (o->program) return usage_error("give one PROGRAM only");
+      o->program = argv[i];
+      continue;
+    }
+    have_stock |= !strcmp(argv[i], "--stock");
+    rc = parse_option(o, argc, argv, &i);
+    if (rc == -1) rc = add_tool(o, argv[i]);
+    if (rc) return rc;
+  }
+  if (!o->program) return usage_error("no PROGRAM given");
+  if (!have_stock) return usage_error("--stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX is required");
+  if (o->cfg.ntools == 0) return usage_error("--tool is required, e.g. --tool T1=ball,D3.175");
+  if (!o->out) return usage_error("--out FILE.vdb is required");
+  return check_output("--out", o->out) || check_output("--mesh", o->mesh) ||
+                 check_output("--image", o->image)
+             ? 2
+             : 0;
+}
+
+/* Refuse a voxel so small that the narrow band of the box would not fit in
+ * memory (about 4.5 bytes per active voxel plus tree overhead). */
+static int check_size(const swarf_sim_config *cfg) {
+  double d[3], area, voxels;
+  char what[256];
+  for (int k = 0; k < 3; k++) d[k] = cfg->stock_hi[k] - cfg->stock_lo[k];
+  area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
+  voxels = area / (cfg->voxel * cfg->voxel) * 2.0 * cfg->half_width;
+  if (voxels < 2e9) return 0;
+  snprintf(what, sizeof what,
+           "--voxel %g: the stock's surface alone would need ~%.0f GB; use --voxel %.3g or more",
+           cfg->voxel, voxels * 8.0 / 1e9, cfg->voxel * sqrt(voxels / 2e9) * 1.01);
+  return usage_error(what);
+}
+
+static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
+  char msg[512];
+  int rc = swarf_stock_write_vdb(stock, o->out, msg, sizeof msg);
+  if (rc == 0 && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, msg, sizeof msg);
+  if (rc == 0 && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, msg, sizeof msg);
+  if (rc != 0) fprintf(stderr, "swarf simulate: %s\n", msg);
+  return rc == 0 ? 0 : 1;
+}
+
+static void print_summary(const sim_options *o, const swarf_stock *stock,
+                          const swarf_sim_report *r, double total_s, size_t ntri) {
+  double removed = r->volume_before - r->volume_after;
+  printf("swarf: %s\n", o->program);
+  printf("  lines %ld, moves %ld (%ld rapid, %ld arcs), %ld cutting the stock, %ld tool changes\n",
+         r->lines, r->moves, r->rapids, r->arcs, r->cutting_moves, r->tool_changes);
+  printf("  path %.1f mm, machining time %.1f min at programmed feeds\n", r->path_mm,
+         r->machining_s / 60.0);
+  printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
+         r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
+         r->volume_after);
+  printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
+         r->seconds > 0 ? r->moves / r->seconds : 0.0, total_s);
+  printf("  grid: voxel %g mm, active voxels %llu\n", swarf_stock_voxel(stock),
+         swarf_stock_active_voxels(stock));
+  printf("  wrote %s", o->out);
+  if (o->mesh) printf(", %s (%zu triangles)", o->mesh, ntri);
+  if (o->image) printf(", %s", o->image);
+  printf("\n");
+}
+
+int swarf_cli_simulate(int argc, char **argv) {
+  sim_options o;
+  swarf_sim_report rep;
+  swarf_stock *stock = NULL;
+  swarf_progress pb;
+  char msg[1024];
+  size_t ntri = 0;
+  int rc = parse_args(&o, argc, argv);
+  if (rc == 1) return 0;
+  if (rc || (rc = check_size(&o.cfg))) return rc;
+  swarf_progress_init(&pb);
+  if (!o.quiet) {
+    o.cfg.progress = swarf_progress_update;
+    o.cfg.progress_ctx = &pb;
+  }
+  rc = swarf_sim_run(&o.cfg, o.program, &stock, &rep, msg, sizeof msg);
+  swarf_progress_finish(&pb);
+  if (rc != 0) {
+    fprintf(stderr, "%s\n", msg);
+    return rc;
+  }
+  rc = write_outputs(&o, stock, &ntri);
+  if (rc == 0 && !o.quiet) print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
+  swarf_stock_free(stock);
+  return rc;
+}

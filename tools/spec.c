@@ -1,0 +1,122 @@
+/* spec.c -- parsing of the command line's stock and tool specifications.
+ *
+ *   box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX        (mm)
+ *   T<n>=<ball|flat|bull>,D<d>[,R<r>][,L<l>]  (mm)
+ *
+ * Every number must be finite and complete; messages say what to write.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim.h"
+
+/* Read one finite number at *s; advances *s. Returns 0 or -1. */
+static int read_number(const char **s, double *out) {
+  char *end;
+  errno = 0;
+  *out = strtod(*s, &end);
+  if (end == *s || errno == ERANGE || !isfinite(*out)) return -1;
+  *s = end;
+  return 0;
+}
+
+int swarf_sim_parse_box(const char *spec, double lo[3], double hi[3], char *msg, size_t msglen) {
+  static const char usage[] = "write --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm)";
+  const char *s = spec;
+  double v[6];
+  if (spec == NULL || strncmp(s, "box:", 4) != 0) {
+    snprintf(msg, msglen, "--stock: unknown stock \"%s\"; %s", spec ? spec : "", usage);
+    return -1;
+  }
+  s += 4;
+  for (int i = 0; i < 6; i++) {
+    if (read_number(&s, &v[i]) != 0 || (*s != (i < 5 ? ',' : '\0'))) {
+      snprintf(msg, msglen, "--stock: bad number %d in \"%s\"; %s", i + 1, spec, usage);
+      return -1;
+    }
+    s++;
+  }
+  for (int k = 0; k < 3; k++) {
+    if (!(v[k] < v[k + 3])) {
+      snprintf(msg, msglen, "--stock: %c min %g is not below %c max %g in \"%s\"", "XYZ"[k],
+               v[k], "XYZ"[k], v[k + 3], spec);
+      return -1;
+    }
+    lo[k] = v[k];
+    hi[k] = v[k + 3];
+  }
+  return 0;
+}
+
+static int parse_shape(const char **s, swarf_cutter_shape *shape) {
+  static const struct {
+    const char *name;
+    swarf_cutter_shape shape;
+  } shapes[] = {{"ball", SWARF_CUTTER_BALL}, {"flat", SWARF_CUTTER_FLAT}, {"bull", SWARF_CUTTER_BULL}};
+  for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
+    size_t n = strlen(shapes[i].name);
+    if (strncmp(*s, shapes[i].name, n) == 0 && ((*s)[n] == ',' || (*s)[n] == '\0')) {
+      *shape = shapes[i].shape;
+      *s += n;
+      return 0;
+    }
+  }
+  return -1;
+}
+
+/* Read ",D<d>", ",R<r>", ",L<l>" fields into dims[0..2]. */
+static int parse_dims(const char *s, double dims[3], char *bad, size_t badlen) {
+  while (*s == ',') {
+    const char *key = ++s;
+    const char *p = strchr("DRL", toupper((unsigned char)*key));
+    double v;
+    if (*key == '\0' || p == NULL) {
+      snprintf(bad, badlen, "unknown field \"%.20s\" (use D, R, L)", key);
+      return -1;
+    }
+    s++;
+    if (read_number(&s, &v) != 0 || (*s != ',' && *s != '\0') || v < 0) {
+      snprintf(bad, badlen, "bad value for %c", toupper((unsigned char)*key));
+      return -1;
+    }
+    dims[p - "DRL"] = v;
+  }
+  if (*s != '\0') {
+    snprintf(bad, badlen, "unexpected \"%.20s\"", s);
+    return -1;
+  }
+  return 0;
+}
+
+int swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, char *msg, size_t msglen) {
+  static const char usage[] = "write --tool T<n>=<ball|flat|bull>,D<diameter>[,R<corner>][,L<length>]";
+  const char *s = spec, *why = NULL;
+  double dims[3] = {0, 0, 0};
+  char bad[96];
+  long n;
+  char *end;
+  swarf_cutter_shape shape;
+  if (spec == NULL || (*s != 'T' && *s != 't')) goto usage_err;
+  errno = 0;
+  n = strtol(s + 1, &end, 10);
+  if (end == s + 1 || *end != '=' || n < 1 || n > 99999 || errno) goto usage_err;
+  s = end + 1;
+  if (parse_shape(&s, &shape) != 0) goto usage_err;
+  if (parse_dims(s, dims, bad, sizeof bad) != 0) {
+    snprintf(msg, msglen, "--tool: %s in \"%s\"; %s", bad, spec, usage);
+    return -1;
+  }
+  if (swarf_cutter_init(&out->cutter, shape, dims[0], dims[1], dims[2], &why) != 0) {
+    snprintf(msg, msglen, "--tool: %s in \"%s\"", why ? why : "impossible cutter", spec);
+    return -1;
+  }
+  out->number = (int)n;
+  return 0;
+usage_err:
+  snprintf(msg, msglen, "--tool: cannot read \"%s\"; %s", spec ? spec : "", usage);
+  return -1;
+}

@@ -37,6 +37,8 @@ static const char help[] =
     "  --mesh FILE.stl  its surface as a binary STL\n"
     "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer)\n"
     "  --quiet          no progress bar and no summary\n"
+    "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
+    "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "\n"
     "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ...), 1 on an\n"
     "internal failure. Nothing is written unless the whole program ran.\n";
@@ -88,6 +90,10 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   if (!strcmp(flag, "--batch")) {
     if (read_double(flag, val, 1, &d)) return 2;
     return o->cfg.batch = (int)d, 0;
+  }
+  if (!strcmp(flag, "--stamp")) {
+    if (read_double(flag, val, 1e-3, &o->cfg.stamp_step)) return 2;
+    return 0;
   }
   if (!strcmp(flag, "--stock")) {
     if (swarf_sim_parse_box(val, o->cfg.stock_lo, o->cfg.stock_hi, msg, sizeof msg))

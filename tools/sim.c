@@ -7,6 +7,7 @@
  * run hands the stock to the caller.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,13 @@
 #include <time.h>
 
 #include "sim.h"
+
+/* A move stamped at n + 1 evenly spaced poses (the benchmark baseline). */
+typedef struct {
+  const swarf_cutter *cutter;
+  const swarf_motion *motion;
+  int n;
+} stamp_ctx;
 
 typedef struct {
   const swarf_sim_config *cfg;
@@ -23,6 +31,7 @@ typedef struct {
   swarf_motion *motions;      /* batch: motions, their sweeps and cuts */
   swarf_sweep *sweeps;
   swarf_stock_cut *cuts;
+  stamp_ctx *stamps;
   int n, cap;
   double pad_lo[3], pad_hi[3]; /* stock box grown by the narrow band */
   swarf_sim_report *rep;
@@ -40,6 +49,18 @@ static double now_seconds(void) {
 static double sweep_sdf(const void *ctx, double x, double y, double z) {
   const double p[3] = {x, y, z};
   return swarf_sweep_sdf((const swarf_sweep *)ctx, p, NULL);
+}
+
+static double stamp_sdf(const void *ctx, double x, double y, double z) {
+  const stamp_ctx *s = ctx;
+  double best = INFINITY, t[3];
+  for (int i = 0; i <= s->n; i++) {
+    swarf_motion_eval(s->motion, (double)i / s->n, t, NULL);
+    const double q[3] = {x - t[0], y - t[1], z - t[2]};
+    double d = swarf_cutter_sdf(s->cutter, q);
+    if (d < best) best = d;
+  }
+  return best;
 }
 
 static const swarf_sim_tool *find_tool(const swarf_sim_config *cfg, int number) {
@@ -81,6 +102,15 @@ static int queue_motion(sim_state *st) {
   if (!boxes_overlap(c->lo, c->hi, st->pad_lo, st->pad_hi)) return 0;
   c->sdf = sweep_sdf;
   c->ctx = s;
+  if (st->cfg->stamp_step > 0) {
+    stamp_ctx *sc = &st->stamps[st->n];
+    double n = ceil(m->length / st->cfg->stamp_step);
+    sc->cutter = st->cutter;
+    sc->motion = m;
+    sc->n = n < 1 ? 1 : n > 1e6 ? 1000000 : (int)n;
+    c->sdf = stamp_sdf;
+    c->ctx = sc;
+  }
   st->rep->cutting_moves++;
   if (++st->n == st->cap) return flush(st);
   return 0;
@@ -136,7 +166,8 @@ static int state_init(sim_state *st, const swarf_sim_config *cfg, const char *na
   st->motions = malloc(sizeof *st->motions * (size_t)st->cap);
   st->sweeps = malloc(sizeof *st->sweeps * (size_t)st->cap);
   st->cuts = malloc(sizeof *st->cuts * (size_t)st->cap);
-  if (!st->motions || !st->sweeps || !st->cuts) {
+  st->stamps = malloc(sizeof *st->stamps * (size_t)st->cap);
+  if (!st->motions || !st->sweeps || !st->cuts || !st->stamps) {
     snprintf(msg, msglen, "out of memory");
     return 1;
   }
@@ -157,6 +188,7 @@ static void state_clear(sim_state *st) {
   free(st->motions);
   free(st->sweeps);
   free(st->cuts);
+  free(st->stamps);
   swarf_stock_free(st->stock);
 }
 

@@ -35,6 +35,10 @@ typedef struct {
   swarf_sim_tool tools[SWARF_SIM_MAX_TOOLS];
   int ntools;
   int batch; /* moves removed per stock pass (default 128) */
+  /* Benchmark baseline only: when > 0, each move is not swept exactly but
+   * stamped, i.e. the cutter is placed at poses spaced stamp_step mm apart
+   * along the path, as stamping simulators do. */
+  double stamp_step;
   /* Called now and then with the fraction of the program read (0..1). */
   void (*progress)(void *ctx, double fraction, long moves);
   void *progress_ctx;

@@ -92,6 +92,47 @@ int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c, const 
                              const double U[9], const double v[3], const double omega[3],
                              double tol);
 
+/* Layout of the result of the compute functions: each component is a CLOSED
+ * polyline that repeats its first point at its end. A component runs along
+ * branch s = +1 of Fact 2 from its lower end (a branch point, or a pole) to
+ * its upper end, then back along s = -1. Where the curve crosses a kink of
+ * phi it follows the kink's face: along the side ruling (n_z = 0) the normal
+ * stays on the equator while the point climbs the ruling; at a flat face
+ * (n_z = +-1, core radius a > 0) the two branch ends are joined by the chord
+ * of the face. A pure translation along the cutter axis makes the whole side
+ * characteristic: the result is then the two rim circles of the side (one
+ * when the side has no height). Degenerate instances whose characteristic set
+ * contains a surface patch (a ball turning about its own centre) give some
+ * curves inside that patch. */
+
+/* A QSS of revolution about z (paper eq. 12 with c = d = 0):
+ * h(n) = a (n_x^2 + n_y^2) + b n_z^2 + e n_z + f, so phi(z) = (b - a) z^2 + e z + a + f.
+ * Its surface point is x_h(n) = phi(z) n + phi'(z) (e_z - z n). */
+typedef struct {
+  double a, b, e, f;
+} swarf_qss;
+
+/* swarf_char_curve_compute for a QSS of revolution instead of a cutter. */
+int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q, const double t[3],
+                                 const double U[9], const double v[3], const double omega[3],
+                                 double tol);
+
+/* The real branch points of the characteristic curve: the z in [-1, 1] where
+ * Fact 2's Delta changes sign, sorted, to full double precision (branch
+ * points on a cutter's side ruling are reported as z = 0). Writes at most max
+ * of them and returns how many there are. */
+int swarf_char_branch_points(const swarf_cutter *c, const double v[3], const double omega[3],
+                             double *z, int max);
+int swarf_char_branch_points_qss(const swarf_qss *q, const double v[3], const double omega[3],
+                                 double *z, int max);
+
+/* The Gauss points at one slice n_z = z of any profile of revolution with
+ * phi'(z) = dphi (Fact 2): n[0] for s = +1, n[1] for s = -1. Returns 2, 1 when
+ * the slice touches the curve (Delta = 0), 0 when it misses it or when
+ * A = B = 0 (the whole latitude circle, or none, is characteristic). */
+int swarf_char_gauss_slice(double dphi, const double v[3], const double omega[3], double z,
+                           double n[2][3]);
+
 /* ---- Swept volume of one move ------------------------------------------- */
 
 /* The volume swept by cutter c along motion m (a value; it points at both,
@@ -113,6 +154,13 @@ void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
  * larger in magnitude than the true depth otherwise. 1-Lipschitz. If alpha is
  * not NULL it receives the time of the nearest cutter instance. */
 double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+
+/* The characteristic curve of the sweep at time alpha in [0, 1]: the cutter
+ * at the pose of the motion, moving with its velocity d/dalpha (for the xyz
+ * machine U = I, omega = 0 and v = dt/dalpha). The union over alpha of these
+ * curves (world points w) is the envelope whose inside swarf_sweep_sdf
+ * measures. Same contract as swarf_char_curve_compute. */
+int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol, swarf_char_curve *cc);
 
 #ifdef __cplusplus
 }

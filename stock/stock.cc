@@ -1,2 +1,328 @@
-// placeholder until the module lands
-#include "stock.h"
+/// @file stock.cc
+/// @brief The stock handle: creation of a box stock, queries (volume, bounds,
+/// samples, active voxels), the level-set check, and their C entry points.
+///
+/// The box is written directly as the exact box signed distance: the region
+/// around the box (padded by the band) is filled with inside tiles, then the
+/// outside of the box is removed with the removal of remove.cc (its sdf is
+/// minus the box sdf). Near the faces each voxel holds the exact distance,
+/// computed in double and rounded once to float. OpenVDB's createLevelSetBox is
+/// as exact, but goes through meshToVolume: 2.9 s against 0.1 s here for an
+/// 80 x 80 x 20 mm box at 0.1 mm.
+#include <openvdb/tools/Diagnostics.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/Prune.h>
+#include <openvdb/tree/LeafManager.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "stock_private.h"
+
+namespace swarf {
+
+namespace {
+
+constexpr double kMaxIndex = 1073741824.0;  ///< 2^30: index coordinates stay well inside int32
+constexpr int kMaxHalfWidth = 64;           ///< voxels
+constexpr double kMaxActiveVoxels = 4e9;    ///< refuse boxes whose band would need > ~20 GB
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// checkLevelSet's checks 1 to 8: value type, class, uniform voxels, background,
+/// no active tiles, finite values, active values within +-background, inactive
+/// values exactly +-background. Check 9 (|grad|^2 within [0.5, 1.5] at zero
+/// crossings, by WENO/Godunov differences) fails at every sharp edge of an exact
+/// distance field: OpenVDB's own createLevelSetBox fails it (160 voxels on a
+/// 4 x 3 x 3 mm box at 0.1 mm), and machined parts are made of sharp edges.
+constexpr size_t kLevelSetChecks = 8;
+
+/// The stock box [lo, hi] (mm) and its exact signed distance.
+struct Box {
+  double lo[3], hi[3];
+};
+
+double box_sdf(const Box &b, const double p[3]) {
+  double out2 = 0.0, in = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; k++) {
+    const double q = std::max(b.lo[k] - p[k], p[k] - b.hi[k]);
+    if (q > 0.0) out2 += q * q;
+    in = std::max(in, q);
+  }
+  return out2 > 0.0 ? std::sqrt(out2) : in;
+}
+
+/// The volume removed to carve the box: everything outside it.
+double box_outside(const void *ctx, double x, double y, double z) {
+  const double p[3] = {x, y, z};
+  return -box_sdf(*static_cast<const Box *>(ctx), p);
+}
+
+/// Index box of everything that is not outside background: the leaves and
+/// the tiles that are active or not at +background.
+openvdb::CoordBBox content_box(const openvdb::FloatTree &tree) {
+  openvdb::CoordBBox box;
+  for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) box.expand(leaf->getNodeBoundingBox());
+  const float bg = tree.background();
+  auto it = tree.cbeginValueAll();
+  it.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);  // tiles only
+  for (; it; ++it)
+    if (it.isValueOn() || !(*it >= bg)) box.expand(it.getBoundingBox());
+  return box;
+}
+
+/// Voxel size (mm) and origin of a linear, axis-aligned, uniform, positive scale
+/// transform; throws Error(FORMAT) for any other transform.
+double check_transform(const openvdb::math::Transform &xf, openvdb::Vec3d &origin) {
+  if (!xf.isLinear()) throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's transform is not linear");
+  const openvdb::Mat4d m = xf.baseMap()->getAffineMap()->getMat4();
+  const double v = m(0, 0);
+  if (!std::isfinite(v) || !(v > 0.0))
+    throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's voxel size is not finite and positive");
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      const double want = i == j ? v : 0.0;
+      if (!(std::fabs(m(i, j) - want) <= 1e-9 * v))
+        throw Error(SWARF_STOCK_ERR_FORMAT,
+                    "the grid's transform is not a uniform axis-aligned scale (non-uniform "
+                    "voxels, rotation or shear)");
+    }
+  origin = xf.indexToWorld(openvdb::Vec3d(0.0));
+  if (!origin.isFinite()) throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's translation is not finite");
+  return v;
+}
+
+void check_box_args(const double lo[3], const double hi[3], double voxel, int half_width) {
+  if (lo == nullptr || hi == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "lo or hi is NULL");
+  if (!std::isfinite(voxel) || !(voxel > 0.0))
+    throw Error(SWARF_STOCK_ERR_ARG, "voxel must be finite and > 0");
+  if (half_width < 3 || half_width > kMaxHalfWidth)
+    throw Error(SWARF_STOCK_ERR_ARG, "half_width must be 3 to 64 voxels");
+  double area = 0.0, d[3];
+  for (int k = 0; k < 3; k++) {
+    if (!std::isfinite(lo[k]) || !std::isfinite(hi[k]))
+      throw Error(SWARF_STOCK_ERR_ARG, "box corners must be finite");
+    if (!(lo[k] < hi[k])) throw Error(SWARF_STOCK_ERR_ARG, "box needs lo < hi on every axis");
+    if (std::fabs(lo[k]) / voxel > kMaxIndex / 2 || std::fabs(hi[k]) / voxel > kMaxIndex / 2)
+      throw Error(SWARF_STOCK_ERR_ARG, "box too far from the origin for this voxel size");
+    d[k] = (hi[k] - lo[k]) / voxel;
+  }
+  area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
+  if (area * (2.0 * half_width + 1.0) > kMaxActiveVoxels)
+    throw Error(SWARF_STOCK_ERR_MEMORY, "box too large for this voxel size (band over 4e9 voxels)");
+}
+
+swarf_stock *make_box(const double lo[3], const double hi[3], double voxel, int half_width) {
+  init_openvdb();
+  const float bg = float(half_width * voxel);
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bg);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  grid->setName("stock");
+  grid->setSaveFloatAsHalf(false);
+  int a[3], b[3];  // the box padded by the band and two voxels, block-aligned
+  for (int k = 0; k < 3; k++) {
+    a[k] = (int(std::floor(lo[k] / voxel)) - half_width - 2) & ~7;
+    b[k] = (int(std::ceil(hi[k] / voxel)) + half_width + 2) | 7;
+  }
+  const openvdb::CoordBBox region(openvdb::Coord(a[0], a[1], a[2]), openvdb::Coord(b[0], b[1], b[2]));
+  grid->tree().fill(region, -bg, false);
+  std::unique_ptr<swarf_stock> s(wrap_grid(grid));
+  Box box;
+  swarf_stock_cut cut;
+  for (int k = 0; k < 3; k++) {
+    box.lo[k] = lo[k], box.hi[k] = hi[k];
+    cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;
+  }
+  cut.sdf = box_outside;
+  cut.ctx = &box;
+  remove_cuts(*s, &cut, 1);
+  openvdb::tools::pruneLevelSet(grid->tree());
+  return s.release();
+}
+
+/// Fraction of voxel volume inside the material for a value phi (mm): a ramp
+/// one voxel wide, exact for a plane parallel to a voxel face at any offset.
+inline double inside_fraction(float phi, double voxel) {
+  const double t = 0.5 - phi / voxel;
+  return t > 1.0 ? 1.0 : t > 0.0 ? t : 0.0;  // NaN counts as outside
+}
+
+/// Volume (mm^3) enclosed by the zero level: voxel^3 times the sum of the
+/// inside fractions of all voxels (tiles count for all their voxels). Summed
+/// per leaf in parallel, then in leaf order: the result does not depend on
+/// the thread count. (OpenVDB's levelSetVolume, a smeared surface integral of
+/// x . grad(phi), errs near sharp edges in proportion to their distance from
+/// the index origin: -2.9 % for a ball of radius 2 mm removed from the corner
+/// of a 10 x 8 x 5 mm box at 0.1 mm, against +0.09 % here.)
+double enclosed_volume(const swarf_stock &s) {
+  using Tree = openvdb::FloatTree;
+  const Tree &tree = s.grid->constTree();
+  openvdb::tree::LeafManager<const Tree> leaves(tree);
+  std::vector<double> part(leaves.leafCount());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, part.size()), [&](const tbb::blocked_range<size_t> &r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const float *v = leaves.leaf(i).buffer().data();
+      double sum = 0.0;
+      for (openvdb::Index n = 0; n < Tree::LeafNodeType::SIZE; n++) sum += inside_fraction(v[n], s.voxel);
+      part[i] = sum;
+    }
+  });
+  double total = 0.0;
+  for (double p : part) total += p;
+  auto it = tree.cbeginValueAll();
+  it.setMaxDepth(Tree::ValueAllCIter::LEAF_DEPTH - 1);  // tiles only
+  for (; it; ++it) total += inside_fraction(*it, s.voxel) * double(it.getVoxelCount());
+  return total * s.voxel * s.voxel * s.voxel;
+}
+
+/// Index coordinate of a world point (mm), or false if it is not finite or
+/// too far out for the int32 index space.
+bool world_to_index(const swarf_stock &s, double x, double y, double z, openvdb::Vec3d &ijk) {
+  ijk = (openvdb::Vec3d(x, y, z) - s.origin) / s.voxel;
+  for (int k = 0; k < 3; k++)
+    if (!(std::fabs(ijk[k]) < kMaxIndex)) return false;
+  return true;
+}
+
+}  // namespace
+
+void init_openvdb() {
+  static std::once_flag once;
+  std::call_once(once, [] { openvdb::initialize(); });
+}
+
+void set_message(char *msg, size_t msglen, const std::string &text) {
+  if (msg == nullptr || msglen == 0) return;
+  const size_t n = std::min(text.size(), msglen - 1);
+  std::memcpy(msg, text.data(), n);
+  msg[n] = '\0';
+}
+
+swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid) {
+  std::unique_ptr<swarf_stock> s(new swarf_stock());
+  s->voxel = check_transform(grid->transform(), s->origin);
+  s->background = grid->background();
+  if (!std::isfinite(s->background) || !(s->background > 0.0f))
+    throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's background (band half-width) is not finite and > 0");
+  s->half_width = int(std::max(1L, std::lround(s->background / s->voxel)));
+  s->content = content_box(grid->constTree());
+  if (!s->content.empty())
+    for (int k = 0; k < 3; k++)
+      if (s->content.min()[k] < -kMaxIndex || s->content.max()[k] > kMaxIndex)
+        throw Error(SWARF_STOCK_ERR_FORMAT, "the grid reaches beyond 2^30 voxels from the origin");
+  s->grid = grid;
+  return s.release();
+}
+
+}  // namespace swarf
+
+using swarf::Error;
+
+extern "C" swarf_stock *swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
+                                            int half_width, char *msg, size_t msglen) {
+  swarf_stock *s = nullptr;
+  swarf::guard(msg, msglen, [&] {
+    swarf::check_box_args(lo, hi, voxel, half_width);
+    s = swarf::make_box(lo, hi, voxel, half_width);
+  });
+  return s;
+}
+
+extern "C" void swarf_stock_free(swarf_stock *s) {
+  try {
+    delete s;
+  } catch (...) {
+  }
+}
+
+extern "C" double swarf_stock_voxel(const swarf_stock *s) { return s ? s->voxel : 0.0; }
+
+extern "C" int swarf_stock_half_width(const swarf_stock *s) { return s ? s->half_width : 0; }
+
+extern "C" double swarf_stock_volume(const swarf_stock *s) {
+  if (s == nullptr) return swarf::kNaN;
+  try {
+    return swarf::enclosed_volume(*s);
+  } catch (...) {
+    return swarf::kNaN;
+  }
+}
+
+extern "C" unsigned long long swarf_stock_active_voxels(const swarf_stock *s) {
+  return s ? (unsigned long long)s->grid->constTree().activeVoxelCount() : 0ULL;
+}
+
+extern "C" void swarf_stock_bounds(const swarf_stock *s, double lo[3], double hi[3]) {
+  if (lo == nullptr || hi == nullptr) return;
+  openvdb::CoordBBox box;
+  bool any = false;
+  try {
+    any = s != nullptr && s->grid->constTree().evalActiveVoxelBoundingBox(box);
+  } catch (...) {
+  }
+  for (int k = 0; k < 3; k++) {
+    lo[k] = any ? s->origin[k] + s->voxel * box.min()[k] : swarf::kNaN;
+    hi[k] = any ? s->origin[k] + s->voxel * box.max()[k] : swarf::kNaN;
+  }
+}
+
+extern "C" double swarf_stock_sample(const swarf_stock *s, double x, double y, double z) {
+  openvdb::Vec3d ijk;
+  if (s == nullptr) return swarf::kNaN;
+  if (!swarf::world_to_index(*s, x, y, z, ijk))
+    return std::isfinite(x) && std::isfinite(y) && std::isfinite(z) ? s->background : swarf::kNaN;
+  try {
+    return openvdb::tools::BoxSampler::sample(s->grid->constTree(), ijk);
+  } catch (...) {
+    return swarf::kNaN;
+  }
+}
+
+extern "C" double swarf_stock_voxel_value(const swarf_stock *s, double x, double y, double z,
+                                          double centre[3]) {
+  openvdb::Vec3d ijk;
+  if (centre) centre[0] = centre[1] = centre[2] = swarf::kNaN;
+  if (s == nullptr || !swarf::world_to_index(*s, x, y, z, ijk)) return swarf::kNaN;
+  const openvdb::Coord c(int(std::floor(ijk[0] + 0.5)), int(std::floor(ijk[1] + 0.5)),
+                         int(std::floor(ijk[2] + 0.5)));
+  if (centre) {
+    const openvdb::Vec3d w = swarf::index_to_world(*s, c);
+    for (int k = 0; k < 3; k++) centre[k] = w[k];
+  }
+  try {
+    return s->grid->constTree().getValue(c);
+  } catch (...) {
+    return swarf::kNaN;
+  }
+}
+
+extern "C" void swarf_stock_visit_active(const swarf_stock *s, swarf_stock_visit_fn fn, void *ctx) {
+  if (s == nullptr || fn == nullptr) return;
+  try {
+    for (auto leaf = s->grid->constTree().cbeginLeaf(); leaf; ++leaf)
+      for (auto it = leaf->cbeginValueOn(); it; ++it) {
+        const openvdb::Vec3d w = swarf::index_to_world(*s, it.getCoord());
+        const double centre[3] = {w[0], w[1], w[2]};
+        fn(ctx, centre, *it);
+      }
+  } catch (...) {
+  }
+}
+
+extern "C" int swarf_stock_check(const swarf_stock *s, char *msg, size_t msglen) {
+  std::string diagnosis;
+  const int rc = swarf::guard(msg, msglen, [&] {
+    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+    diagnosis = openvdb::tools::checkLevelSet(*s->grid, swarf::kLevelSetChecks);
+    while (!diagnosis.empty() && diagnosis.back() == '\n') diagnosis.pop_back();
+  });
+  if (rc != SWARF_STOCK_OK) return -1;
+  swarf::set_message(msg, msglen, diagnosis);
+  return diagnosis.empty() ? 0 : -1;
+}

@@ -70,7 +70,11 @@ int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts, size_t
 /* Facts about the grid. */
 double swarf_stock_voxel(const swarf_stock *s);
 int swarf_stock_half_width(const swarf_stock *s);
-double swarf_stock_volume(const swarf_stock *s); /* enclosed volume, mm^3 */
+/* Enclosed volume, mm^3: voxel^3 times the sum over all voxels of the inside
+ * fraction clamp(1/2 - value/voxel, 0, 1) (exact for faces parallel to voxel
+ * faces; about 0.1 % on the removed volume of a 2 mm ball at 0.1 mm voxels).
+ * NaN for a NULL stock. */
+double swarf_stock_volume(const swarf_stock *s);
 unsigned long long swarf_stock_active_voxels(const swarf_stock *s);
 void swarf_stock_bounds(const swarf_stock *s, double lo[3], double hi[3]); /* active bbox, mm */
 
@@ -85,7 +89,11 @@ typedef void (*swarf_stock_visit_fn)(void *ctx, const double centre[3], float va
 void swarf_stock_visit_active(const swarf_stock *s, swarf_stock_visit_fn fn, void *ctx);
 
 /* OpenVDB's checkLevelSet: 0 if the grid is a valid narrow-band level set,
- * else -1 with the diagnosis in msg. */
+ * else -1 with the diagnosis in msg. Runs checks 1 to 8 (type, class, uniform
+ * voxels, background, no active tiles, finite values, active values within the
+ * band, inactive values at +-band); check 9 (Eikonal |grad| near 1 at zero
+ * crossings) is left out: it fails at every sharp edge of an exact distance
+ * field, OpenVDB's own createLevelSetBox included. */
 int swarf_stock_check(const swarf_stock *s, char *msg, size_t msglen);
 
 /* Outputs, each written atomically (temporary name, then rename). */

@@ -1,0 +1,252 @@
+/* charcurve.c -- characteristic curves of a moving body of revolution at one
+ * time step: closed polylines, one per component, sampled so that the chord
+ * error of the surface points stays under a tolerance.
+ *
+ * The per-slice math and the branch points live in charslice.c. A component
+ * is a maximal parameter interval where Delta > 0; its two branches s = +1,
+ * s = -1 meet at the branch points (roots of Delta) and, at a flat face, are
+ * joined by the face's chord. The curve owns its arrays (init/clear pair);
+ * compute replaces the contents.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine_private.h"
+
+#define MAX_ROOTS 64
+#define MAX_DEPTH 48         /* bisections of one parameter interval */
+#define MAX_POINTS 4000000   /* refuse to grow beyond this */
+#define PROBES 7             /* odd: the middle probe is the split point */
+#define PROBE_MARGIN 0.9
+
+typedef struct {
+  swarf_char_curve *cc;
+  const swarf_char_profile *pr;
+  const double *v, *omega, *t, *U;
+  double tol;
+  size_t first; /* index of the first point of the open component */
+} builder;
+
+void swarf_char_curve_init(swarf_char_curve *cc) { memset(cc, 0, sizeof *cc); }
+
+void swarf_char_curve_clear(swarf_char_curve *cc) {
+  free(cc->pts);
+  free(cc->start);
+  memset(cc, 0, sizeof *cc);
+}
+
+static int reset(swarf_char_curve *cc) {
+  cc->len = 0;
+  cc->ncomp = 0;
+  if (cc->start_cap == 0) {
+    cc->start = malloc(8 * sizeof *cc->start);
+    if (cc->start == NULL) return -1;
+    cc->start_cap = 8;
+  }
+  cc->start[0] = 0;
+  return 0;
+}
+
+static int push(builder *b, const double n[3], const double x[3]) {
+  swarf_char_curve *cc = b->cc;
+  swarf_char_point *p;
+  if (cc->len == cc->cap) {
+    size_t cap = cc->cap ? 2 * cc->cap : 256;
+    void *mem = cap <= MAX_POINTS ? realloc(cc->pts, cap * sizeof *cc->pts) : NULL;
+    if (mem == NULL) return -1;
+    cc->pts = mem;
+    cc->cap = cap;
+  }
+  p = &cc->pts[cc->len++];
+  for (int k = 0; k < 3; k++) {
+    p->n[k] = n[k];
+    p->x[k] = x[k];
+  }
+  for (int k = 0; k < 3; k++)
+    p->w[k] = b->t[k] + b->U[3 * k] * x[0] + b->U[3 * k + 1] * x[1] + b->U[3 * k + 2] * x[2];
+  return 0;
+}
+
+/* Push unless it repeats the last point of the open component. */
+static int push_new(builder *b, const double n[3], const double x[3]) {
+  swarf_char_curve *cc = b->cc;
+  if (cc->len > b->first) {
+    const swarf_char_point *q = &cc->pts[cc->len - 1];
+    if (memcmp(q->n, n, 3 * sizeof *n) == 0 && memcmp(q->x, x, 3 * sizeof *x) == 0) return 0;
+  }
+  return push(b, n, x);
+}
+
+/* Close the open component (repeat its first point) and count it. */
+static int close_component(builder *b) {
+  swarf_char_curve *cc = b->cc;
+  if (cc->len == b->first) return 0;
+  if (push_new(b, cc->pts[b->first].n, cc->pts[b->first].x) != 0) return -1;
+  if (cc->ncomp + 2 > cc->start_cap) {
+    size_t cap = 2 * cc->start_cap;
+    void *mem = realloc(cc->start, cap * sizeof *cc->start);
+    if (mem == NULL) return -1;
+    cc->start = mem;
+    cc->start_cap = cap;
+  }
+  cc->start[++cc->ncomp] = cc->len;
+  b->first = cc->len;
+  return 0;
+}
+
+/* Point of branch s at sigma. At a branch point (at_root) Delta is set to 0
+ * so that both branches give the same point. Where the slice is degenerate
+ * (a pole where the rim direction comes only from the limit) the parameter is
+ * nudged toward `inward`. */
+static int eval_point(const builder *b, double sigma, double s, int at_root, double inward,
+                      double n[3], double x[3]) {
+  swarf_char_slice sl;
+  double nudge = 1e-10 * b->pr->sigma_end;
+  for (int tries = 0; tries < 4; tries++, nudge *= 100.0) {
+    swarf_char_slice_eval(b->pr, b->v, b->omega, sigma, &sl);
+    if (at_root) sl.delta = 0.0;
+    if (swarf_char_slice_point(b->pr, &sl, s, n, x) == 0) return 0;
+    sigma += inward * nudge;
+  }
+  return -1;
+}
+
+static double seg_dist(const double p[3], const double a[3], const double c[3]) {
+  double d[3], w[3], dd = 0.0, t = 0.0, r = 0.0;
+  for (int k = 0; k < 3; k++) {
+    d[k] = c[k] - a[k];
+    w[k] = p[k] - a[k];
+    dd += d[k] * d[k];
+    t += d[k] * w[k];
+  }
+  t = dd > 0.0 ? t / dd : 0.0;
+  t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+  for (int k = 0; k < 3; k++) r += (w[k] - t * d[k]) * (w[k] - t * d[k]);
+  return sqrt(r);
+}
+
+/* Append the points of branch s after (s0, x0) up to (s1, n1, x1), splitting
+ * the parameter interval until the chord is within PROBE_MARGIN * tol of the
+ * curve at PROBES evenly spaced parameters (the margin covers the curve
+ * between probes). */
+static int refine(builder *b, double s, double s0, const double x0[3], double s1,
+                  const double n1[3], const double x1[3], int depth) {
+  double nm[PROBES][3], xm[PROBES][3], mid = 0.5 * (s0 + s1);
+  int split = 0;
+  for (int i = 0; i < PROBES && depth < MAX_DEPTH; i++) {
+    double sig = s0 + (s1 - s0) * (i + 1) / (PROBES + 1);
+    if (eval_point(b, sig, s, 0, 0.0, nm[i], xm[i]) != 0) {
+      split = 0; /* no real point: keep the chord */
+      break;
+    }
+    if (seg_dist(xm[i], x0, x1) > PROBE_MARGIN * b->tol) split = 1;
+  }
+  if (!split) return push_new(b, n1, x1);
+  if (refine(b, s, s0, x0, mid, nm[PROBES / 2], xm[PROBES / 2], depth + 1) != 0) return -1;
+  return refine(b, s, mid, xm[PROBES / 2], s1, n1, x1, depth + 1);
+}
+
+/* Branch s from sigma `from` to `to`; the flags say which ends are branch
+ * points (roots of Delta) rather than poles. */
+static int branch(builder *b, double s, double from, double to, int root_from, int root_to) {
+  double dir = to > from ? 1.0 : -1.0, span = fabs(to - from);
+  int m = (int)ceil(64.0 * span / b->pr->sigma_end);
+  double n0[3], x0[3], prev = from;
+  if (m < 8) m = 8;
+  if (eval_point(b, from, s, root_from, dir, n0, x0) != 0) return 0;
+  if (push_new(b, n0, x0) != 0) return -1;
+  for (int i = 1; i <= m; i++) {
+    double sig = i == m ? to : from + (to - from) * i / m, n1[3], x1[3];
+    if (eval_point(b, sig, s, i == m && root_to, -dir, n1, x1) != 0) continue;
+    if (refine(b, s, prev, x0, sig, n1, x1, 0) != 0) return -1;
+    memcpy(x0, x1, sizeof x0);
+    prev = sig;
+  }
+  return 0;
+}
+
+static int component(builder *b, double lo, double hi, int root_lo, int root_hi) {
+  if (branch(b, 1.0, lo, hi, root_lo, root_hi) != 0) return -1;
+  if (branch(b, -1.0, hi, lo, root_hi, root_lo) != 0) return -1;
+  return close_component(b);
+}
+
+static int compute_general(builder *b) {
+  double ends[MAX_ROOTS + 2];
+  int nr = swarf_char_delta_roots(b->pr, b->v, b->omega, ends + 1, MAX_ROOTS);
+  if (nr > MAX_ROOTS) nr = MAX_ROOTS;
+  ends[0] = 0.0;
+  ends[nr + 1] = b->pr->sigma_end;
+  for (int i = 0; i <= nr; i++) {
+    swarf_char_slice sl;
+    if (!(ends[i + 1] > ends[i])) continue;
+    swarf_char_slice_eval(b->pr, b->v, b->omega, 0.5 * (ends[i] + ends[i + 1]), &sl);
+    if (!(sl.delta > 0.0)) continue;
+    if (component(b, ends[i], ends[i + 1], i > 0, i < nr) != 0) return -1;
+  }
+  return 0;
+}
+
+/* One horizontal circle of normals n = (cos, sin, 0) at the ruling height c. */
+static int rim_circle(builder *b, double c) {
+  const swarf_char_profile *pr = b->pr;
+  double rho = pr->is_qss ? fabs(pr->q0) : pr->a + pr->R, cosv, m;
+  cosv = rho > b->tol ? 1.0 - b->tol / rho : -1.0;
+  m = ceil(3.14159265358979323846 / acos(cosv));
+  if (m < 8) m = 8;
+  for (int i = 0; i < (int)m; i++) {
+    double th = 6.28318530717958647692 * i / m;
+    double n[3] = {cos(th), sin(th), 0.0}, x[3];
+    double k = pr->is_qss ? pr->q0 : rho;
+    x[0] = k * n[0];
+    x[1] = k * n[1];
+    x[2] = pr->is_qss ? pr->q1 : c;
+    if (push(b, n, x) != 0) return -1;
+  }
+  return close_component(b);
+}
+
+/* Translation along the axis: the whole side is characteristic. */
+static int compute_axial(builder *b) {
+  const swarf_char_profile *pr = b->pr;
+  if (pr->is_qss) return rim_circle(b, 0.0);
+  if (rim_circle(b, pr->R) != 0) return -1;
+  if (pr->L - 2.0 * pr->R > 0.0) return rim_circle(b, pr->L - pr->R);
+  return 0;
+}
+
+static int compute(swarf_char_curve *cc, const swarf_char_profile *pr, const double t[3],
+                   const double U[9], const double v[3], const double omega[3], double tol) {
+  builder b = {cc, pr, v, omega, t, U, tol > 0.0 ? tol : 1e-3 * pr->scale, 0};
+  double l2 = pr->scale * pr->scale, lat, all;
+  if (cc == NULL || t == NULL || U == NULL || v == NULL || omega == NULL) return -1;
+  if (reset(cc) != 0) return -1;
+  lat = v[0] * v[0] + v[1] * v[1] + (omega[0] * omega[0] + omega[1] * omega[1]) * l2;
+  all = lat + v[2] * v[2] + omega[2] * omega[2] * l2;
+  if (!(all > 0.0) || lat + v[2] * v[2] <= 1e-24 * all) return 0; /* still, or turning in place */
+  if (lat <= 1e-24 * all) {
+    if (compute_axial(&b) != 0) return -1;
+  } else if (compute_general(&b) != 0) {
+    return -1;
+  }
+  return (int)cc->ncomp;
+}
+
+int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c, const double t[3],
+                             const double U[9], const double v[3], const double omega[3],
+                             double tol) {
+  swarf_char_profile pr;
+  if (c == NULL) return -1;
+  swarf_char_profile_cutter(&pr, c);
+  return compute(cc, &pr, t, U, v, omega, tol);
+}
+
+int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q, const double t[3],
+                                 const double U[9], const double v[3], const double omega[3],
+                                 double tol) {
+  swarf_char_profile pr;
+  if (q == NULL) return -1;
+  swarf_char_profile_qss(&pr, q);
+  return compute(cc, &pr, t, U, v, omega, tol);
+}

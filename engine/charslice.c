@@ -1,0 +1,195 @@
+/* charslice.c -- the per-slice closed form of the characteristic curve of a
+ * body of revolution (shared/docs/ENVELOPE.md, Fact 2) and its branch points.
+ *
+ * At n_z = z the characteristic condition is linear in (n_x, n_y):
+ *   A x + B y + C = 0,  A = v_x + phi'(z) omega_y,  B = v_y - phi'(z) omega_x,  C = v_z z,
+ * met on the circle x^2 + y^2 = 1 - z^2 where Delta = (1 - z^2)(A^2 + B^2) - C^2 >= 0.
+ * The code scales A and B by sqrt(1 - z^2) (finite at the poles even where
+ * phi' is not) and runs over the Gauss image with the polar angle, plus the
+ * side ruling of a cutter as an interval of its own (engine_private.h).
+ * Pure functions of caller-owned values.
+ */
+#include <math.h>
+#include <stddef.h>
+
+#include "engine_private.h"
+
+static const double half_pi = 1.57079632679489661923;
+
+#define DELTA_SAMPLES 1024 /* sign scan of Delta over the parameter range */
+
+void swarf_char_profile_cutter(swarf_char_profile *pr, const swarf_cutter *c) {
+  pr->is_qss = 0;
+  pr->a = swarf_cutter_core(c);
+  pr->R = c->corner_radius;
+  pr->L = c->length;
+  pr->q2 = pr->q1 = pr->q0 = 0.0;
+  pr->plateau = pr->L - 2.0 * pr->R > 0.0 ? 1.0 : 0.0;
+  pr->sigma_end = 2.0 * half_pi + pr->plateau;
+  pr->scale = pr->L > 0.5 * c->diameter ? pr->L : 0.5 * c->diameter;
+}
+
+void swarf_char_profile_qss(swarf_char_profile *pr, const swarf_qss *q) {
+  pr->is_qss = 1;
+  pr->a = pr->R = pr->L = 0.0;
+  pr->q2 = q->b - q->a;
+  pr->q1 = q->e;
+  pr->q0 = q->a + q->f;
+  pr->plateau = 0.0;
+  pr->sigma_end = 2.0 * half_pi;
+  pr->scale = 3.0 * fabs(pr->q2) + 2.0 * fabs(pr->q1) + fabs(pr->q0);
+  if (!(pr->scale > 0.0)) pr->scale = 1.0;
+}
+
+/* z, sqrt(1 - z^2), the ruling height c and P = phi'(z) sqrt(1 - z^2). */
+static double slice_geometry(const swarf_char_profile *pr, double sigma, swarf_char_slice *sl) {
+  double theta = sigma;
+  sl->c = pr->R;
+  if (pr->plateau > 0.0 && sigma > half_pi) {
+    if (sigma < half_pi + pr->plateau) {
+      sl->z = 0.0;
+      sl->sz = 1.0;
+      sl->c = pr->R + (sigma - half_pi) / pr->plateau * (pr->L - 2.0 * pr->R);
+      return sl->c;
+    }
+    theta = sigma - pr->plateau;
+    sl->c = pr->L - pr->R;
+  } else if (!pr->is_qss && sigma > half_pi) {
+    sl->c = pr->L - pr->R;
+  }
+  sl->z = -cos(theta);
+  sl->sz = sin(theta);
+  if (sl->sz < 0.0) sl->sz = 0.0;
+  if (pr->is_qss) return (2.0 * pr->q2 * sl->z + pr->q1) * sl->sz;
+  return -pr->a * sl->z + sl->c * sl->sz;
+}
+
+void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3],
+                           const double omega[3], double sigma, swarf_char_slice *sl) {
+  double P = slice_geometry(pr, sigma, sl);
+  sl->At = v[0] * sl->sz + P * omega[1];
+  sl->Bt = v[1] * sl->sz - P * omega[0];
+  sl->C = v[2] * sl->z;
+  sl->delta = sl->At * sl->At + sl->Bt * sl->Bt - sl->C * sl->C;
+}
+
+static void surface_point(const swarf_char_profile *pr, const swarf_char_slice *sl,
+                          const double u[2], const double n[3], double x[3]) {
+  if (pr->is_qss) {
+    double z = n[2], phi = (pr->q2 * z + pr->q1) * z + pr->q0, dphi = 2.0 * pr->q2 * z + pr->q1;
+    x[0] = phi * n[0] - dphi * z * n[0];
+    x[1] = phi * n[1] - dphi * z * n[1];
+    x[2] = phi * n[2] + dphi * (1.0 - z * n[2]);
+    return;
+  }
+  x[0] = pr->a * u[0] + pr->R * n[0];
+  x[1] = pr->a * u[1] + pr->R * n[1];
+  x[2] = sl->c + pr->R * n[2];
+}
+
+int swarf_char_slice_point(const swarf_char_profile *pr, const swarf_char_slice *sl, double s,
+                           double n[3], double x[3]) {
+  double q = sl->At * sl->At + sl->Bt * sl->Bt, u[2] = {1.0, 0.0};
+  if (q > 0.0) {
+    double d = sl->delta > 0.0 ? sqrt(sl->delta) : 0.0, m;
+    if (sl->delta < -1e-12 * q) return -1;
+    u[0] = (-sl->At * sl->C + s * sl->Bt * d) / q;
+    u[1] = (-sl->Bt * sl->C - s * sl->At * d) / q;
+    m = sqrt(u[0] * u[0] + u[1] * u[1]);
+    u[0] /= m;
+    u[1] /= m;
+  } else if (!(sl->sz == 0.0 && (pr->is_qss || pr->a == 0.0)) || sl->C != 0.0) {
+    return -1; /* the rim direction is not determined here: caller nudges */
+  }
+  n[0] = sl->sz * u[0];
+  n[1] = sl->sz * u[1];
+  n[2] = sl->z;
+  surface_point(pr, sl, u, n, x);
+  return 0;
+}
+
+/* Delta >= 0: a zero at a pole (the curve through the pole) starts a run
+ * there instead of making a root next to it. */
+static int delta_positive(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                          double sigma) {
+  swarf_char_slice sl;
+  swarf_char_slice_eval(pr, v, omega, sigma, &sl);
+  return sl.delta >= 0.0;
+}
+
+/* Bisect a sign change of Delta in [lo, hi] to adjacent doubles; returns the
+ * end on the side where Delta >= 0. */
+static double delta_bisect(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                           double lo, double hi) {
+  int plo = delta_positive(pr, v, omega, lo);
+  for (;;) {
+    double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    if (delta_positive(pr, v, omega, mid) == plo)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return plo ? lo : hi;
+}
+
+int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                           double *roots, int max) {
+  int count = 0, prev = delta_positive(pr, v, omega, 0.0);
+  double step = pr->sigma_end / DELTA_SAMPLES, last = 0.0;
+  for (int i = 1; i <= DELTA_SAMPLES; i++) {
+    double sigma = i == DELTA_SAMPLES ? pr->sigma_end : i * step;
+    int cur = delta_positive(pr, v, omega, sigma);
+    if (cur != prev) {
+      if (count < max) roots[count] = delta_bisect(pr, v, omega, last, sigma);
+      count++;
+    }
+    prev = cur;
+    last = sigma;
+  }
+  return count;
+}
+
+/* n_z at parameter sigma (0 on the ruling). */
+static double sigma_to_z(const swarf_char_profile *pr, double sigma) {
+  swarf_char_slice sl;
+  slice_geometry(pr, sigma, &sl);
+  return sl.z;
+}
+
+static int branch_points(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                         double *z, int max) {
+  double roots[64];
+  int n = swarf_char_delta_roots(pr, v, omega, roots, 64);
+  for (int i = 0; i < n && i < max && i < 64; i++) z[i] = sigma_to_z(pr, roots[i]);
+  return n;
+}
+
+int swarf_char_branch_points(const swarf_cutter *c, const double v[3], const double omega[3],
+                             double *z, int max) {
+  swarf_char_profile pr;
+  swarf_char_profile_cutter(&pr, c);
+  return branch_points(&pr, v, omega, z, max);
+}
+
+int swarf_char_branch_points_qss(const swarf_qss *q, const double v[3], const double omega[3],
+                                 double *z, int max) {
+  swarf_char_profile pr;
+  swarf_char_profile_qss(&pr, q);
+  return branch_points(&pr, v, omega, z, max);
+}
+
+int swarf_char_gauss_slice(double dphi, const double v[3], const double omega[3], double z,
+                           double n[2][3]) {
+  double A = v[0] + dphi * omega[1], B = v[1] - dphi * omega[0], C = v[2] * z;
+  double q = A * A + B * B, delta = (1.0 - z * z) * q - C * C, d;
+  if (!(q > 0.0) || delta < 0.0) return 0;
+  d = sqrt(delta);
+  for (int k = 0; k < 2; k++) {
+    double s = k == 0 ? 1.0 : -1.0;
+    n[k][0] = (-A * C + s * B * d) / q;
+    n[k][1] = (-B * C - s * A * d) / q;
+    n[k][2] = z;
+  }
+  return delta > 0.0 ? 2 : 1;
+}

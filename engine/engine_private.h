@@ -1,0 +1,118 @@
+/* engine_private.h -- the engine's insides, shared by its source files only.
+ *
+ *   cutter.c        cutters: support function, surface points, exact sdf.
+ *   charslice.c     the per-slice closed form of ENVELOPE.md Fact 2 and the
+ *                   branch points (roots of Delta), for cutters and QSS.
+ *   charcurve.c     characteristic curves: components, adaptive sampling.
+ *   sweep.c         a move's swept volume: method choice, bounds, dispatch.
+ *   sweep_line.c    straight moves: closed forms (slot, plunge, ramp).
+ *   sweep_helix.c   arcs and helices: the closed form for planar arcs about
+ *                   a vertical axis, the set-up of the others.
+ *   sweep_sampled.c any other helix: sampling plus certified refinement.
+ *
+ * Nothing here allocates; every function works on caller-owned values.
+ */
+#ifndef SWARF_ENGINE_PRIVATE_H
+#define SWARF_ENGINE_PRIVATE_H
+
+#include <math.h>
+
+#include "engine.h"
+
+/* Distance from (x, y) to the quadrant {x <= 0, y <= 0}, signed (< 0 inside):
+ * the exact 2D box combination of two signed slab distances. */
+static inline double swarf_box2(double x, double y) {
+  double xp = x > 0.0 ? x : 0.0, yp = y > 0.0 ? y : 0.0;
+  double in = x > y ? x : y;
+  return sqrt(xp * xp + yp * yp) + (in < 0.0 ? in : 0.0);
+}
+
+/* Core radius a = D/2 - R of the cutter (the cylinder the ball of radius R is
+ * swept over). */
+static inline double swarf_cutter_core(const swarf_cutter *c) {
+  double a = 0.5 * c->diameter - c->corner_radius;
+  return a > 0.0 ? a : 0.0;
+}
+
+/* Cutter sdf from the horizontal distance r >= 0 to its axis and the height z
+ * above its tip. Exact. */
+static inline double swarf_cutter_sdf_rz(const swarf_cutter *c, double r, double z) {
+  double R = c->corner_radius, hh = 0.5 * c->length - R;
+  return swarf_box2(r - swarf_cutter_core(c), fabs(z - 0.5 * c->length) - hh) - R;
+}
+
+/* Cutter sdf at p (cutter frame) and its gradient g (unit where the sdf is
+ * differentiable; a subgradient on the medial axis). */
+double swarf_cutter_sdf_grad(const swarf_cutter *c, const double p[3], double g[3]);
+
+/* ---- Characteristic curves: the slice closed form ------------------------ */
+
+/* A profile of revolution, h(n) = phi(n_z), with the parameter sigma that
+ * runs over its Gauss image from the south pole to the north pole:
+ * theta = polar angle from -z, z = -cos(theta), and for a cutter with a side
+ * ruling an extra unit interval at theta = pi/2 over which the height c of
+ * the ruling point runs from R to length - R (phi' sweeps its jump there). */
+typedef struct {
+  int is_qss;          /* 1: phi(z) = q2 z^2 + q1 z + q0; 0: a cutter */
+  double a, R, L;      /* cutter: core radius, corner radius, length */
+  double q2, q1, q0;   /* QSS of revolution */
+  double plateau;      /* sigma length of the ruling: 1, or 0 when none */
+  double sigma_end;    /* pi + plateau */
+  double scale;        /* size of the surface, mm, for relative tolerances */
+} swarf_char_profile;
+
+/* One slice: everything at parameter sigma. P = phi'(z) sqrt(1 - z^2) stays
+ * finite at the poles; (At, Bt, C) are Fact 2's (A, B, C) with A, B scaled by
+ * sqrt(1 - z^2), so Delta = At^2 + Bt^2 - C^2 is Fact 2's Delta. */
+typedef struct {
+  double z, sz;  /* n_z and sqrt(1 - n_z^2) */
+  double c;      /* cutter: height of the core point (R, ruling, L - R) */
+  double At, Bt, C, delta;
+} swarf_char_slice;
+
+void swarf_char_profile_cutter(swarf_char_profile *pr, const swarf_cutter *c);
+void swarf_char_profile_qss(swarf_char_profile *pr, const swarf_qss *q);
+void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3],
+                           const double omega[3], double sigma, swarf_char_slice *sl);
+
+/* Point of branch s (+1 or -1) at sigma: unit normal n and surface point x.
+ * Returns 0, or -1 where the slice has no real point (Delta < 0 beyond
+ * rounding) or is degenerate (At = Bt = 0). */
+int swarf_char_slice_point(const swarf_char_profile *pr, const swarf_char_slice *sl, double s,
+                           double n[3], double x[3]);
+
+/* Roots of Delta(sigma) on [0, sigma_end], sorted, bisected to full double
+ * precision: the changes between Delta < 0 and Delta >= 0, each given by its
+ * end where Delta >= 0. Returns the count (writes at most max). */
+int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                           double *roots, int max);
+
+/* ---- Sweeps: per-method evaluators -------------------------------------- */
+
+enum {
+  SWARF_SWEEP_PLUNGE,     /* vertical line, or no motion at all (one instance) */
+  SWARF_SWEEP_SLOT,       /* horizontal line */
+  SWARF_SWEEP_RAMP_BALL,  /* other line, ball cutter: parallelogram + ball */
+  SWARF_SWEEP_RAMP,       /* other line, flat or bull: convex 1-D minimum */
+  SWARF_SWEEP_ARC,        /* planar arc about a vertical axis, angle < 2 pi */
+  SWARF_SWEEP_RING,       /* planar full circle about a vertical axis */
+  SWARF_SWEEP_HELIX       /* any other helix: sampling and refinement */
+};
+
+void swarf_sweep_line_init(swarf_sweep *s, const double p0[3], const double p1[3]);
+double swarf_sweep_slot_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+double swarf_sweep_plunge_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+
+/* aux of SWARF_SWEEP_HELIX: t(alpha) = C + RAD (cos(ANG alpha) E1 + sin(ANG alpha) E2)
+ * + alpha RISE axis; N samples STEP mm apart along the path of length LEN. */
+enum { SWARF_H_C, SWARF_H_E1 = 3, SWARF_H_E2 = 6, SWARF_H_RAD = 9, SWARF_H_ANG, SWARF_H_RISE,
+       SWARF_H_STEP, SWARF_H_N, SWARF_H_LEN };
+
+void swarf_sweep_helix_init(swarf_sweep *s);
+double swarf_sweep_arc_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+double swarf_sweep_ring_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+
+#endif

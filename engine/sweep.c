@@ -1,0 +1,60 @@
+/* sweep.c -- the volume swept by a cutter over one move: choice of the
+ * evaluator, bounds, dispatch, and the move's characteristic curves.
+ *
+ * A swarf_sweep is a value that points at a cutter and a motion owned by the
+ * caller; init picks the evaluator (engine_private.h lists them) and stores
+ * its per-move constants in aux. The evaluators live in sweep_line.c and
+ * sweep_helix.c.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "engine_private.h"
+
+void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m) {
+  memset(s, 0, sizeof *s);
+  s->cutter = c;
+  s->motion = m;
+  if (c == NULL || m == NULL) return;
+  if (m->kind == SWARF_MOTION_LINE)
+    swarf_sweep_line_init(s, m->p0, m->p1);
+  else
+    swarf_sweep_helix_init(s);
+}
+
+void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
+  double r = 0.5 * s->cutter->diameter;
+  swarf_motion_bounds(s->motion, lo, hi);
+  for (int k = 0; k < 2; k++) {
+    lo[k] -= r;
+    hi[k] += r;
+  }
+  hi[2] += s->cutter->length;
+}
+
+double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  switch (s->method) {
+  case SWARF_SWEEP_SLOT:
+    return swarf_sweep_slot_sdf(s, p, alpha);
+  case SWARF_SWEEP_RAMP_BALL:
+    return swarf_sweep_ramp_ball_sdf(s, p, alpha);
+  case SWARF_SWEEP_RAMP:
+    return swarf_sweep_ramp_sdf(s, p, alpha);
+  case SWARF_SWEEP_ARC:
+    return swarf_sweep_arc_sdf(s, p, alpha);
+  case SWARF_SWEEP_RING:
+    return swarf_sweep_ring_sdf(s, p, alpha);
+  case SWARF_SWEEP_HELIX:
+    return swarf_sweep_helix_sdf(s, p, alpha);
+  default: /* SWARF_SWEEP_PLUNGE */
+    return swarf_sweep_plunge_sdf(s, p, alpha);
+  }
+}
+
+int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol, swarf_char_curve *cc) {
+  double t[3], U[9], tdot[3], v[3], omega[3];
+  if (s == NULL || s->cutter == NULL || s->motion == NULL || cc == NULL) return -1;
+  swarf_motion_eval(s->motion, alpha, t, U);
+  swarf_motion_velocity(s->motion, alpha, tdot, v, omega);
+  return swarf_char_curve_compute(cc, s->cutter, t, U, v, omega, tol);
+}

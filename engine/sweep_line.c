@@ -1,0 +1,246 @@
+/* sweep_line.c -- swept volumes of straight moves, in closed form.
+ *
+ * The cutter is C + B(R) with C the cylinder {r <= a, z in [R, L - R]}, so
+ * its sweep along the segment S is (C + S) + B(R) and the sdf is the distance
+ * to C + S minus R. C + S is:
+ *   slot   (horizontal S): a stadium prism        -> 2D box formula, exact;
+ *   plunge (vertical S):   a longer cylinder      -> 2D box formula, exact;
+ *   ramp, ball (a = 0):    a planar parallelogram -> piecewise quadratic, exact;
+ *   ramp, a > 0: disk(a) + parallelogram: the distance is the minimum over the
+ *     tip offset u of a convex C1 function, found by safeguarded Newton; exact
+ *     outside; inside, the depth of the deepest single instance (a lower bound
+ *     of the true depth, exact near the surface to second order).
+ * aux layouts are set by swarf_sweep_line_init and read here only.
+ */
+#include <math.h>
+
+#include "engine_private.h"
+
+static double clamp(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
+
+static void plunge_init(swarf_sweep *s, const double p0[3], const double p1[3]) {
+  const swarf_cutter *c = s->cutter;
+  double zlo = fmin(p0[2], p1[2]), zhi = fmax(p0[2], p1[2]), dz = p1[2] - p0[2];
+  s->method = SWARF_SWEEP_PLUNGE;
+  s->aux[0] = p0[0];
+  s->aux[1] = p0[1];
+  s->aux[2] = 0.5 * (zlo + zhi + c->length);                      /* middle of the body */
+  s->aux[3] = 0.5 * (zhi - zlo + c->length) - c->corner_radius;  /* core half height */
+  s->aux[4] = p0[2];
+  s->aux[5] = dz != 0.0 ? 1.0 / dz : 0.0;
+  s->aux[6] = zlo;
+  s->aux[7] = zhi;
+}
+
+void swarf_sweep_line_init(swarf_sweep *s, const double p0[3], const double p1[3]) {
+  const swarf_cutter *c = s->cutter;
+  double d[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  double U = sqrt(d[0] * d[0] + d[1] * d[1]);
+  if (d[0] == 0.0 && d[1] == 0.0) {
+    plunge_init(s, p0, p1);
+    return;
+  }
+  for (int k = 0; k < 3; k++) s->aux[k] = p0[k];
+  s->aux[7] = 0.5 * c->length;                       /* core middle above the tip */
+  s->aux[8] = 0.5 * c->length - c->corner_radius;    /* core half height */
+  if (d[2] == 0.0) {
+    s->method = SWARF_SWEEP_SLOT;
+    s->aux[3] = d[0];
+    s->aux[4] = d[1];
+    s->aux[5] = 1.0 / (U * U);
+    return;
+  }
+  s->method = swarf_cutter_core(c) > 0.0 ? SWARF_SWEEP_RAMP : SWARF_SWEEP_RAMP_BALL;
+  s->aux[3] = d[0] / U; /* e: unit horizontal direction */
+  s->aux[4] = d[1] / U;
+  s->aux[5] = U;
+  s->aux[6] = d[2] / U; /* k: climb per horizontal mm */
+  s->aux[9] = swarf_cutter_core(c);
+  s->aux[10] = 1.0 / (1.0 + s->aux[6] * s->aux[6]);
+}
+
+double swarf_sweep_slot_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  const double *x = s->aux;
+  double wx = p[0] - x[0], wy = p[1] - x[1];
+  double t = clamp((wx * x[3] + wy * x[4]) * x[5], 0.0, 1.0);
+  double ex = wx - t * x[3], ey = wy - t * x[4];
+  if (alpha != NULL) *alpha = t;
+  return swarf_cutter_sdf_rz(s->cutter, sqrt(ex * ex + ey * ey), p[2] - x[2]);
+}
+
+double swarf_sweep_plunge_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  const double *x = s->aux;
+  const swarf_cutter *c = s->cutter;
+  double ex = p[0] - x[0], ey = p[1] - x[1], r = sqrt(ex * ex + ey * ey);
+  double d = swarf_box2(r - swarf_cutter_core(c), fabs(p[2] - x[2]) - x[3]) - c->corner_radius;
+  /* Every instance level with p is nearest to a point beside the side: pick
+   * the one whose lower rim is at p's height (the rims are the curve). */
+  double lift = d > 0.0 ? c->corner_radius : 0.5 * c->length;
+  if (alpha != NULL) *alpha = (clamp(p[2] - lift, x[6], x[7]) - x[4]) * x[5];
+  return d;
+}
+
+/* p in the ramp's frame: along e (xi), across (eta), height above the tip
+ * minus the core middle (zp). */
+typedef struct {
+  double xi, eta, zp, k, hh, a, U;
+} ramp_point;
+
+static void ramp_frame(const swarf_sweep *s, const double p[3], ramp_point *rp) {
+  const double *x = s->aux;
+  double wx = p[0] - x[0], wy = p[1] - x[1];
+  rp->xi = wx * x[3] + wy * x[4];
+  rp->eta = wy * x[3] - wx * x[4];
+  rp->zp = p[2] - x[2] - x[7];
+  rp->k = x[6];
+  rp->hh = x[8];
+  rp->a = x[9];
+  rp->U = x[5];
+}
+
+/* Ball cutter: squared distance to the parallelogram at tip offset u. */
+static double ball_q(const ramp_point *rp, double u) {
+  double dx = u - rp->xi, dz = fabs(rp->zp - rp->k * u) - rp->hh;
+  dz = dz > 0.0 ? dz : 0.0;
+  return dx * dx + rp->eta * rp->eta + dz * dz;
+}
+
+double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  ramp_point rp;
+  double cand[3], best = INFINITY, ubest = 0.0, w;
+  ramp_frame(s, p, &rp);
+  w = s->aux[10];
+  cand[0] = rp.xi;                                    /* inside the height band */
+  cand[1] = (rp.xi + rp.k * (rp.zp - rp.hh)) * w;     /* above it */
+  cand[2] = (rp.xi + rp.k * (rp.zp + rp.hh)) * w;     /* below it */
+  for (int i = 0; i < 3; i++) {
+    double u = clamp(cand[i], 0.0, rp.U), q = ball_q(&rp, u);
+    if (q < best) {
+      best = q;
+      ubest = u;
+    }
+  }
+  if (alpha != NULL) *alpha = ubest / rp.U;
+  return sqrt(best) - s->cutter->corner_radius;
+}
+
+/* Flat or bull ramp: is some instance's core within reach, i.e. does an
+ * offset u in [0, U] have r(u) <= a and |zp - k u| <= hh? */
+static int ramp_inside(const ramp_point *rp) {
+  double lo = 0.0, hi = rp->U, s2 = rp->a * rp->a - rp->eta * rp->eta, b0, b1;
+  if (s2 < 0.0) return 0;
+  s2 = sqrt(s2);
+  lo = fmax(lo, rp->xi - s2);
+  hi = fmin(hi, rp->xi + s2);
+  b0 = (rp->zp - rp->hh) / rp->k;
+  b1 = (rp->zp + rp->hh) / rp->k;
+  lo = fmax(lo, fmin(b0, b1));
+  hi = fmin(hi, fmax(b0, b1));
+  return lo <= hi;
+}
+
+/* Signed core distance of the instance at u inside the sweep: the larger of
+ * the radial and height slab distances. */
+static double ramp_m(const ramp_point *rp, double u) {
+  double dx = u - rp->xi, r = sqrt(dx * dx + rp->eta * rp->eta) - rp->a;
+  double dz = fabs(rp->zp - rp->k * u) - rp->hh;
+  return r > dz ? r : dz;
+}
+
+/* Where r(u) - a meets the line c0 + c1 u (up to two offsets). */
+static int ramp_cross(const ramp_point *rp, double c0, double c1, double u[2]) {
+  double b0 = rp->a + c0, qa = 1.0 - c1 * c1, qb = -2.0 * (rp->xi + b0 * c1);
+  double qc = rp->xi * rp->xi + rp->eta * rp->eta - b0 * b0, disc;
+  if (fabs(qa) < 1e-12) {
+    if (qb == 0.0) return 0;
+    u[0] = -qc / qb;
+    return 1;
+  }
+  disc = qb * qb - 4.0 * qa * qc;
+  if (disc < 0.0) return 0;
+  disc = sqrt(disc);
+  u[0] = (-qb - disc) / (2.0 * qa);
+  u[1] = (-qb + disc) / (2.0 * qa);
+  return 2;
+}
+
+/* Inside: the minimum over u of the convex max(r - a, |zp - k u| - hh) is at
+ * an end, at the minimum of a piece, or where two pieces cross. */
+static double ramp_depth(const ramp_point *rp, double *ubest) {
+  double cand[8], best = INFINITY;
+  int n = 0;
+  cand[n++] = 0.0;
+  cand[n++] = rp->U;
+  cand[n++] = rp->xi;
+  cand[n++] = rp->zp / rp->k;
+  n += ramp_cross(rp, rp->zp - rp->hh, -rp->k, cand + n);
+  n += ramp_cross(rp, -rp->zp - rp->hh, rp->k, cand + n);
+  for (int i = 0; i < n; i++) {
+    double u = clamp(cand[i], 0.0, rp->U), m = ramp_m(rp, u);
+    if (m < best) {
+      best = m;
+      *ubest = u;
+    }
+  }
+  return best;
+}
+
+/* Outside: q(u) = dist(p, instance core at u)^2 and its first two
+ * derivatives; q is convex and C1. */
+static double ramp_q(const ramp_point *rp, double u, double *dq, double *d2q) {
+  double dx = u - rp->xi, r = sqrt(dx * dx + rp->eta * rp->eta), rho = r - rp->a;
+  double z = rp->zp - rp->k * u, dz = fabs(z) - rp->hh, q = 0.0;
+  *dq = *d2q = 0.0;
+  if (rho > 0.0) {
+    q += rho * rho;
+    *dq += 2.0 * rho * dx / r;
+    *d2q += 2.0 * (dx * dx / (r * r) + rho * rp->eta * rp->eta / (r * r * r));
+  }
+  if (dz > 0.0) {
+    q += dz * dz;
+    *dq -= 2.0 * dz * rp->k * (z > 0.0 ? 1.0 : -1.0);
+    *d2q += 2.0 * rp->k * rp->k;
+  }
+  return q;
+}
+
+/* Safeguarded Newton on q' over [0, U]; the ends are tried before bisecting
+ * toward them. Returns the smallest q met, its offset in *ubest. */
+static double ramp_newton(const ramp_point *rp, double *ubest) {
+  double lo = 0.0, hi = rp->U, u = clamp(rp->xi, lo, hi), best = INFINITY;
+  double tol = 1e-14 * (1.0 + rp->U + fabs(rp->xi));
+  int lo_seen = 0, hi_seen = 0;
+  for (int it = 0; it < 100; it++) {
+    double dq, d2q, q = ramp_q(rp, u, &dq, &d2q), next;
+    if (q < best) {
+      best = q;
+      *ubest = u;
+    }
+    if (dq == 0.0 || (dq > 0.0 && u <= 0.0) || (dq < 0.0 && u >= rp->U)) break;
+    if (dq > 0.0) {
+      hi = u;
+      hi_seen = 1;
+    } else {
+      lo = u;
+      lo_seen = 1;
+    }
+    next = d2q > 0.0 ? u - dq / d2q : 0.5 * (lo + hi);
+    if (next <= lo) next = lo_seen ? 0.5 * (lo + hi) : lo;
+    if (next >= hi) next = hi_seen ? 0.5 * (lo + hi) : hi;
+    if (fabs(next - u) <= tol || hi - lo <= tol) break;
+    u = next;
+  }
+  return best;
+}
+
+double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  ramp_point rp;
+  double u = 0.0, d;
+  ramp_frame(s, p, &rp);
+  if (ramp_inside(&rp))
+    d = ramp_depth(&rp, &u);
+  else
+    d = sqrt(ramp_newton(&rp, &u));
+  if (alpha != NULL) *alpha = u / rp.U;
+  return d - s->cutter->corner_radius;
+}

@@ -1,0 +1,253 @@
+/* sweep_sampled.c -- the swept volume of any helix the closed forms do not
+ * cover: rise != 0, or an axis not parallel to the cutter's (G18/G19 arcs).
+ *
+ * g(alpha) = cutter_sdf(p - t(alpha)) is not convex along a curved path, but
+ * it is Lipschitz (|g'| <= LEN, the path length) and semiconvex: the sdf of
+ * a convex body is a convex function, so g'' >= -grad . t'' >= -K with
+ * K = radius * angle^2 = |t''|. From g and g' at the ends of an interval these
+ * give a lower bound of g on it: the larger of the Lipschitz bound and the
+ * minimum of the upper envelope of the two concave parabolas through the end
+ * data (tight: that envelope is itself semiconvex).
+ *
+ *  1. find: samples every STEP mm of path, skipping intervals that the
+ *     Lipschitz bound of an earlier sample puts above the best value, and
+ *     Illinois regula falsi to g' = 0 in every interval where g' goes from
+ *     - to + and that could hold a lower value.
+ *  2. certify: every interval whose bound is below best - EPS goes to a heap,
+ *     lowest bound first, and is split at its stationary point (if it
+ *     brackets one) or its middle until all bounds are >= best - EPS.
+ * The result is the minimum over instances to EPS, i.e. exact outside the
+ * volume, unless the work caps stop step 2 (HEAP intervals, MAX_EVALS
+ * evaluations, MAX_DEPTH splits); then it is still within STEP / 2 (the
+ * Lipschitz bound of the sampling). Pure function of the sweep and p.
+ */
+#include <math.h>
+#include <stdint.h>
+
+#include "engine_private.h"
+
+#define EPS 1e-9       /* certified accuracy, mm */
+#define CACHE 63       /* samples kept between the two steps (bit masks) */
+#define HEAP 96        /* intervals waiting in step 2 */
+#define MAX_DEPTH 40   /* splits of one sample interval */
+#define MAX_EVALS 600  /* evaluations of g per call */
+
+typedef struct {
+  double a, g, dg; /* time, g(a), g'(a) */
+} sample;
+
+typedef struct {
+  sample lo, hi;
+  double lb;
+  int depth;
+} span;
+
+typedef struct {
+  const swarf_sweep *s;
+  const double *p;
+  double K, len, step;
+  int n, evals;
+  sample best;
+  double best_slope;
+  sample cache[CACHE + 1], split[CACHE];
+  uint64_t cached, has_split; /* bit i: cache[i], split[i] valid */
+  span heap[HEAP];
+  int nheap;
+} hctx;
+
+/* g and g' at a; the best value is kept (among values equal to rounding, the
+ * flatter point: the converged stationary point rather than an iterate). */
+static sample eval(hctx *h, double a) {
+  const double *x = h->s->aux, *ax = h->s->motion->axis;
+  double th = a * x[SWARF_H_ANG], c = cos(th), sn = sin(th), q[3], td[3], gr[3];
+  sample r = {a, 0.0, 0.0};
+  for (int k = 0; k < 3; k++) {
+    double u = c * x[SWARF_H_E1 + k] + sn * x[SWARF_H_E2 + k];
+    double du = c * x[SWARF_H_E2 + k] - sn * x[SWARF_H_E1 + k];
+    q[k] = h->p[k] - x[SWARF_H_C + k] - x[SWARF_H_RAD] * u - a * x[SWARF_H_RISE] * ax[k];
+    td[k] = x[SWARF_H_RAD] * x[SWARF_H_ANG] * du + x[SWARF_H_RISE] * ax[k];
+  }
+  r.g = swarf_cutter_sdf_grad(h->s->cutter, q, gr);
+  r.dg = -(gr[0] * td[0] + gr[1] * td[1] + gr[2] * td[2]);
+  h->evals++;
+  {
+    double tie = 1e-14 * (1.0 + fabs(r.g));
+    if (r.g < h->best.g - tie || (r.g <= h->best.g + tie && fabs(r.dg) < h->best_slope)) {
+      h->best = r;
+      h->best_slope = fabs(r.dg);
+    }
+  }
+  return r;
+}
+
+static sample at(hctx *h, int i) {
+  if (h->n > CACHE) return eval(h, (double)i / h->n);
+  if (!(h->cached >> i & 1u)) {
+    h->cache[i] = eval(h, (double)i / h->n);
+    h->cached |= (uint64_t)1 << i;
+  }
+  return h->cache[i];
+}
+
+/* lo.dg < 0 < hi.dg: Illinois regula falsi to g' = 0; returns the last point. */
+static sample refine(hctx *h, sample lo, sample hi) {
+  double tol = 1e-13 * h->len, flo = lo.dg, fhi = hi.dg;
+  sample m = lo;
+  int side = 0;
+  for (int it = 0; it < 60 && hi.a - lo.a > 1e-15; it++) {
+    double a = (lo.a * fhi - hi.a * flo) / (fhi - flo);
+    if (!(a > lo.a && a < hi.a)) a = 0.5 * (lo.a + hi.a);
+    m = eval(h, a);
+    if (fabs(m.dg) <= tol) break;
+    if (m.dg < 0.0) {
+      lo = m;
+      flo = m.dg;
+      if (side < 0) fhi *= 0.5;
+      side = -1;
+    } else {
+      hi = m;
+      fhi = m.dg;
+      if (side > 0) flo *= 0.5;
+      side = 1;
+    }
+  }
+  return m;
+}
+
+static double max2(double a, double b) { return a > b ? a : b; }
+static double min2(double a, double b) { return a < b ? a : b; }
+
+/* Lower bound of g over [A.a, B.a]. With T_A, T_B the concave parabolas of
+ * curvature -K through the end data, g >= max(T_A, T_B), whose minimum is at
+ * an end or where T_A = T_B (T_A - T_B is linear). */
+static double bound(const hctx *h, const sample *A, const sample *B) {
+  double w = B->a - A->a, lip = 0.5 * (A->g + B->g - h->len * w), k2 = 0.5 * h->K;
+  double ta_b = A->g + A->dg * w - k2 * w * w, tb_a = B->g - B->dg * w - k2 * w * w;
+  double lb = min2(max2(A->g, tb_a), max2(B->g, ta_b));
+  double c0 = A->g - tb_a, c1 = A->dg - B->dg - h->K * w; /* T_A - T_B = c0 + c1 x */
+  if (c1 != 0.0) {
+    double x = -c0 / c1;
+    if (x > 0.0 && x < w) lb = min2(lb, A->g + A->dg * x - k2 * x * x);
+  }
+  return max2(lb, lip);
+}
+
+static void push(hctx *h, sample lo, sample hi, int depth) {
+  span sp = {lo, hi, 0.0, depth};
+  int i;
+  sp.lb = bound(h, &lo, &hi);
+  if (sp.lb >= h->best.g - EPS || h->nheap == HEAP) return;
+  for (i = h->nheap++; i > 0 && h->heap[(i - 1) / 2].lb > sp.lb; i = (i - 1) / 2)
+    h->heap[i] = h->heap[(i - 1) / 2];
+  h->heap[i] = sp;
+}
+
+static span pop(hctx *h) {
+  span top = h->heap[0], last = h->heap[--h->nheap];
+  int i = 0;
+  for (;;) {
+    int c = 2 * i + 1;
+    if (c >= h->nheap) break;
+    if (c + 1 < h->nheap && h->heap[c + 1].lb < h->heap[c].lb) c++;
+    if (h->heap[c].lb >= last.lb) break;
+    h->heap[i] = h->heap[c];
+    i = c;
+  }
+  if (h->nheap > 0) h->heap[i] = last;
+  return top;
+}
+
+/* Step 1: samples, skipping, and the stationary points of the brackets. */
+static void find(hctx *h) {
+  int i = 0, n = h->n;
+  sample si = at(h, 0);
+  at(h, n);
+  while (i < n) {
+    int skip = (int)ceil((si.g - h->best.g) / h->step) - 1;
+    sample s1;
+    if (skip > 0) {
+      if (skip >= n - i) break;
+      i += skip;
+      si = at(h, i);
+      continue;
+    }
+    s1 = at(h, i + 1);
+    if (si.dg < 0.0 && s1.dg > 0.0 && 0.5 * (si.g + s1.g - h->step) < h->best.g) {
+      sample m = refine(h, si, s1);
+      if (n <= CACHE && m.a > si.a && m.a < s1.a) {
+        h->split[i] = m;
+        h->has_split |= (uint64_t)1 << i;
+      }
+    }
+    i++;
+    si = s1;
+  }
+}
+
+/* Step 2, first half: queue every sample interval that could hold a value
+ * below best - EPS (split at the stationary point found in step 1). */
+static void queue_intervals(hctx *h) {
+  int i = 0, n = h->n;
+  sample si = at(h, 0);
+  while (i < n) {
+    int skip = (int)ceil((si.g - h->best.g + EPS) / h->step) - 1;
+    sample s1;
+    if (skip > 0) {
+      if (skip >= n - i) break;
+      i += skip;
+      si = at(h, i);
+      continue;
+    }
+    s1 = at(h, i + 1);
+    if (n <= CACHE && (h->has_split >> i & 1u)) {
+      push(h, si, h->split[i], 1);
+      push(h, h->split[i], s1, 1);
+    } else {
+      push(h, si, s1, 0);
+    }
+    i++;
+    si = s1;
+  }
+}
+
+/* Step 2, second half: split the queued intervals, lowest bound first. */
+static void certify(hctx *h) {
+  double tol = 1e-13 * h->len;
+  queue_intervals(h);
+  while (h->nheap > 0 && h->evals < MAX_EVALS) {
+    span sp = pop(h);
+    double mid = 0.5 * (sp.lo.a + sp.hi.a);
+    sample m;
+    if (sp.lb >= h->best.g - EPS) break;
+    if (sp.depth >= MAX_DEPTH) continue;
+    if (sp.lo.dg < -tol && sp.hi.dg > tol)
+      m = refine(h, sp.lo, sp.hi);
+    else
+      m = eval(h, mid);
+    if (!(m.a > sp.lo.a && m.a < sp.hi.a)) m = eval(h, mid);
+    push(h, sp.lo, m, sp.depth + 1);
+    push(h, m, sp.hi, sp.depth + 1);
+  }
+}
+
+double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  hctx h;
+  const double *x = s->aux;
+  h.s = s;
+  h.p = p;
+  h.K = x[SWARF_H_RAD] * x[SWARF_H_ANG] * x[SWARF_H_ANG];
+  h.len = x[SWARF_H_LEN];
+  h.step = x[SWARF_H_STEP];
+  h.n = (int)x[SWARF_H_N];
+  h.evals = 0;
+  h.best.a = 0.0;
+  h.best.g = INFINITY;
+  h.best.dg = 0.0;
+  h.best_slope = INFINITY;
+  h.nheap = 0;
+  h.cached = h.has_split = 0;
+  find(&h);
+  certify(&h);
+  if (alpha != NULL) *alpha = h.best.a;
+  return h.best.g;
+}

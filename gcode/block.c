@@ -1,0 +1,154 @@
+/* block.c -- the words of one line, read into a block.
+ *
+ * Reads every token the lexer gives: each letter may appear once (G and M
+ * excepted), G and M codes are filed under their modal group (two codes of
+ * one group are an error, as in LinuxCNC), N must come first. Codes and
+ * letters LinuxCNC knows but this version does not handle are refused here
+ * with a "not supported yet" message at their column. The block is plain
+ * data owned by the caller; reading it changes no state.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "gcode_private.h"
+
+#define G80 800
+
+/* Letters that are words in LinuxCNC but not in this version, and why. */
+static const char *later_letter(char letter) {
+  switch (letter) {
+  case 'D':
+    return "cutter compensation (D word)";
+  case 'E':
+    return "the E word (G76, M66)";
+  case 'L':
+    return "the L word (G10, canned cycles)";
+  case 'U':
+  case 'V':
+  case 'W':
+    return "U, V and W axes";
+  default:
+    return NULL;
+  }
+}
+
+/* The value in tenths if it is a whole number of tenths, else -1. */
+static int tenths_of(double value) {
+  double t = value * 10.0;
+  double r = floor(t + 0.5);
+  if (value < 0 || value > 100000.0 || fabs(t - r) > 1e-3) return -1;
+  return (int)r;
+}
+
+static void init_block(swarf_gc_block *b) {
+  memset(b, 0, sizeof *b);
+  for (int i = 0; i < SWARF_GC_NGROUPS; i++)
+    b->g[i].code = -1;
+  for (int i = 0; i < SWARF_GC_NMGROUPS; i++)
+    b->m[i].code = -1;
+  b->motion = -1;
+}
+
+static void set_code_word(swarf_gc_code_word *cw, int code, const swarf_gc_token *t) {
+  cw->code = code;
+  cw->column = t->column;
+  memcpy(cw->text, t->word, sizeof cw->text);
+}
+
+/* G80 next to another motion code gives way to it, as in LinuxCNC's read_g
+ * ("G0 G80 X1" is G0 X1): CAM preambles write such lines. */
+static int add_g(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+  int code = tenths_of(t->value);
+  const swarf_gc_code *c = code < 0 ? NULL : swarf_gc_g_code(code);
+  if (c == NULL)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "Unknown g code used: %s",
+                         t->word);
+  if (c->later != NULL)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "%s (%s) is not supported yet",
+                         t->word, c->later);
+  if (code == G80 && b->g[c->group].code >= 0) return SWARF_GCODE_OK;
+  if (b->g[c->group].code >= 0 && b->g[c->group].code != G80)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
+                         "Two G codes used from same modal group: %s and %s", b->g[c->group].text,
+                         t->word);
+  set_code_word(&b->g[c->group], code, t);
+  return SWARF_GCODE_OK;
+}
+
+static int add_m(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+  int code = tenths_of(t->value);
+  const swarf_gc_code *c = (code < 0 || code % 10 != 0) ? NULL : swarf_gc_m_code(code);
+  if (t->value > 199.0)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "M code greater than 199: %s",
+                         t->word);
+  if (c == NULL)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "Unknown m code used: %s",
+                         t->word);
+  if (c->later != NULL)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "%s (%s) is not supported yet",
+                         t->word, c->later);
+  if (b->m[c->group].code >= 0)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
+                         "Two M codes used from same modal group: %s and %s", b->m[c->group].text,
+                         t->word);
+  if (++b->m_count > SWARF_GC_MAX_M_PER_LINE)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
+                         "Too many m codes on line (%s is the %dth)", t->word, b->m_count);
+  set_code_word(&b->m[c->group], code, t);
+  return SWARF_GCODE_OK;
+}
+
+static int add_other(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+  swarf_gc_word *w = &b->words[t->letter - 'A'];
+  const char *later = later_letter(t->letter);
+  if (later != NULL)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "%s: %s is not supported yet",
+                         t->word, later);
+  if (t->letter == 'N' && b->word_count > 0)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, t->column,
+                         "Line number %s is not at the start of the line", t->word);
+  if (w->present)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
+                         "Multiple %c words on one line: %s and %s", t->letter, w->text, t->word);
+  w->present = 1;
+  w->value = t->value;
+  w->column = t->column;
+  memcpy(w->text, t->word, sizeof w->text);
+  return SWARF_GCODE_OK;
+}
+
+static int add_word(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+  int status;
+  if (t->letter == 'G')
+    status = add_g(b, t, f);
+  else if (t->letter == 'M')
+    status = add_m(b, t, f);
+  else
+    status = add_other(b, t, f);
+  b->word_count++;
+  return status;
+}
+
+int swarf_gc_block_read(const char *line, size_t len, swarf_gc_block *b, swarf_gc_fault *f) {
+  swarf_gc_lexer lx;
+  swarf_gc_token t;
+  init_block(b);
+  swarf_gc_lexer_init(&lx, line, len);
+  for (;;) {
+    int status = swarf_gc_lexer_next(&lx, &t, f);
+    if (status != SWARF_GCODE_OK) return status;
+    if (t.kind == SWARF_GC_TOKEN_END) return SWARF_GCODE_OK;
+    if (t.kind == SWARF_GC_TOKEN_WORD) {
+      status = add_word(b, &t, f);
+      if (status != SWARF_GCODE_OK) return status;
+    }
+  }
+}
+
+const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter) {
+  return &b->words[letter - 'A'];
+}
+
+int swarf_gc_block_has(const swarf_gc_block *b, char letter) {
+  return b->words[letter - 'A'].present;
+}

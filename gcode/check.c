@@ -1,0 +1,159 @@
+/* check.c -- a block against the modal state, before anything is executed.
+ *
+ * Decides which motion the block makes (LinuxCNC's enhance_block: the motion
+ * word, else the modal motion if there are axis words, or I/J/K words in arc
+ * mode) and checks what LinuxCNC's read_* and check_items functions check:
+ * values in range, words with no code to use them, G4 and G53 companions.
+ * Reads the state, changes nothing but the block's motion fields.
+ */
+#include <math.h>
+
+#include "gcode_private.h"
+
+#define MOTION_G0 0
+#define MOTION_G1 10
+#define MOTION_G2 20
+#define MOTION_G3 30
+#define MOTION_G80 800
+#define MAX_ARC_TURNS 10000 /* a bound of ours, not LinuxCNC's: keeps arcs finite */
+
+/* Column of the leftmost present word among `letters`, 0 if none. */
+static int first_column(const swarf_gc_block *b, const char *letters) {
+  int column = 0;
+  for (const char *l = letters; *l; l++) {
+    const swarf_gc_word *w = swarf_gc_block_word(b, *l);
+    if (w->present && (column == 0 || w->column < column)) column = w->column;
+  }
+  return column;
+}
+
+static int is_arc(int motion) {
+  return motion == MOTION_G2 || motion == MOTION_G3;
+}
+
+static int find_motion(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+  const swarf_gc_code_word *g1 = &b->g[SWARF_GC_GROUP_MOTION];
+  int axis_column = first_column(b, "XYZABC");
+  int ijk_column = first_column(b, "IJK");
+  if (g1->code >= 0) {
+    if (g1->code == MOTION_G80 && axis_column)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, axis_column,
+                           "Cannot use axis values with G80");
+    b->motion = g1->code;
+    b->motion_column = g1->column;
+  } else if (axis_column) {
+    if (st->modal.motion == MOTION_G80)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, axis_column,
+                           "Cannot use axis values without a G code that uses them (G80 is "
+                           "active)");
+    b->motion = st->modal.motion;
+    b->motion_column = axis_column;
+  } else if (ijk_column && is_arc(st->modal.motion)) {
+    b->motion = st->modal.motion;
+    b->motion_column = ijk_column;
+  }
+  return SWARF_GCODE_OK;
+}
+
+static int is_whole(double v, double tolerance) {
+  return fabs(v - floor(v + 0.5)) <= tolerance;
+}
+
+static int check_values(const swarf_gc_block *b, swarf_gc_fault *f) {
+  static const char nonnegative[] = "FSNTH";
+  for (const char *l = nonnegative; *l; l++) {
+    const swarf_gc_word *w = swarf_gc_block_word(b, *l);
+    if (w->present && w->value < 0)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "Negative %c word used: %s", *l,
+                           w->text);
+  }
+  for (const char *l = "TH"; *l; l++) {
+    const swarf_gc_word *w = swarf_gc_block_word(b, *l);
+    if (w->present && !is_whole(w->value, 1e-4))
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
+                           "Non-integer value for integer: %s", w->text);
+  }
+  return SWARF_GCODE_OK;
+}
+
+static int check_g4(const swarf_gc_block *b, swarf_gc_fault *f) {
+  const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
+  const swarf_gc_word *p = swarf_gc_block_word(b, 'P');
+  int g1 = b->g[SWARF_GC_GROUP_MOTION].code;
+  if (!p->present)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column,
+                         "Dwell time P word missing with G4");
+  if (p->value < 0)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column, "Negative dwell time: %s",
+                         p->text);
+  if (is_arc(g1))
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column,
+                         "G4 not allowed with G2 or G3 because they both use P");
+  return SWARF_GCODE_OK;
+}
+
+static int check_g53(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+  const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
+  int distance = b->g[SWARF_GC_GROUP_DISTANCE].code;
+  if (b->motion != MOTION_G0 && b->motion != MOTION_G1)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column, "Must use G0 or G1 with G53");
+  if (distance == 910 || (distance < 0 && st->modal.distance == 910))
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column, "Cannot use G53 incremental");
+  return SWARF_GCODE_OK;
+}
+
+static int check_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+  switch (b->g[SWARF_GC_GROUP_NONMODAL].code) {
+  case 40:
+    return check_g4(b, f);
+  case 530:
+    return check_g53(b, st, f);
+  default:
+    return SWARF_GCODE_OK;
+  }
+}
+
+static int unused(const swarf_gc_word *w, const char *users, swarf_gc_fault *f) {
+  return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "%c word with no %s to use it: %s",
+                       w->text[0], users, w->text);
+}
+
+static int check_arc_p(const swarf_gc_word *p, swarf_gc_fault *f) {
+  if (!is_whole(p->value, 0.001))
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column,
+                         "P value not an integer with G2 or G3: %s", p->text);
+  if (floor(p->value + 0.5) < 1)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column,
+                         "P value should be 1 or greater with G2 or G3: %s", p->text);
+  if (p->value > MAX_ARC_TURNS)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column,
+                         "P value too large with G2 or G3 (at most %d turns): %s", MAX_ARC_TURNS,
+                         p->text);
+  return SWARF_GCODE_OK;
+}
+
+/* Words that need a code to use them (LinuxCNC's check_other_codes). */
+static int check_users(const swarf_gc_block *b, swarf_gc_fault *f) {
+  int arc = is_arc(b->motion);
+  int g4 = b->g[SWARF_GC_GROUP_NONMODAL].code == 40;
+  int g64 = b->g[SWARF_GC_GROUP_PATH_CONTROL].code == 640;
+  const swarf_gc_word *w;
+  if ((w = swarf_gc_block_word(b, 'H'))->present && b->g[SWARF_GC_GROUP_TOOL_LENGTH].code != 430)
+    return unused(w, "G43", f);
+  for (const char *l = "IJKR"; *l; l++)
+    if ((w = swarf_gc_block_word(b, *l))->present && !arc) return unused(w, "G2 or G3", f);
+  if ((w = swarf_gc_block_word(b, 'P'))->present) {
+    if (!arc && !g4 && !g64) return unused(w, "G2, G3, G4 or G64", f);
+    if (arc) return check_arc_p(w, f);
+  }
+  if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64) return unused(w, "G64", f);
+  return SWARF_GCODE_OK;
+}
+
+int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+  int status = check_values(b, f);
+  if (status == SWARF_GCODE_OK) status = find_motion(b, st, f);
+  if (status == SWARF_GCODE_OK) status = check_nonmodal(b, st, f);
+  if (status == SWARF_GCODE_OK) status = check_users(b, f);
+  return status;
+}

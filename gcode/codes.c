@@ -1,0 +1,149 @@
+/* codes.c -- the G and M codes LinuxCNC knows, with their modal groups.
+ *
+ * Codes are integers in tenths (G91.1 -> 911). A code with `later` set is a
+ * real LinuxCNC code that this version refuses with a "not supported yet"
+ * message naming it; a code missing from the tables is unknown ("Unknown g
+ * code used"). The tables are constant data, owned by this file.
+ */
+#include <stddef.h>
+
+#include "gcode_private.h"
+
+static const swarf_gc_code g_codes[] = {
+    {0, SWARF_GC_GROUP_MOTION, NULL},
+    {10, SWARF_GC_GROUP_MOTION, NULL},
+    {20, SWARF_GC_GROUP_MOTION, NULL},
+    {30, SWARF_GC_GROUP_MOTION, NULL},
+    {40, SWARF_GC_GROUP_NONMODAL, NULL},
+    {50, SWARF_GC_GROUP_MOTION, "cubic spline"},
+    {51, SWARF_GC_GROUP_MOTION, "quadratic spline"},
+    {52, SWARF_GC_GROUP_MOTION, "NURBS"},
+    {53, SWARF_GC_GROUP_NONMODAL, "NURBS"},
+    {70, SWARF_GC_GROUP_LATHE, "lathe diameter mode"},
+    {80, SWARF_GC_GROUP_LATHE, "lathe radius mode"},
+    {100, SWARF_GC_GROUP_NONMODAL, "setting offsets and tool data"},
+    {170, SWARF_GC_GROUP_PLANE, NULL},
+    {171, SWARF_GC_GROUP_PLANE, "UV plane"},
+    {180, SWARF_GC_GROUP_PLANE, NULL},
+    {181, SWARF_GC_GROUP_PLANE, "WU plane"},
+    {190, SWARF_GC_GROUP_PLANE, NULL},
+    {191, SWARF_GC_GROUP_PLANE, "VW plane"},
+    {200, SWARF_GC_GROUP_UNITS, NULL},
+    {210, SWARF_GC_GROUP_UNITS, NULL},
+    {280, SWARF_GC_GROUP_NONMODAL, "return to home"},
+    {281, SWARF_GC_GROUP_NONMODAL, "setting the home position"},
+    {300, SWARF_GC_GROUP_NONMODAL, "return to the second home"},
+    {301, SWARF_GC_GROUP_NONMODAL, "setting the second home position"},
+    {330, SWARF_GC_GROUP_MOTION, "spindle-synchronized motion"},
+    {331, SWARF_GC_GROUP_MOTION, "rigid tapping"},
+    {382, SWARF_GC_GROUP_MOTION, "probing"},
+    {383, SWARF_GC_GROUP_MOTION, "probing"},
+    {384, SWARF_GC_GROUP_MOTION, "probing"},
+    {385, SWARF_GC_GROUP_MOTION, "probing"},
+    {400, SWARF_GC_GROUP_CUTTER_COMP, NULL},
+    {410, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
+    {411, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
+    {420, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
+    {421, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
+    {430, SWARF_GC_GROUP_TOOL_LENGTH, NULL},
+    {431, SWARF_GC_GROUP_TOOL_LENGTH, "dynamic tool length offset"},
+    {432, SWARF_GC_GROUP_TOOL_LENGTH, "additional tool length offset"},
+    {490, SWARF_GC_GROUP_TOOL_LENGTH, NULL},
+    {520, SWARF_GC_GROUP_NONMODAL, "local coordinate system offset"},
+    {530, SWARF_GC_GROUP_NONMODAL, NULL},
+    {540, SWARF_GC_GROUP_COORD_SYSTEM, NULL},
+    {550, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G55"},
+    {560, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G56"},
+    {570, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G57"},
+    {580, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G58"},
+    {590, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G59"},
+    {591, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G59.1"},
+    {592, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G59.2"},
+    {593, SWARF_GC_GROUP_COORD_SYSTEM, "work coordinate system G59.3"},
+    {610, SWARF_GC_GROUP_PATH_CONTROL, NULL},
+    {611, SWARF_GC_GROUP_PATH_CONTROL, NULL},
+    {640, SWARF_GC_GROUP_PATH_CONTROL, NULL},
+    {700, SWARF_GC_GROUP_MOTION, "lathe finishing cycle"},
+    {710, SWARF_GC_GROUP_MOTION, "lathe roughing cycle"},
+    {711, SWARF_GC_GROUP_MOTION, "lathe roughing cycle"},
+    {720, SWARF_GC_GROUP_MOTION, "lathe roughing cycle"},
+    {721, SWARF_GC_GROUP_MOTION, "lathe roughing cycle"},
+    {730, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {740, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {760, SWARF_GC_GROUP_MOTION, "threading cycle"},
+    {800, SWARF_GC_GROUP_MOTION, NULL},
+    {810, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {820, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {830, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {840, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {850, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {860, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {870, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {880, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {890, SWARF_GC_GROUP_MOTION, "canned cycle"},
+    {900, SWARF_GC_GROUP_DISTANCE, NULL},
+    {901, SWARF_GC_GROUP_ARC_DISTANCE, NULL},
+    {910, SWARF_GC_GROUP_DISTANCE, NULL},
+    {911, SWARF_GC_GROUP_ARC_DISTANCE, NULL},
+    {920, SWARF_GC_GROUP_NONMODAL, "coordinate system offset"},
+    {921, SWARF_GC_GROUP_NONMODAL, "coordinate system offset"},
+    {922, SWARF_GC_GROUP_NONMODAL, "coordinate system offset"},
+    {923, SWARF_GC_GROUP_NONMODAL, "coordinate system offset"},
+    {930, SWARF_GC_GROUP_FEED_MODE, "inverse time feed"},
+    {940, SWARF_GC_GROUP_FEED_MODE, NULL},
+    {950, SWARF_GC_GROUP_FEED_MODE, "feed per revolution"},
+    {960, SWARF_GC_GROUP_SPINDLE_MODE, "constant surface speed"},
+    {970, SWARF_GC_GROUP_SPINDLE_MODE, NULL},
+    {980, SWARF_GC_GROUP_RETURN_MODE, "canned cycle return mode"},
+    {990, SWARF_GC_GROUP_RETURN_MODE, "canned cycle return mode"},
+};
+
+static const swarf_gc_code m_codes[] = {
+    {0, SWARF_GC_MGROUP_STOP, NULL},
+    {10, SWARF_GC_MGROUP_STOP, NULL},
+    {20, SWARF_GC_MGROUP_STOP, NULL},
+    {30, SWARF_GC_MGROUP_SPINDLE, NULL},
+    {40, SWARF_GC_MGROUP_SPINDLE, NULL},
+    {50, SWARF_GC_MGROUP_SPINDLE, NULL},
+    {60, SWARF_GC_MGROUP_TOOL, NULL},
+    {70, SWARF_GC_MGROUP_COOLANT, NULL},
+    {80, SWARF_GC_MGROUP_COOLANT, NULL},
+    {90, SWARF_GC_MGROUP_COOLANT, NULL},
+    {190, SWARF_GC_MGROUP_SPINDLE, "spindle orientation"},
+    {300, SWARF_GC_MGROUP_STOP, NULL},
+    {480, SWARF_GC_MGROUP_OVERRIDE, "override control"},
+    {490, SWARF_GC_MGROUP_OVERRIDE, "override control"},
+    {500, SWARF_GC_MGROUP_OVERRIDE, "override control"},
+    {510, SWARF_GC_MGROUP_OVERRIDE, "override control"},
+    {520, SWARF_GC_MGROUP_OVERRIDE, "adaptive feed control"},
+    {530, SWARF_GC_MGROUP_OVERRIDE, "feed stop control"},
+    {600, SWARF_GC_MGROUP_STOP, NULL},
+    {610, SWARF_GC_MGROUP_TOOL, "setting the current tool"},
+    {620, SWARF_GC_MGROUP_IO, "digital output"},
+    {630, SWARF_GC_MGROUP_IO, "digital output"},
+    {640, SWARF_GC_MGROUP_IO, "digital output"},
+    {650, SWARF_GC_MGROUP_IO, "digital output"},
+    {660, SWARF_GC_MGROUP_IO, "waiting on an input"},
+    {670, SWARF_GC_MGROUP_IO, "analog output"},
+    {680, SWARF_GC_MGROUP_IO, "analog output"},
+    {700, SWARF_GC_MGROUP_OVERRIDE, "saving modal state"},
+    {710, SWARF_GC_MGROUP_OVERRIDE, "saving modal state"},
+    {720, SWARF_GC_MGROUP_OVERRIDE, "saving modal state"},
+    {730, SWARF_GC_MGROUP_OVERRIDE, "saving modal state"},
+};
+
+static const swarf_gc_code *find(const swarf_gc_code *table, size_t n, int tenths) {
+  for (size_t i = 0; i < n; i++)
+    if (table[i].code == tenths) return &table[i];
+  return NULL;
+}
+
+const swarf_gc_code *swarf_gc_g_code(int tenths) {
+  return find(g_codes, sizeof g_codes / sizeof g_codes[0], tenths);
+}
+
+const swarf_gc_code *swarf_gc_m_code(int tenths) {
+  static const swarf_gc_code user = {0, SWARF_GC_MGROUP_USER, "user-defined M code"};
+  if (tenths >= 1000 && tenths <= 1990 && tenths % 10 == 0) return &user;
+  return find(m_codes, sizeof m_codes / sizeof m_codes[0], tenths);
+}

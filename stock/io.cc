@@ -1,0 +1,195 @@
+/// @file io.cc
+/// @brief Files of the stock: reading a .vdb (untrusted input), writing a .vdb
+/// and a binary STL of the zero isosurface, each written atomically.
+///
+/// Reading takes the float level-set grid named "stock", or else the first
+/// float level-set grid of the file; every OpenVDB exception (truncated or
+/// corrupt data) becomes a status and a message. Delayed loading is off, so
+/// the whole grid is read (and checked by OpenVDB's reader) before returning.
+#include <openvdb/io/File.h>
+#include <openvdb/tools/VolumeToMesh.h>
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include "atomic_file.h"
+#include "stock_private.h"
+
+namespace swarf {
+namespace {
+
+/// Writes grids into a caller's stream (io::File does the same into its own
+/// std::ofstream, but does not report write errors).
+class StreamArchive : public openvdb::io::Archive {
+public:
+  void write_to(std::ostream &os, const openvdb::GridCPtrVec &grids) const {
+    openvdb::io::Archive::write(os, grids, /*seekable=*/true, openvdb::MetaMap());
+  }
+};
+
+/// Throw Error(IO) unless `path` names an existing regular file.
+void check_readable(const char *path) {
+  struct stat st;
+  if (::stat(path, &st) != 0)
+    throw Error(SWARF_STOCK_ERR_IO, std::string("cannot open ") + path + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw Error(SWARF_STOCK_ERR_IO, std::string("cannot read ") + path + ": not a regular file");
+}
+
+bool is_float_level_set(const openvdb::GridBase &g) {
+  return g.isType<openvdb::FloatGrid>() && g.getGridClass() == openvdb::GRID_LEVEL_SET;
+}
+
+/// Unique name (in the file's own sense) of the grid to read, or "" if none fits.
+std::string pick_grid(openvdb::io::File &file) {
+  std::string first;
+  for (auto it = file.beginName(); it != file.endName(); ++it) {
+    const std::string unique = it.gridName();
+    openvdb::GridBase::ConstPtr meta = file.readGridMetadata(unique);
+    if (!is_float_level_set(*meta)) continue;
+    if (meta->getName() == "stock") return unique;
+    if (first.empty()) first = unique;
+  }
+  return first;
+}
+
+/// The grid to use from an open file; every exception of OpenVDB's reader
+/// (corrupt or truncated data) becomes Error(FORMAT).
+openvdb::FloatGrid::Ptr read_open_file(openvdb::io::File &file, const std::string &path) {
+  const std::string name = pick_grid(file);
+  if (name.empty()) throw Error(SWARF_STOCK_ERR_FORMAT, path + ": no float level-set grid");
+  openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(name));
+  file.close();
+  if (!grid || !is_float_level_set(*grid)) throw Error(SWARF_STOCK_ERR_FORMAT, path + ": no float level-set grid");
+  return grid;
+}
+
+openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
+  openvdb::io::File file(path);
+  try {
+    file.open(/*delayLoad=*/false);
+  } catch (const std::bad_alloc &) {
+    throw;
+  } catch (const std::exception &e) {
+    throw Error(SWARF_STOCK_ERR_FORMAT, path + ": not a readable VDB file (" + e.what() + ")");
+  }
+  try {
+    return read_open_file(file, path);
+  } catch (const Error &) {
+    throw;
+  } catch (const std::bad_alloc &) {
+    throw;
+  } catch (const std::exception &e) {
+    throw Error(SWARF_STOCK_ERR_FORMAT, path + ": corrupt or truncated VDB file (" + e.what() + ")");
+  }
+}
+
+/// A shallow copy of the stock's grid (sharing its tree) with swarf's metadata.
+openvdb::FloatGrid::Ptr grid_for_output(const swarf_stock &s) {
+  openvdb::FloatGrid::Ptr g = s.grid->copy();
+  g->setName("stock");
+  g->setGridClass(openvdb::GRID_LEVEL_SET);
+  g->setSaveFloatAsHalf(false);
+  g->setCreator("swarf");
+  g->insertMeta("swarf_voxel_mm", openvdb::DoubleMetadata(s.voxel));
+  g->insertMeta("swarf_half_width_voxels", openvdb::Int32Metadata(s.half_width));
+  g->insertMeta("swarf_units", openvdb::StringMetadata("mm"));
+  return g;
+}
+
+void put_u32_le(unsigned char *p, uint32_t v) {
+  for (int i = 0; i < 4; i++) p[i] = (unsigned char)(v >> (8 * i));
+}
+
+void put_f32_le(unsigned char *p, float f) {
+  uint32_t v;
+  std::memcpy(&v, &f, 4);
+  put_u32_le(p, v);
+}
+
+/// One binary STL record (50 bytes): unit normal from the vertex order (right-
+/// hand rule), the three vertices, a zero attribute count.
+void put_triangle(unsigned char *p, const openvdb::Vec3s &a, const openvdb::Vec3s &b,
+                  const openvdb::Vec3s &c) {
+  openvdb::Vec3d n = (openvdb::Vec3d(b) - openvdb::Vec3d(a)).cross(openvdb::Vec3d(c) - openvdb::Vec3d(a));
+  const double len = n.length();
+  n = len > 0.0 ? n / len : openvdb::Vec3d(0.0);
+  const openvdb::Vec3s *v[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; k++) put_f32_le(p + 4 * k, float(n[k]));
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) put_f32_le(p + 12 + 12 * i + 4 * k, (*v[i])[k]);
+  p[48] = p[49] = 0;
+}
+
+/// The zero isosurface as triangles (quads split along their 0-2 diagonal),
+/// ordered so that the right-hand normal points out of the material.
+struct Mesh {
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+  size_t count() const { return triangles.size() + 2 * quads.size(); }
+};
+
+/// volumeToMesh orders the vertices of its polygons clockwise seen from outside
+/// (the right-hand normal points into the material): each triangle is written
+/// reversed (checked by tests/stock/test_stl.c).
+void write_stl_body(std::ostream &os, const Mesh &m) {
+  unsigned char head[84] = {0};
+  std::snprintf(reinterpret_cast<char *>(head), 80, "swarf stock: zero isosurface, mm");
+  put_u32_le(head + 80, uint32_t(m.count()));
+  os.write(reinterpret_cast<const char *>(head), 84);
+  std::vector<unsigned char> buf;
+  buf.reserve(50 * 4096);
+  auto tri = [&](unsigned i, unsigned j, unsigned k) {
+    buf.resize(buf.size() + 50);
+    put_triangle(buf.data() + buf.size() - 50, m.points[k], m.points[j], m.points[i]);
+    if (buf.size() >= 50 * 4096) os.write(reinterpret_cast<const char *>(buf.data()), buf.size()), buf.clear();
+  };
+  for (const openvdb::Vec3I &t : m.triangles) tri(t[0], t[1], t[2]);
+  for (const openvdb::Vec4I &q : m.quads) tri(q[0], q[1], q[2]), tri(q[0], q[2], q[3]);
+  os.write(reinterpret_cast<const char *>(buf.data()), buf.size());
+}
+
+}  // namespace
+}  // namespace swarf
+
+using swarf::Error;
+
+extern "C" swarf_stock *swarf_stock_read(const char *path, char *msg, size_t msglen) {
+  swarf_stock *s = nullptr;
+  swarf::guard(msg, msglen, [&] {
+    swarf::check_path(path);
+    swarf::check_readable(path);
+    swarf::init_openvdb();
+    s = swarf::wrap_grid(swarf::read_grid(path));
+  });
+  return s;
+}
+
+extern "C" int swarf_stock_write_vdb(const swarf_stock *s, const char *path, char *msg,
+                                     size_t msglen) {
+  return swarf::guard(msg, msglen, [&] {
+    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+    swarf::check_path(path);
+    const openvdb::GridCPtrVec grids{swarf::grid_for_output(*s)};
+    swarf::write_atomic(path, [&](std::ostream &os) { swarf::StreamArchive().write_to(os, grids); });
+  });
+}
+
+extern "C" int swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri,
+                                     char *msg, size_t msglen) {
+  if (ntri) *ntri = 0;
+  return swarf::guard(msg, msglen, [&] {
+    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+    swarf::check_path(path);
+    swarf::Mesh m;
+    openvdb::tools::volumeToMesh(*s->grid, m.points, m.triangles, m.quads, 0.0, 0.0);
+    if (m.count() > UINT32_MAX) throw Error(SWARF_STOCK_ERR_ARG, "mesh has too many triangles for STL");
+    swarf::write_atomic(path, [&](std::ostream &os) { swarf::write_stl_body(os, m); });
+    if (ntri) *ntri = m.count();
+  });
+}

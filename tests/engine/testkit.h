@@ -1,0 +1,166 @@
+/* testkit.h -- helpers shared by the engine tests and the benchmark (header
+ * only): a seeded random generator, small vector helpers, moves built through
+ * the toolpath module, and the brute-force swept-volume sdf (a dense minimum
+ * over cutter instances plus golden-section refinement) that the engine's
+ * evaluators are checked against.
+ */
+#ifndef SWARF_TESTS_ENGINE_TESTKIT_H
+#define SWARF_TESTS_ENGINE_TESTKIT_H
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "engine.h"
+
+static const double tk_pi = 3.14159265358979323846;
+
+typedef struct {
+  uint64_t s;
+} tk_rng;
+
+static inline double tk_uniform(tk_rng *r, double lo, double hi) {
+  r->s ^= r->s << 13;
+  r->s ^= r->s >> 7;
+  r->s ^= r->s << 17;
+  return lo + (hi - lo) * ((double)(r->s >> 11) * (1.0 / 9007199254740992.0));
+}
+
+static inline void tk_unit(tk_rng *r, double n[3]) {
+  double m;
+  do {
+    for (int k = 0; k < 3; k++) n[k] = tk_uniform(r, -1.0, 1.0);
+    m = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  } while (m < 0.1 || m > 1.0);
+  for (int k = 0; k < 3; k++) n[k] /= m;
+}
+
+static inline double tk_dot(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline double tk_dist(const double a[3], const double b[3]) {
+  double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  return sqrt(tk_dot(d, d));
+}
+
+static inline void tk_cross(const double a[3], const double b[3], double o[3]) {
+  o[0] = a[1] * b[2] - a[2] * b[1];
+  o[1] = a[2] * b[0] - a[0] * b[2];
+  o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Distance from p to the segment [a, b]. */
+static inline double tk_seg_dist(const double p[3], const double a[3], const double b[3]) {
+  double d[3], w[3], t, dd;
+  for (int k = 0; k < 3; k++) {
+    d[k] = b[k] - a[k];
+    w[k] = p[k] - a[k];
+  }
+  dd = tk_dot(d, d);
+  t = dd > 0.0 ? tk_dot(w, d) / dd : 0.0;
+  t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+  for (int k = 0; k < 3; k++) w[k] -= t * d[k];
+  return sqrt(tk_dot(w, w));
+}
+
+static inline swarf_motion tk_line(const double p0[3], const double p1[3]) {
+  swarf_move mv;
+  swarf_motion m;
+  memset(&mv, 0, sizeof mv);
+  mv.kind = SWARF_MOVE_LINE;
+  mv.feed = 600.0;
+  for (int k = 0; k < 3; k++) {
+    mv.start[k] = p0[k];
+    mv.end[k] = p1[k];
+  }
+  swarf_motion_from_move(&mv, &m);
+  return m;
+}
+
+/* Helix from `start` about the axis through `center` with unit `normal`. */
+static inline swarf_motion tk_helix(const double start[3], const double center[3],
+                                    const double normal[3], double angle, double rise) {
+  swarf_move mv;
+  swarf_motion m;
+  memset(&mv, 0, sizeof mv);
+  mv.kind = SWARF_MOVE_ARC;
+  mv.feed = 600.0;
+  for (int k = 0; k < 3; k++) {
+    mv.start[k] = start[k];
+    mv.center[k] = center[k];
+    mv.normal[k] = normal[k];
+  }
+  mv.angle = angle;
+  mv.rise = rise;
+  swarf_motion_from_move(&mv, &m);
+  for (int k = 0; k < 3; k++) mv.end[k] = m.p1[k];
+  return m;
+}
+
+static inline double tk_instance(const swarf_cutter *c, const swarf_motion *m, const double p[3],
+                                 double alpha) {
+  double t[3], q[3];
+  swarf_motion_eval(m, alpha, t, NULL);
+  for (int k = 0; k < 3; k++) q[k] = p[k] - t[k];
+  return swarf_cutter_sdf(c, q);
+}
+
+/* Golden-section minimum of the instance sdf over [lo, hi]. */
+static inline double tk_golden(const swarf_cutter *c, const swarf_motion *m, const double p[3],
+                               double lo, double hi, double *amin) {
+  const double g = 0.6180339887498949;
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  double f1 = tk_instance(c, m, p, x1), f2 = tk_instance(c, m, p, x2);
+  for (int it = 0; it < 90; it++) {
+    if (f1 < f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - g * (hi - lo);
+      f1 = tk_instance(c, m, p, x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + g * (hi - lo);
+      f2 = tk_instance(c, m, p, x2);
+    }
+  }
+  *amin = f1 < f2 ? x1 : x2;
+  return f1 < f2 ? f1 : f2;
+}
+
+/* Brute force: the minimum over nsamp + 1 instances, then golden section
+ * around every sampled local minimum near the best. */
+static inline double tk_brute(const swarf_cutter *c, const swarf_motion *m, const double p[3],
+                              int nsamp, double *alpha) {
+  double best = INFINITY, abest = 0.0, prev = INFINITY;
+  double slack = 2.0 * (m->length + 1e-9) / nsamp + 1e-9, lowest = INFINITY;
+  static double g[20001];
+  int n = nsamp > 20000 ? 20000 : nsamp;
+  for (int i = 0; i <= n; i++) {
+    g[i] = tk_instance(c, m, p, (double)i / n);
+    if (g[i] < lowest) lowest = g[i];
+  }
+  for (int i = 0; i <= n; i++) {
+    double cur = g[i], next = i < n ? g[i + 1] : INFINITY, a;
+    if (cur <= prev && cur <= next && cur <= lowest + slack) {
+      double lo = i > 0 ? (double)(i - 1) / n : 0.0, hi = i < n ? (double)(i + 1) / n : 1.0;
+      double v = tk_golden(c, m, p, lo, hi, &a);
+      if (cur < v) {
+        v = cur;
+        a = (double)i / n;
+      }
+      if (v < best) {
+        best = v;
+        abest = a;
+      }
+    }
+    prev = cur;
+  }
+  if (alpha != NULL) *alpha = abest;
+  return best;
+}
+
+#endif

@@ -6,17 +6,25 @@
 /// float level-set grid of the file; every OpenVDB exception (truncated or
 /// corrupt data) becomes a status and a message. Delayed loading is off, so
 /// the whole grid is read (and checked by OpenVDB's reader) before returning.
+/// OpenVDB's reader is not hardened against damaged files (some corrupt its
+/// heap), so the file is read in a child process (isolate.h) that hands back
+/// the grid re-serialized by OpenVDB's own writer.
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <sstream>
 #include <memory>
 
 #include "atomic_file.h"
+#include "isolate.h"
 #include "stock_private.h"
 
 namespace swarf {
@@ -68,7 +76,7 @@ openvdb::FloatGrid::Ptr read_open_file(openvdb::io::File &file, const std::strin
   return grid;
 }
 
-openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
+openvdb::FloatGrid::Ptr read_grid_here(const std::string &path) {
   openvdb::io::File file(path);
   try {
     file.open(/*delayLoad=*/false);
@@ -86,6 +94,45 @@ openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   } catch (const std::exception &e) {
     throw Error(SWARF_STOCK_ERR_FORMAT, path + ": corrupt or truncated VDB file (" + e.what() + ")");
   }
+}
+
+/// Address space (bytes) for the reading child: what the process maps now
+/// plus room for the grid; 0 (no limit) under AddressSanitizer, which maps
+/// terabytes of shadow memory.
+size_t reader_address_space(const std::string &path) {
+#if defined(__SANITIZE_ADDRESS__)
+  return 0;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return 0;
+#endif
+#endif
+  struct stat st;
+  const size_t file = ::stat(path.c_str(), &st) == 0 ? size_t(st.st_size) : 0;
+  size_t pages = 0;
+  if (FILE *f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%zu", &pages) != 1) pages = 0;
+    std::fclose(f);
+  }
+  if (pages == 0) return 0;
+  return pages * size_t(::sysconf(_SC_PAGESIZE)) + (size_t(2) << 30) + 64 * file;
+}
+
+/// Read the stock grid of `path` in a child process (see the file comment).
+openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
+  const IsolateLimits limits = {120, reader_address_space(path)};
+  std::string bytes;
+  run_isolated("reading " + path, limits, [&] {
+    std::ostringstream os(std::ios::binary);
+    openvdb::io::Stream(os).write(openvdb::GridCPtrVec{read_grid_here(path)});
+    return os.str();
+  }, bytes);
+  std::istringstream is(bytes, std::ios::binary);
+  openvdb::GridPtrVecPtr grids = openvdb::io::Stream(is).getGrids();
+  openvdb::FloatGrid::Ptr grid;
+  if (grids && grids->size() == 1) grid = openvdb::gridPtrCast<openvdb::FloatGrid>(grids->front());
+  if (!grid) throw Error(SWARF_STOCK_ERR_INTERNAL, path + ": the reader's copy did not arrive whole");
+  return grid;
 }
 
 /// A shallow copy of the stock's grid (sharing its tree) with swarf's metadata.
@@ -127,16 +174,32 @@ void put_triangle(unsigned char *p, const openvdb::Vec3s &a, const openvdb::Vec3
 
 /// The zero isosurface as triangles (quads split along their 0-2 diagonal),
 /// ordered so that the right-hand normal points out of the material.
+/// volumeToMesh collapses a quad's corners onto one point where the surface
+/// pinches; the degenerate triangles that gives (two equal corners) are left
+/// out, which keeps every edge matched by its reverse.
 struct Mesh {
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  size_t count() const { return triangles.size() + 2 * quads.size(); }
+  std::vector<openvdb::Vec3I> out;  ///< the triangles written, outward order
+
+  void add(unsigned i, unsigned j, unsigned k) {
+    const openvdb::Vec3s &a = points[i], &b = points[j], &c = points[k];
+    if (a == b || b == c || a == c) return;
+    out.emplace_back(k, j, i);
+  }
+  /// volumeToMesh orders the vertices of its polygons clockwise seen from
+  /// outside (the right-hand normal points into the material): each triangle
+  /// is reversed (checked by tests/stock/test_stl.c).
+  void triangulate() {
+    out.clear();
+    out.reserve(triangles.size() + 2 * quads.size());
+    for (const openvdb::Vec3I &t : triangles) add(t[0], t[1], t[2]);
+    for (const openvdb::Vec4I &q : quads) add(q[0], q[1], q[2]), add(q[0], q[2], q[3]);
+  }
+  size_t count() const { return out.size(); }
 };
 
-/// volumeToMesh orders the vertices of its polygons clockwise seen from outside
-/// (the right-hand normal points into the material): each triangle is written
-/// reversed (checked by tests/stock/test_stl.c).
 void write_stl_body(std::ostream &os, const Mesh &m) {
   unsigned char head[84] = {0};
   std::snprintf(reinterpret_cast<char *>(head), 80, "swarf stock: zero isosurface, mm");
@@ -144,13 +207,11 @@ void write_stl_body(std::ostream &os, const Mesh &m) {
   os.write(reinterpret_cast<const char *>(head), 84);
   std::vector<unsigned char> buf;
   buf.reserve(50 * 4096);
-  auto tri = [&](unsigned i, unsigned j, unsigned k) {
+  for (const openvdb::Vec3I &t : m.out) {
     buf.resize(buf.size() + 50);
-    put_triangle(buf.data() + buf.size() - 50, m.points[k], m.points[j], m.points[i]);
+    put_triangle(buf.data() + buf.size() - 50, m.points[t[0]], m.points[t[1]], m.points[t[2]]);
     if (buf.size() >= 50 * 4096) os.write(reinterpret_cast<const char *>(buf.data()), buf.size()), buf.clear();
-  };
-  for (const openvdb::Vec3I &t : m.triangles) tri(t[0], t[1], t[2]);
-  for (const openvdb::Vec4I &q : m.quads) tri(q[0], q[1], q[2]), tri(q[0], q[2], q[3]);
+  }
   os.write(reinterpret_cast<const char *>(buf.data()), buf.size());
 }
 
@@ -188,6 +249,7 @@ extern "C" int swarf_stock_write_stl(const swarf_stock *s, const char *path, siz
     swarf::check_path(path);
     swarf::Mesh m;
     openvdb::tools::volumeToMesh(*s->grid, m.points, m.triangles, m.quads, 0.0, 0.0);
+    m.triangulate();
     if (m.count() > UINT32_MAX) throw Error(SWARF_STOCK_ERR_ARG, "mesh has too many triangles for STL");
     swarf::write_atomic(path, [&](std::ostream &os) { swarf::write_stl_body(os, m); });
     if (ntri) *ntri = m.count();

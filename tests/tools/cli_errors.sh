@@ -17,7 +17,7 @@ expect() {
     > "$dir/stdout" 2> "$dir/stderr"
   local rc=$? leftovers
   leftovers=$(ls "$dir" | grep -v -E '^(prog.ngc|stdout|stderr)$')
-  if [ $rc -eq 2 ] && grep -qE "$regex" "$dir/stderr" && [ -z "$leftovers" ]; then
+  if [ $rc -eq 2 ] && grep -qE -- "$regex" "$dir/stderr" && [ -z "$leftovers" ]; then
     pass=$((pass + 1))
   else
     fail=$((fail + 1))

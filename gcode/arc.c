@@ -174,7 +174,7 @@ static int turns_of(const swarf_gc_block *b) {
   return swarf_gc_block_has(b, 'P') ? (int)floor(swarf_gc_block_word(b, 'P')->value + 0.5) : 1;
 }
 
-int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv,
+int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv, int *turns,
                  swarf_gc_fault *f) {
   arc_data a;
   double sign;
@@ -196,6 +196,7 @@ int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *
   mv->center[a.pl->a3] = mv->start[a.pl->a3];
   mv->normal[a.pl->a3] = sign;
   mv->angle = sweep(&a) + TWO_PI * (turns_of(b) - 1);
+  *turns = a.ccw ? turns_of(b) : -turns_of(b);
   mv->rise = sign * (mv->end[a.pl->a3] - mv->start[a.pl->a3]);
   return SWARF_GCODE_OK;
 }

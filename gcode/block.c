@@ -2,7 +2,8 @@
  *
  * Reads every token the lexer gives: each letter may appear once (G and M
  * excepted), G and M codes are filed under their modal group (two codes of
- * one group are an error, as in LinuxCNC), N must come first. Codes and
+ * one group are an error, as in LinuxCNC), N must come first; parameter
+ * settings and the last comment are kept for the interpreter. Codes and
  * letters LinuxCNC knows but this version does not handle are refused here
  * with a "not supported yet" message at their column. The block is plain
  * data owned by the caller; reading it changes no state.
@@ -17,12 +18,8 @@
 /* Letters that are words in LinuxCNC but not in this version, and why. */
 static const char *later_letter(char letter) {
   switch (letter) {
-  case 'D':
-    return "cutter compensation (D word)";
   case 'E':
     return "the E word (G76, M66)";
-  case 'L':
-    return "the L word (G10, canned cycles)";
   case 'U':
   case 'V':
   case 'W':
@@ -78,7 +75,7 @@ static int add_g(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) 
 static int add_m(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
   int code = tenths_of(t->value);
   const swarf_gc_code *c = (code < 0 || code % 10 != 0) ? NULL : swarf_gc_m_code(code);
-  if (t->value > 199.0)
+  if (t->value > 199.0 && !(t->value >= 400.0 && t->value < 500.0))
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "M code greater than 199: %s",
                          t->word);
   if (c == NULL)
@@ -129,19 +126,36 @@ static int add_word(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *
   return status;
 }
 
-int swarf_gc_block_read(const char *line, size_t len, swarf_gc_block *b, swarf_gc_fault *f) {
+static int add_assign(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+  swarf_gc_assign *a;
+  if (b->assign_count == SWARF_GC_MAX_ASSIGN)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
+                         "Too many parameter settings on one line (more than %d)",
+                         SWARF_GC_MAX_ASSIGN);
+  a = &b->assigns[b->assign_count++];
+  a->index = t->index;
+  memcpy(a->name, t->name, sizeof a->name);
+  a->value = t->value;
+  return SWARF_GCODE_OK;
+}
+
+int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
+                        swarf_gc_block *b, swarf_gc_fault *f) {
   swarf_gc_lexer lx;
   swarf_gc_token t;
   init_block(b);
-  swarf_gc_lexer_init(&lx, line, len);
+  swarf_gc_lexer_init(&lx, line, len, ps);
   for (;;) {
     int status = swarf_gc_lexer_next(&lx, &t, f);
     if (status != SWARF_GCODE_OK) return status;
     if (t.kind == SWARF_GC_TOKEN_END) return SWARF_GCODE_OK;
-    if (t.kind == SWARF_GC_TOKEN_WORD) {
-      status = add_word(b, &t, f);
-      if (status != SWARF_GCODE_OK) return status;
+    if (t.kind == SWARF_GC_TOKEN_WORD) status = add_word(b, &t, f);
+    if (t.kind == SWARF_GC_TOKEN_ASSIGN) status = add_assign(b, &t, f);
+    if (t.kind == SWARF_GC_TOKEN_COMMENT) {
+      b->comment = t.text;
+      b->comment_len = t.text_len;
     }
+    if (status != SWARF_GCODE_OK) return status;
   }
 }
 
@@ -151,4 +165,10 @@ const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter) {
 
 int swarf_gc_block_has(const swarf_gc_block *b, char letter) {
   return b->words[letter - 'A'].present;
+}
+
+int swarf_gc_block_has_axis(const swarf_gc_block *b) {
+  for (const char *l = "XYZABC"; *l; l++)
+    if (b->words[*l - 'A'].present) return 1;
+  return 0;
 }

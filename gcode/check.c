@@ -3,7 +3,9 @@
  * Decides which motion the block makes (LinuxCNC's enhance_block: the motion
  * word, else the modal motion if there are axis words, or I/J/K words in arc
  * mode) and checks what LinuxCNC's read_* and check_items functions check:
- * values in range, words with no code to use them, G4 and G53 companions.
+ * values in range, words with no code to use them, G4 and G53 companions,
+ * canned cycle words. Group 0 codes that take axis words (G10 G28 G30 G52
+ * G92) keep them from the modal motion.
  * Reads the state, changes nothing but the block's motion fields.
  */
 #include <math.h>
@@ -31,10 +33,30 @@ static int is_arc(int motion) {
   return motion == MOTION_G2 || motion == MOTION_G3;
 }
 
+static int is_cycle(int motion) {
+  return motion == 730 || (motion >= 810 && motion <= 890);
+}
+
+/* Group 0 codes that take the axis words for themselves. */
+static int axis_user(int g0) {
+  return g0 == 100 || g0 == 280 || g0 == 300 || g0 == 520 || g0 == 920;
+}
+
 static int find_motion(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   const swarf_gc_code_word *g1 = &b->g[SWARF_GC_GROUP_MOTION];
   int axis_column = first_column(b, "XYZABC");
   int ijk_column = first_column(b, "IJK");
+  if (axis_user(b->g[SWARF_GC_GROUP_NONMODAL].code)) {
+    if (g1->code >= 0 && g1->code != MOTION_G80 && axis_column)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g1->column,
+                           "Cannot use two G codes that both use axis values: %s and %s",
+                           b->g[SWARF_GC_GROUP_NONMODAL].text, g1->text);
+    if (g1->code >= 0) {
+      b->motion = g1->code;
+      b->motion_column = g1->column;
+    }
+    return SWARF_GCODE_OK;
+  }
   if (g1->code >= 0) {
     if (g1->code == MOTION_G80 && axis_column)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, axis_column,
@@ -60,14 +82,14 @@ static int is_whole(double v, double tolerance) {
 }
 
 static int check_values(const swarf_gc_block *b, swarf_gc_fault *f) {
-  static const char nonnegative[] = "FSNTH";
+  static const char nonnegative[] = "FSNTHDL";
   for (const char *l = nonnegative; *l; l++) {
     const swarf_gc_word *w = swarf_gc_block_word(b, *l);
     if (w->present && w->value < 0)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "Negative %c word used: %s", *l,
                            w->text);
   }
-  for (const char *l = "TH"; *l; l++) {
+  for (const char *l = "THL"; *l; l++) {
     const swarf_gc_word *w = swarf_gc_block_word(b, *l);
     if (w->present && !is_whole(w->value, 1e-4))
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
@@ -132,21 +154,55 @@ static int check_arc_p(const swarf_gc_word *p, swarf_gc_fault *f) {
   return SWARF_GCODE_OK;
 }
 
-/* Words that need a code to use them (LinuxCNC's check_other_codes). */
-static int check_users(const swarf_gc_block *b, swarf_gc_fault *f) {
-  int arc = is_arc(b->motion);
-  int g4 = b->g[SWARF_GC_GROUP_NONMODAL].code == 40;
-  int g64 = b->g[SWARF_GC_GROUP_PATH_CONTROL].code == 640;
+static int is_user_m(const swarf_gc_block *b) {
+  return b->m[SWARF_GC_MGROUP_USER].code >= 0 || b->m[SWARF_GC_MGROUP_IO].code >= 0;
+}
+
+static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   const swarf_gc_word *w;
-  if ((w = swarf_gc_block_word(b, 'H'))->present && b->g[SWARF_GC_GROUP_TOOL_LENGTH].code != 430)
+  int col = b->motion_column;
+  for (const char *l = "ABC"; *l; l++)
+    if ((w = swarf_gc_block_word(b, *l))->present)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
+                           "Cannot put %s in canned cycle: %s", *l == 'A' ? "an a" : *l == 'B' ? "a b" : "a c", w->text);
+  if (st->modal.cutter_comp != 400)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, col,
+                         "Cannot use canned cycle with cutter radius compensation");
+  if ((w = swarf_gc_block_word(b, 'L'))->present && w->value < 1)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "Cannot do zero repeats: %s",
+                         w->text);
+  return SWARF_GCODE_OK;
+}
+
+/* Words that need a code to use them (LinuxCNC's check_other_codes). */
+static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+  int arc = is_arc(b->motion), cycle = is_cycle(b->motion);
+  int g0 = b->g[SWARF_GC_GROUP_NONMODAL].code;
+  int g4 = g0 == 40, g10 = g0 == 100;
+  int g64 = b->g[SWARF_GC_GROUP_PATH_CONTROL].code == 640;
+  int user_m = is_user_m(b);
+  const swarf_gc_word *w;
+  if ((w = swarf_gc_block_word(b, 'H'))->present && b->g[SWARF_GC_GROUP_TOOL_LENGTH].code != 430 &&
+      !g10)
     return unused(w, "G43", f);
-  for (const char *l = "IJKR"; *l; l++)
-    if ((w = swarf_gc_block_word(b, *l))->present && !arc) return unused(w, "G2 or G3", f);
+  for (const char *l = "IJK"; *l; l++)
+    if ((w = swarf_gc_block_word(b, *l))->present && !arc && !(cycle && *l == 'K' && 0))
+      return unused(w, "G2 or G3", f);
+  if ((w = swarf_gc_block_word(b, 'R'))->present && !arc && !cycle && !g10)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
+                         "R word with no g code that uses it: %s", w->text);
+  if ((w = swarf_gc_block_word(b, 'L'))->present && !cycle && !g10)
+    return unused(w, "G10 or canned cycle", f);
+  if ((w = swarf_gc_block_word(b, 'D'))->present && !g10)
+    return unused(w, "G41 or G42", f);
   if ((w = swarf_gc_block_word(b, 'P'))->present) {
-    if (!arc && !g4 && !g64) return unused(w, "G2, G3, G4 or G64", f);
+    if (!arc && !g4 && !g64 && !g10 && !cycle && !user_m)
+      return unused(w, "G2, G3, G4, G10, G64, canned cycle or M code", f);
     if (arc) return check_arc_p(w, f);
   }
-  if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64) return unused(w, "G64", f);
+  if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64 && !cycle && !user_m)
+    return unused(w, "G64, G73, G83 or M code", f);
+  if (cycle) return check_cycle(b, st, f);
   return SWARF_GCODE_OK;
 }
 
@@ -154,6 +210,6 @@ int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_f
   int status = check_values(b, f);
   if (status == SWARF_GCODE_OK) status = find_motion(b, st, f);
   if (status == SWARF_GCODE_OK) status = check_nonmodal(b, st, f);
-  if (status == SWARF_GCODE_OK) status = check_users(b, f);
+  if (status == SWARF_GCODE_OK) status = check_users(b, st, f);
   return status;
 }

@@ -8,8 +8,11 @@
  *
  * Units at this boundary: positions in mm (G20 programs are converted),
  * rotary axes in degrees, feed in mm/min, spindle in rpm, dwell in seconds.
- * Positions are in the machine frame (program coordinates after offsets;
- * in this first version no offsets are active, so the two coincide).
+ * Positions of moves are in the machine frame: program coordinates with G92
+ * or G52, the work system's XY rotation, its origin (G54-G59.3, G10) and the
+ * tool length offset (G43) applied, as LinuxCNC's motion controller does.
+ * The canon listener (swarf_gcode_parser_set_canon) sees program
+ * coordinates instead, as `rs274 -g` prints them.
  *
  * Thread safety: a parser is used by one thread at a time; distinct parsers
  * are independent.
@@ -87,6 +90,22 @@ typedef struct swarf_gcode_parser swarf_gcode_parser;
  * feed 0, spindle off, no tool. Returns NULL when out of memory. */
 swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
                                            void *user);
+
+/* Called with each canonical call, formatted as `rs274 -g` prints it (a
+ * sequence number, the N field, the call; no newline), in program
+ * coordinates and the active unit: motions (STRAIGHT_TRAVERSE,
+ * STRAIGHT_FEED, ARC_FEED, DWELL) and the offset, unit, feed, tool, comment
+ * and message calls around them. The text is only valid during the call. */
+typedef void (*swarf_gcode_canon_fn)(const char *call, void *user);
+
+/* Sets the canon listener; call before the first feed. */
+int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn, void *user);
+
+/* Loads a LinuxCNC tool table (lines "T1 P1 Z0.511 D0.125 ;comment"; values
+ * in inches, as rs274 reads a table without an INI file). Call before the
+ * first feed. Returns a status; *err says why it failed. */
+int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                  swarf_gcode_error *err);
 
 /* Feed `len` bytes of program text (any split, CRLF or LF). Complete lines are
  * interpreted at once. Returns SWARF_GCODE_OK or an error; after an error the

@@ -2,19 +2,26 @@
  *
  * The pipeline, one line at a time (parse, check, commit, as grbl does):
  *   parser.c  streams bytes into lines; `%`, block delete, program end.
- *   lexer.c   one line -> tokens (words with their columns, comments).
+ *   oword.c   O-word control lines: records sub bodies and loops, runs
+ *             stored lines (calls, while, do, repeat, if) with a program
+ *             counter; other lines go straight to the block path.
+ *   lexer.c   one line -> tokens (words, comments, assignments), values
+ *             evaluated by expr.c with parameters from params.c.
  *   block.c   tokens -> a block: every word of the line, each G and M code
  *             filed under its modal group (codes.c holds the tables).
- *   check.c   the block against the modal state: what motion it asks for,
- *             which words are out of place. Nothing is changed.
+ *   check.c   the block against the modal state. Nothing is changed.
  *   interp.c  executes a checked block on a COPY of the state, in LinuxCNC's
- *             order, and collects the moves it makes (arc.c does arcs).
- *             The parser commits the copy and hands the moves out only when
- *             the whole block succeeded: a rejected block changes nothing.
+ *             order; offsets.c (G10 G28 G30 G52 G92 G43), motion.c (G0-G3,
+ *             arc.c for arcs) and cycle.c (G73 G81-G89) emit canonical
+ *             calls into an out list (canon.c) that the parser hands out
+ *             only when the whole block succeeded: a rejected block changes
+ *             nothing.
  *   fault.c   the error record every step fills.
  *
- * Internal units: mm, degrees, mm/min. G codes and M codes are kept as
- * integers in tenths (G91.1 -> 911, M6 -> 60) so that G38.2 and G38 differ.
+ * Internal units: mm, degrees, mm/min; positions are program coordinates
+ * (before work offsets, G92 and rotation); canon.c prints them in the
+ * active unit and turns them into machine-frame swarf_moves. Codes are kept
+ * as integers in tenths (G91.1 -> 911, M6 -> 60).
  */
 #ifndef SWARF_GCODE_PRIVATE_H
 #define SWARF_GCODE_PRIVATE_H
@@ -27,6 +34,10 @@
 #define SWARF_GC_LINE_MAX ((size_t)1 << 20) /* longest line accepted, bytes */
 #define SWARF_GC_NUMBER_MAX 1e9             /* largest magnitude of a word's value */
 #define SWARF_GC_WORD_TEXT 40               /* a word as written, for messages */
+#define SWARF_GC_NPARAMS 5602               /* numbered parameters #1..#5601 */
+#define SWARF_GC_NAME_MAX 64                /* longest parameter or O-word name */
+#define SWARF_GC_MAX_ASSIGN 50              /* parameter settings on one line */
+#define SWARF_GC_NSYSTEMS 9                 /* G54..G59.3 */
 
 /* ---- fault.c: what went wrong, and where on the line -------------------- */
 
@@ -43,26 +54,94 @@ int swarf_gc_fail(swarf_gc_fault *f, int status, int column, const char *fmt, ..
 #endif
     ;
 
+/* ---- the modal state ---------------------------------------------------- */
+
+typedef struct {
+  int motion;       /* 0 10 20 30 730 800 810..890 */
+  int plane;        /* 170 180 190 */
+  int units;        /* 200 (inch) or 210 (mm) */
+  int distance;     /* 900 or 910 */
+  int arc_distance; /* 901 or 911 */
+  int feed_mode;    /* 930 940 950 */
+  int cutter_comp;  /* 400 */
+  int tool_length;  /* 430 431 490 */
+  int coord_system; /* 540 550 ... 593 */
+  int path_control; /* 610 611 640 */
+  int retract;      /* 980 990 */
+  int spindle_mode; /* 960 970 */
+} swarf_gc_modal;
+
+typedef struct {
+  swarf_gc_modal modal;
+  double pos[SWARF_NAXES];                         /* program coordinates, mm, degrees */
+  double systems[SWARF_GC_NSYSTEMS][SWARF_NAXES];  /* G54..G59.3 origins, mm */
+  double rotations[SWARF_GC_NSYSTEMS];             /* their XY rotations, degrees */
+  double g92[SWARF_NAXES];                         /* G92/G52 offset in force, mm */
+  double g92_saved[SWARF_NAXES];                   /* #5211-#5216 (kept by G92.2), mm */
+  int g92_on;                                      /* #5210 */
+  double g28[SWARF_NAXES], g30[SWARF_NAXES];       /* stored homes, machine mm */
+  double tlo[SWARF_NAXES];                         /* tool length offset, mm */
+  double feed;                                     /* mm/min, or inverse time (1/min) */
+  double speed;                                    /* rpm, >= 0 */
+  int spindle_dir;                                 /* +1 M3, -1 M4, 0 off */
+  int tool;                                        /* in the spindle */
+  int selected_tool;                               /* last T */
+  int ended;                                       /* M2 or M30 was executed */
+  double cycle_r, cycle_q, cycle_p, cycle_k, cycle_z; /* sticky cycle words, mm */
+  double cycle_clear;                              /* G98 clearance of the running cycle */
+  int cycle_r_set, cycle_q_set;
+} swarf_gc_state;
+
+void swarf_gc_state_init(swarf_gc_state *st);
+/* mm per program unit. */
+double swarf_gc_scale(const swarf_gc_state *st);
+/* Index 0..8 of the active work system. */
+int swarf_gc_system_index(const swarf_gc_state *st);
+
+/* ---- params.c: numbered, named and computed parameters ------------------ */
+
+typedef struct swarf_gc_named swarf_gc_named;
+
+typedef struct {
+  double num[SWARF_GC_NPARAMS]; /* #0 unused */
+  swarf_gc_named *globals;      /* #<_name> */
+  swarf_gc_named *locals;       /* #<name> of the running sub (or main) */
+  const swarf_gc_state *state;  /* for the parameters that mirror it */
+  double value;                 /* #<_value>: last sub return */
+  int value_returned;
+} swarf_gc_params;
+
+void swarf_gc_params_init(swarf_gc_params *ps);
+void swarf_gc_params_clear(swarf_gc_params *ps);
+/* A numbered parameter; the ranges that mirror the state read from it. */
+double swarf_gc_param_get(const swarf_gc_params *ps, int index);
+/* Sets a numbered parameter; ranges mirroring offsets write into `st`. */
+void swarf_gc_param_set(swarf_gc_params *ps, swarf_gc_state *st, int index, double v);
+/* A named parameter (lower-case, blanks removed): 0 if found, else -1. */
+int swarf_gc_param_named(const swarf_gc_params *ps, const char *name, double *v);
+int swarf_gc_param_set_named(swarf_gc_params *ps, const char *name, double v);
+/* Swap the local named list (sub call and return); returns the old one. */
+swarf_gc_named *swarf_gc_params_swap_locals(swarf_gc_params *ps, swarf_gc_named *locals);
+void swarf_gc_named_free(swarf_gc_named *list);
+
 /* ---- lexer.c: one line -> tokens ---------------------------------------- */
 
 typedef enum {
-  SWARF_GC_TOKEN_END,    /* no more tokens on the line */
-  SWARF_GC_TOKEN_WORD,   /* a letter and its value */
-  SWARF_GC_TOKEN_COMMENT /* ( ... ) or ; to the end of the line */
+  SWARF_GC_TOKEN_END,     /* no more tokens on the line */
+  SWARF_GC_TOKEN_WORD,    /* a letter and its value */
+  SWARF_GC_TOKEN_COMMENT, /* ( ... ) or ; to the end of the line */
+  SWARF_GC_TOKEN_ASSIGN   /* #n = value or #<name> = value */
 } swarf_gc_token_kind;
-
-/* How the value of a word was written. Only numbers exist in this dialect;
- * parameters (#1) and expressions ([1+2]) will be further kinds. */
-typedef enum { SWARF_GC_VALUE_NUMBER } swarf_gc_value_kind;
 
 typedef struct {
   swarf_gc_token_kind kind;
-  char letter;                    /* words: upper case */
-  swarf_gc_value_kind value_kind; /* words */
-  double value;                   /* words */
-  int column;                     /* 1-based column of the letter, '(' or ';' */
-  const char *text;               /* comments: the text inside, not owned */
+  char letter;  /* words: upper case */
+  double value; /* words, assignments */
+  int column;   /* 1-based column of the letter, '(' , ';' or '#' */
+  const char *text; /* comments: the text inside, not owned */
   size_t text_len;
+  int index;                     /* assignments: numbered target, 0 if named */
+  char name[SWARF_GC_NAME_MAX];  /* assignments: named target */
   char word[SWARF_GC_WORD_TEXT]; /* words: as written, blanks removed */
 } swarf_gc_token;
 
@@ -70,29 +149,46 @@ typedef struct {
   const char *line; /* not owned, no terminator needed */
   size_t len;
   size_t pos;
+  const swarf_gc_params *params; /* values of #; NULL: parameters refused */
 } swarf_gc_lexer;
 
-void swarf_gc_lexer_init(swarf_gc_lexer *lx, const char *line, size_t len);
+void swarf_gc_lexer_init(swarf_gc_lexer *lx, const char *line, size_t len,
+                         const swarf_gc_params *params);
 /* The next token; SWARF_GCODE_OK or a syntax error in `f`. */
 int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f);
+void swarf_gc_lexer_skip_blanks(swarf_gc_lexer *lx);
+int swarf_gc_lexer_peek(swarf_gc_lexer *lx); /* next non-blank char, -1 at end */
+/* A plain number at the lexer's position (no sign handling beyond LinuxCNC's). */
+int swarf_gc_lexer_number(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f);
+
+/* ---- expr.c: values, parameters, [expressions] and functions ------------- */
+
+/* A real value at the lexer's position: number, #param, [expr] or
+ * function[...] (LinuxCNC's read_real_value). */
+int swarf_gc_expr_value(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f);
+/* `#...` target of an assignment or of EXISTS: index (>0) or name. */
+int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX],
+                            swarf_gc_fault *f);
+/* A <name> at the lexer's position (after '<'? no: at '<'), lower-cased. */
+int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_gc_fault *f);
 
 /* ---- codes.c: G and M codes and their modal groups ---------------------- */
 
 /* G modal groups, numbered as in LinuxCNC. */
 enum {
-  SWARF_GC_GROUP_NONMODAL = 0,      /* G4 G53 (G10 G28 G30 G52 G92...: later) */
-  SWARF_GC_GROUP_MOTION = 1,        /* G0 G1 G2 G3 G80 (G33 G38.x G73 G76 G81-G89: later) */
-  SWARF_GC_GROUP_PLANE = 2,         /* G17 G18 G19 (G17.1 G18.1 G19.1: later) */
+  SWARF_GC_GROUP_NONMODAL = 0,      /* G4 G10 G28 G30 G52 G53 G92 G92.1-3 */
+  SWARF_GC_GROUP_MOTION = 1,        /* G0 G1 G2 G3 G73 G80-G89 */
+  SWARF_GC_GROUP_PLANE = 2,         /* G17 G18 G19 */
   SWARF_GC_GROUP_DISTANCE = 3,      /* G90 G91 */
   SWARF_GC_GROUP_ARC_DISTANCE = 4,  /* G90.1 G91.1 */
-  SWARF_GC_GROUP_FEED_MODE = 5,     /* G94 (G93 G95: later) */
+  SWARF_GC_GROUP_FEED_MODE = 5,     /* G93 G94 G95 */
   SWARF_GC_GROUP_UNITS = 6,         /* G20 G21 */
   SWARF_GC_GROUP_CUTTER_COMP = 7,   /* G40 (G41 G42 G41.1 G42.1: later) */
-  SWARF_GC_GROUP_TOOL_LENGTH = 8,   /* G43 G49 (G43.1 G43.2: later) */
-  SWARF_GC_GROUP_RETURN_MODE = 10,  /* (G98 G99: later) */
-  SWARF_GC_GROUP_COORD_SYSTEM = 12, /* G54 (G55-G59.3: later) */
+  SWARF_GC_GROUP_TOOL_LENGTH = 8,   /* G43 G43.1 G49 */
+  SWARF_GC_GROUP_RETURN_MODE = 10,  /* G98 G99 */
+  SWARF_GC_GROUP_COORD_SYSTEM = 12, /* G54-G59.3 */
   SWARF_GC_GROUP_PATH_CONTROL = 13, /* G61 G61.1 G64 */
-  SWARF_GC_GROUP_SPINDLE_MODE = 14, /* G97 (G96: later) */
+  SWARF_GC_GROUP_SPINDLE_MODE = 14, /* G96 G97 */
   SWARF_GC_GROUP_LATHE = 15,        /* (G7 G8: later) */
   SWARF_GC_NGROUPS = 16
 };
@@ -100,12 +196,12 @@ enum {
 /* M modal groups, numbered as in LinuxCNC. */
 enum {
   SWARF_GC_MGROUP_STOP = 4,     /* M0 M1 M2 M30 M60 */
-  SWARF_GC_MGROUP_IO = 5,       /* (M62-M68: later) */
-  SWARF_GC_MGROUP_TOOL = 6,     /* M6 (M61: later) */
-  SWARF_GC_MGROUP_SPINDLE = 7,  /* M3 M4 M5 (M19: later) */
+  SWARF_GC_MGROUP_IO = 5,       /* M62-M68 (no motion: accepted, ignored) */
+  SWARF_GC_MGROUP_TOOL = 6,     /* M6 M61 */
+  SWARF_GC_MGROUP_SPINDLE = 7,  /* M3 M4 M5 */
   SWARF_GC_MGROUP_COOLANT = 8,  /* M7 M8 M9 */
-  SWARF_GC_MGROUP_OVERRIDE = 9, /* (M48-M53: later) */
-  SWARF_GC_MGROUP_USER = 10,    /* (M100-M199: later) */
+  SWARF_GC_MGROUP_OVERRIDE = 9, /* M48-M53 */
+  SWARF_GC_MGROUP_USER = 10,    /* M100-M199, M4xx (REMAP-style user codes) */
   SWARF_GC_NMGROUPS = 11
 };
 #define SWARF_GC_MAX_M_PER_LINE 4 /* as LinuxCNC */
@@ -136,11 +232,21 @@ typedef struct {
 } swarf_gc_code_word;
 
 typedef struct {
+  int index; /* > 0 numbered, 0 named */
+  char name[SWARF_GC_NAME_MAX];
+  double value;
+} swarf_gc_assign;
+
+typedef struct {
   swarf_gc_word words[26];                 /* by letter - 'A'; not G or M */
   swarf_gc_code_word g[SWARF_GC_NGROUPS];  /* by G modal group */
   swarf_gc_code_word m[SWARF_GC_NMGROUPS]; /* by M modal group */
   int m_count;
   int word_count; /* words of any letter, N included */
+  swarf_gc_assign assigns[SWARF_GC_MAX_ASSIGN];
+  int assign_count;
+  const char *comment; /* last comment of the line, not owned */
+  size_t comment_len;
   /* Set by check.c: */
   int motion;        /* motion this block makes (tenths), -1: none */
   int motion_column; /* motion word, else the first axis (or I J K) word */
@@ -148,66 +254,123 @@ typedef struct {
 
 /* Reads every token of the line into `b`: repeated words, two codes of one
  * modal group, unknown or not-yet-supported codes and letters are errors. */
-int swarf_gc_block_read(const char *line, size_t len, swarf_gc_block *b, swarf_gc_fault *f);
+int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
+                        swarf_gc_block *b, swarf_gc_fault *f);
 
 /* Shorthands for the words of a block. */
 const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter);
 int swarf_gc_block_has(const swarf_gc_block *b, char letter);
-
-/* ---- the modal state ---------------------------------------------------- */
-
-typedef struct {
-  int motion;       /* 0 10 20 30 or 800 (G80: no motion) */
-  int plane;        /* 170 180 190 */
-  int units;        /* 200 (inch) or 210 (mm) */
-  int distance;     /* 900 or 910 */
-  int arc_distance; /* 901 or 911 */
-  int feed_mode;    /* 940 */
-  int cutter_comp;  /* 400 */
-  int tool_length;  /* 430 or 490 (no offset is applied in this version) */
-  int coord_system; /* 540 */
-  int path_control; /* 610 611 640 */
-} swarf_gc_modal;
-
-typedef struct {
-  swarf_gc_modal modal;
-  double pos[SWARF_NAXES]; /* mm, degrees */
-  double feed;             /* mm/min */
-  double speed;            /* rpm, >= 0 */
-  int spindle_dir;         /* +1 M3, -1 M4, 0 off */
-  int tool;                /* in the spindle */
-  int selected_tool;       /* last T */
-  int ended;               /* M2 or M30 was executed */
-} swarf_gc_state;
-
-void swarf_gc_state_init(swarf_gc_state *st);
+int swarf_gc_block_has_axis(const swarf_gc_block *b);
 
 /* ---- check.c: the block against the state ------------------------------- */
 
-/* Sets b->motion and b->motion_column, and checks the block as LinuxCNC's
- * enhance_block and check_items do. Changes nothing else. */
 int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f);
+
+/* ---- canon.c: the calls a block makes ----------------------------------- */
+
+typedef enum {
+  SWARF_GC_CALL_TRAVERSE,
+  SWARF_GC_CALL_FEED,
+  SWARF_GC_CALL_ARC,
+  SWARF_GC_CALL_DWELL,
+  SWARF_GC_CALL_TOOL,
+  SWARF_GC_CALL_TEXT /* any other canonical call: printed only */
+} swarf_gc_call_kind;
+
+typedef struct {
+  swarf_gc_call_kind kind;
+  swarf_move move;    /* motions: machine frame, mm */
+  double prog[9];     /* motions: the values rs274 prints (program units) */
+  int nprog;
+  size_t text_at;     /* TEXT: offset of the text in the out list's buffer */
+} swarf_gc_call;
+
+typedef struct {
+  swarf_gc_call *calls;
+  size_t count, cap;
+  char *text;
+  size_t text_len, text_cap;
+  int want_text; /* format TEXT calls (a canon callback is set) */
+  int overflow;  /* out of memory or over the limit */
+} swarf_gc_out;
+
+void swarf_gc_out_init(swarf_gc_out *o);
+void swarf_gc_out_clear(swarf_gc_out *o);
+void swarf_gc_out_reset(swarf_gc_out *o);
+/* A text call (printf-style), e.g. "SET_FEED_RATE(10.0000)". */
+void swarf_gc_out_text(swarf_gc_out *o, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Straight motion from st->pos to `end` (program mm); kind TRAVERSE/FEED. */
+void swarf_gc_out_straight(swarf_gc_out *o, const swarf_gc_state *st, swarf_gc_call_kind kind,
+                           const double end[SWARF_NAXES], int column);
+/* An arc: `mv` holds start, end, centre, normal, angle, rise in program mm;
+ * `turns` is the signed rotation rs274 prints. */
+void swarf_gc_out_arc(swarf_gc_out *o, const swarf_gc_state *st, const swarf_move *mv,
+                      int turns, int column);
+void swarf_gc_out_dwell(swarf_gc_out *o, const swarf_gc_state *st, double seconds, int column);
+void swarf_gc_out_tool(swarf_gc_out *o, const swarf_gc_state *st, int column);
+/* Program mm -> machine mm (G92, rotation, work offset, tool length). */
+void swarf_gc_to_machine(const swarf_gc_state *st, const double p[SWARF_NAXES],
+                         double m[SWARF_NAXES]);
+/* Machine mm -> program mm. */
+void swarf_gc_from_machine(const swarf_gc_state *st, const double m[SWARF_NAXES],
+                           double p[SWARF_NAXES]);
+/* Offsets and rotation calls for the active system. */
+void swarf_gc_out_g5x(swarf_gc_out *o, const swarf_gc_state *st);
+void swarf_gc_out_g92(swarf_gc_out *o, const swarf_gc_state *st);
+void swarf_gc_out_tlo(swarf_gc_out *o, const swarf_gc_state *st);
 
 /* ---- interp.c: execute a checked block ---------------------------------- */
 
-#define SWARF_GC_MAX_MOVES 3 /* tool change, dwell, motion */
-
 typedef struct {
-  swarf_move moves[SWARF_GC_MAX_MOVES];
-  int count;
-} swarf_gc_moves;
+  swarf_gc_params *params; /* read and written (param writes of G10 etc.) */
+  swarf_gc_out *out;
+  double (*tools)[2]; /* tool table by tool number: Z offset, diameter (mm) */
+  int ntools;
+} swarf_gc_exec;
 
-/* Runs a checked block on `next` (a copy of the state the caller made) and
- * appends the moves it makes to `out` (line numbers left for the caller).
- * On error `next` is garbage and must be dropped. */
-int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_moves *out,
+int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
                      swarf_gc_fault *f);
+
+/* ---- motion.c, offsets.c, cycle.c ---------------------------------------- */
+
+/* The end point of the block's axis words (program mm, absolute). */
+void swarf_gc_find_end(const swarf_gc_block *b, const swarf_gc_state *st, double end[SWARF_NAXES]);
+int swarf_gc_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                    swarf_gc_fault *f);
+int swarf_gc_offsets(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                     swarf_gc_fault *f);
+int swarf_gc_select_system(int code, swarf_gc_state *st, swarf_gc_exec *ex);
+int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                         swarf_gc_fault *f);
+int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                   swarf_gc_fault *f);
 
 /* ---- arc.c: G2/G3 geometry ---------------------------------------------- */
 
-/* Fills the arc fields of `mv` (start and end are set) for the block's arc in
- * the state's plane, with LinuxCNC's checks and tolerances. */
-int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv,
+/* Fills the arc fields of `mv` (start and end are set, program mm) for the
+ * block's arc in the state's plane, with LinuxCNC's checks and tolerances;
+ * *turns gets rs274's signed rotation. */
+int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv, int *turns,
                  swarf_gc_fault *f);
+
+/* ---- oword.c: O-word control flow --------------------------------------- */
+
+typedef struct swarf_gc_flow swarf_gc_flow;
+
+/* Runs one ordinary (non-O) line, numbered `line`; the parser's block path. */
+typedef int (*swarf_gc_line_fn)(void *ctx, const char *text, size_t len, long line);
+
+swarf_gc_flow *swarf_gc_flow_new(swarf_gc_params *ps, swarf_gc_line_fn run, void *ctx);
+void swarf_gc_flow_free(swarf_gc_flow *fl);
+/* One line of the program as it streams in. On error, *column and the
+ * fault say where (the line is `line` or a stored line: *err_line). */
+int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line,
+                       long *err_line, swarf_gc_fault *f);
+/* A construct still open at the end of the program (0: none). */
+long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
 
 #endif

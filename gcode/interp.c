@@ -1,16 +1,19 @@
 /* interp.c -- the modal state, and the execution of one checked block.
  *
  * swarf_gc_execute runs a block on a copy of the state that the caller
- * made, in LinuxCNC's order (execute_block, convert_m, convert_g):
- *   feed mode, F, S, T; M6, M3/M4/M5, M7/M8/M9; G4; plane, units, cutter
- *   comp, tool length, coordinate system, path control, distance modes;
- *   motion (G0 G1 G2 G3 G80, with G53); then M0/M1/M2/M30/M60.
- * The moves it makes go to a small fixed list; the caller commits the copy
- * and hands the moves out only if the whole block succeeded.
+ * made, in LinuxCNC's order (execute_block):
+ *   comment/message; feed mode, F, S, T; M6 M61, M3/M4/M5, M7/M8/M9 (and
+ *   the M codes that make no motion); G4; plane, units, cutter comp, tool
+ *   length, coordinate system, path control, distance modes, retract mode;
+ *   group 0 (G10 G28 G30 G52 G92); motion (with G53); then M0/M1/M2/M30/M60.
+ * The calls it makes go to the out list; the caller commits the copy and
+ * hands the calls out only if the whole block succeeded.
  *
  * One LinuxCNC behaviour is kept on purpose: F is set before G20/G21 on the
  * same line take effect, so "G20 F10" read in mm mode means 10 mm/min.
  */
+#include <ctype.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "gcode_private.h"
@@ -26,128 +29,217 @@ void swarf_gc_state_init(swarf_gc_state *st) {
   st->modal.cutter_comp = 400;
   st->modal.tool_length = 490;
   st->modal.coord_system = 540;
-  st->modal.path_control = 610;
+  st->modal.path_control = 640;
+  st->modal.retract = 980;
+  st->modal.spindle_mode = 970;
 }
 
-/* mm per program length unit. */
-static double unit_scale(const swarf_gc_state *st) {
+double swarf_gc_scale(const swarf_gc_state *st) {
   return st->modal.units == 200 ? SWARF_GC_MM_PER_INCH : 1.0;
+}
+
+int swarf_gc_system_index(const swarf_gc_state *st) {
+  int c = st->modal.coord_system;
+  return c <= 590 ? (c - 540) / 10 : 6 + (c - 591);
 }
 
 static int code_of(const swarf_gc_block *b, int group) {
   return b->g[group].code;
 }
 
-/* A move at the current position with the current feed, spindle and tool. */
-static swarf_move *new_move(swarf_gc_moves *out, const swarf_gc_state *st, swarf_move_kind kind,
-                            int column) {
-  swarf_move *mv = &out->moves[out->count++];
-  memset(mv, 0, sizeof *mv);
-  mv->kind = kind;
-  memcpy(mv->start, st->pos, sizeof mv->start);
-  memcpy(mv->end, st->pos, sizeof mv->end);
-  mv->feed = st->feed;
-  mv->spindle = st->spindle_dir * st->speed;
-  mv->tool = st->tool;
-  mv->column = column;
-  return mv;
+/* The text of a (DEBUG,...) or (PRINT,...) comment with each parameter
+ * replaced by its value (%f, as LinuxCNC). */
+static void substitute(const char *t, size_t n, const swarf_gc_params *ps, char *out, size_t cap) {
+  size_t o = 0;
+  for (size_t i = 0; i < n && o + 32 < cap;) {
+    if (t[i] == '#' && ps != NULL) {
+      swarf_gc_lexer lx;
+      swarf_gc_fault f;
+      double v;
+      swarf_gc_lexer_init(&lx, t, n, ps);
+      lx.pos = i;
+      if (swarf_gc_expr_value(&lx, &v, &f) == SWARF_GCODE_OK) {
+        o += (size_t)snprintf(out + o, cap - o, "%f", v);
+        i = lx.pos;
+        continue;
+      }
+    }
+    out[o++] = t[i++];
+  }
+  out[o] = '\0';
+}
+
+/* (MSG,...), (DEBUG,...), (PRINT,...) become MESSAGE, others COMMENT. */
+static void run_comment(const swarf_gc_block *b, swarf_gc_exec *ex) {
+  static const char *kinds[] = {"msg,", "debug,", "print,"};
+  const char *t = b->comment;
+  size_t n = b->comment_len, k;
+  if (t == NULL || !ex->out->want_text) return;
+  for (size_t i = 0; i < 3; i++) {
+    size_t len = strlen(kinds[i]);
+    for (k = 0; k < len && k < n && tolower((unsigned char)t[k]) == kinds[i][k]; k++)
+      ;
+    if (k == len) {
+      char msg[1024];
+      substitute(t + len, n - len, i > 0 ? ex->params : NULL, msg, sizeof msg);
+      swarf_gc_out_text(ex->out, "MESSAGE(\"%s\")", msg);
+      return;
+    }
+  }
+  while (n > 0 && (*t == ' ' || *t == '\t'))
+    t++, n--;
+  swarf_gc_out_text(ex->out, "COMMENT(\"%.*s\")", (int)n, t);
+}
+
+static void run_feed_mode(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
+  int mode = code_of(b, SWARF_GC_GROUP_FEED_MODE);
+  if (mode < 0) return;
+  if (mode == 930 && st->modal.feed_mode != 930) st->feed = 0;
+  if (mode != 930 && st->modal.feed_mode == 930) st->feed = 0;
+  st->modal.feed_mode = mode;
+  swarf_gc_out_text(ex->out, "SET_FEED_MODE(0, %d)", mode == 950);
+  if (mode != 930 && !swarf_gc_block_has(b, 'F')) swarf_gc_out_text(ex->out, "SET_FEED_RATE(0.0000)");
 }
 
 /* F, S and T: the words that set values before any code runs. */
-static void set_values(const swarf_gc_block *b, swarf_gc_state *st) {
-  if (swarf_gc_block_has(b, 'F')) st->feed = swarf_gc_block_word(b, 'F')->value * unit_scale(st);
-  if (swarf_gc_block_has(b, 'S')) st->speed = swarf_gc_block_word(b, 'S')->value;
-  if (swarf_gc_block_has(b, 'T'))
+static void set_values(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
+  if (swarf_gc_block_has(b, 'F')) {
+    double f = swarf_gc_block_word(b, 'F')->value;
+    st->feed = st->modal.feed_mode == 930 ? f : f * swarf_gc_scale(st);
+    if (st->modal.feed_mode != 930) swarf_gc_out_text(ex->out, "SET_FEED_RATE(%.4f)", f);
+  }
+  if (swarf_gc_block_has(b, 'S')) {
+    st->speed = swarf_gc_block_word(b, 'S')->value;
+    swarf_gc_out_text(ex->out, "SET_SPINDLE_SPEED(0, %.4f)", st->speed);
+  }
+  if (swarf_gc_block_has(b, 'T')) {
     st->selected_tool = (int)(swarf_gc_block_word(b, 'T')->value + 0.5);
+    swarf_gc_out_text(ex->out, "SELECT_TOOL(%d)", st->selected_tool);
+  }
 }
 
-static void run_m_codes(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_moves *out) {
+static void run_m_codes(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
   const swarf_gc_code_word *tool = &b->m[SWARF_GC_MGROUP_TOOL];
   int spindle = b->m[SWARF_GC_MGROUP_SPINDLE].code;
-  if (tool->code == 60) {
+  int coolant = b->m[SWARF_GC_MGROUP_COOLANT].code;
+  if (tool->code == 60 || tool->code == 610) {
+    if (tool->code == 610 && swarf_gc_block_has(b, 'Q'))
+      st->selected_tool = (int)(swarf_gc_block_word(b, 'Q')->value + 0.5);
     st->tool = st->selected_tool;
-    new_move(out, st, SWARF_MOVE_TOOL_CHANGE, tool->column);
+    if (tool->code == 60) swarf_gc_out_text(ex->out, "CHANGE_TOOL(%d)", st->tool);
+    swarf_gc_out_tool(ex->out, st, tool->column);
   }
   if (spindle == 30) st->spindle_dir = 1;
   if (spindle == 40) st->spindle_dir = -1;
   if (spindle == 50) st->spindle_dir = 0;
+  if (spindle >= 0)
+    swarf_gc_out_text(ex->out, "%s", spindle == 30   ? "START_SPINDLE_CLOCKWISE(0)"
+                                     : spindle == 40 ? "START_SPINDLE_COUNTERCLOCKWISE(0)"
+                                                     : "STOP_SPINDLE_TURNING(0)");
+  if (coolant == 70) swarf_gc_out_text(ex->out, "MIST_ON()");
+  if (coolant == 80) swarf_gc_out_text(ex->out, "FLOOD_ON()");
+  if (coolant == 90) swarf_gc_out_text(ex->out, "MIST_OFF()"), swarf_gc_out_text(ex->out, "FLOOD_OFF()");
 }
 
-static void run_dwell(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_moves *out) {
+static void run_dwell(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
   const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
-  if (g0->code == 40) {
-    swarf_move *mv = new_move(out, st, SWARF_MOVE_DWELL, g0->column);
-    mv->dwell = swarf_gc_block_word(b, 'P')->value;
+  if (g0->code == 40) swarf_gc_out_dwell(ex->out, st, swarf_gc_block_word(b, 'P')->value, g0->column);
+}
+
+static void run_plane_units(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
+  int plane = code_of(b, SWARF_GC_GROUP_PLANE), units = code_of(b, SWARF_GC_GROUP_UNITS);
+  if (plane >= 0) {
+    st->modal.plane = plane;
+    swarf_gc_out_text(ex->out, "SELECT_PLANE(CANON_PLANE_%s)",
+                      plane == 170 ? "XY" : plane == 180 ? "XZ" : "YZ");
+  }
+  if (units >= 0) {
+    st->modal.units = units;
+    swarf_gc_out_text(ex->out, "USE_LENGTH_UNITS(CANON_UNITS_%s)", units == 200 ? "INCHES" : "MM");
   }
 }
 
-/* Plane, units, comp, tool length, coordinate system, path control and the
- * distance modes: each only records its code (no offsets in this version). */
+static int run_cutter_comp(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_fault *f) {
+  const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_CUTTER_COMP];
+  if (cw->code < 0) return SWARF_GCODE_OK;
+  if (cw->code != 400)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, cw->column,
+                         "%s (cutter radius compensation) is not supported yet", cw->text);
+  st->modal.cutter_comp = 400;
+  return SWARF_GCODE_OK;
+}
+
+static void run_path_control(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
+  int c = code_of(b, SWARF_GC_GROUP_PATH_CONTROL);
+  if (c < 0) return;
+  st->modal.path_control = c;
+  if (c == 610) swarf_gc_out_text(ex->out, "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+  if (c == 611) swarf_gc_out_text(ex->out, "SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)");
+  if (c == 640) {
+    double p = swarf_gc_block_has(b, 'P') ? swarf_gc_block_word(b, 'P')->value : 0;
+    double q = swarf_gc_block_has(b, 'Q') ? swarf_gc_block_word(b, 'Q')->value : p;
+    swarf_gc_out_text(ex->out, "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, %f)", p);
+    swarf_gc_out_text(ex->out, "SET_NAIVECAM_TOLERANCE(%.4f)", q);
+  }
+}
+
+/* Distance, arc distance, retract and spindle modes only record the code. */
 static void set_modes(const swarf_gc_block *b, swarf_gc_modal *m) {
   struct {
     int group;
     int *slot;
   } modes[] = {
-      {SWARF_GC_GROUP_PLANE, &m->plane},
-      {SWARF_GC_GROUP_UNITS, &m->units},
-      {SWARF_GC_GROUP_CUTTER_COMP, &m->cutter_comp},
-      {SWARF_GC_GROUP_TOOL_LENGTH, &m->tool_length},
-      {SWARF_GC_GROUP_COORD_SYSTEM, &m->coord_system},
-      {SWARF_GC_GROUP_PATH_CONTROL, &m->path_control},
       {SWARF_GC_GROUP_DISTANCE, &m->distance},
       {SWARF_GC_GROUP_ARC_DISTANCE, &m->arc_distance},
-      {SWARF_GC_GROUP_FEED_MODE, &m->feed_mode},
+      {SWARF_GC_GROUP_RETURN_MODE, &m->retract},
+      {SWARF_GC_GROUP_SPINDLE_MODE, &m->spindle_mode},
   };
   for (size_t i = 0; i < sizeof modes / sizeof modes[0]; i++)
     if (code_of(b, modes[i].group) >= 0) *modes[i].slot = code_of(b, modes[i].group);
 }
 
-/* The end point of the block's motion: axis words in program units, made
- * absolute (G91 adds to the current point, except under G53). */
-static void find_end(const swarf_gc_block *b, const swarf_gc_state *st, double end[SWARF_NAXES]) {
-  static const char axes[SWARF_NAXES] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
-  int incremental = st->modal.distance == 910 && code_of(b, SWARF_GC_GROUP_NONMODAL) != 530;
-  for (int i = 0; i < SWARF_NAXES; i++) {
-    const swarf_gc_word *w = swarf_gc_block_word(b, axes[i]);
-    double v = w->value * (i < 3 ? unit_scale(st) : 1.0);
-    end[i] = !w->present ? st->pos[i] : incremental ? st->pos[i] + v : v;
-  }
-}
-
-static int run_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_moves *out,
-                      swarf_gc_fault *f) {
-  swarf_move *mv;
-  if (b->motion < 0) return SWARF_GCODE_OK;
-  st->modal.motion = b->motion;
-  if (b->motion == 800) return SWARF_GCODE_OK;
-  if (b->motion == 10 && st->feed <= 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "Cannot do G1 with zero feed rate");
-  mv = new_move(out, st,
-                b->motion == 0    ? SWARF_MOVE_RAPID
-                : b->motion == 10 ? SWARF_MOVE_LINE
-                                  : SWARF_MOVE_ARC,
-                b->motion_column);
-  find_end(b, st, mv->end);
-  if (b->motion == 0) mv->feed = 0;
-  if (mv->kind == SWARF_MOVE_ARC) {
-    int status = swarf_gc_arc(b, st, mv, f);
-    if (status != SWARF_GCODE_OK) return status;
-  }
-  memcpy(st->pos, mv->end, sizeof st->pos);
-  return SWARF_GCODE_OK;
-}
-
-int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_moves *out,
-                     swarf_gc_fault *f) {
+static void run_stop(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
   int stop = b->m[SWARF_GC_MGROUP_STOP].code;
-  int status;
-  set_values(b, next);
-  run_m_codes(b, next, out);
-  run_dwell(b, next, out);
-  set_modes(b, &next->modal);
-  status = run_motion(b, next, out, f);
+  if (stop == 0 || stop == 10 || stop == 600)
+    swarf_gc_out_text(ex->out, "%s", stop == 10 ? "OPTIONAL_PROGRAM_STOP()" : "PROGRAM_STOP()");
+  if (stop != 20 && stop != 300) return;
+  /* LinuxCNC's program end: back to G54, no G92 rotation kept, G17 G90 G94 G40 G80 M5. */
+  st->ended = 1;
+  st->modal.coord_system = 540;
+  swarf_gc_out_g5x(ex->out, st);
+  st->modal.plane = 170;
+  st->modal.distance = 900;
+  st->modal.feed_mode = 940;
+  st->modal.motion = 10;
+  st->modal.cutter_comp = 400;
+  st->spindle_dir = 0;
+  swarf_gc_out_text(ex->out, "SET_FEED_MODE(0, 0)");
+  swarf_gc_out_text(ex->out, "SET_FEED_RATE(0.0000)");
+  swarf_gc_out_text(ex->out, "STOP_SPINDLE_TURNING(0)");
+  swarf_gc_out_text(ex->out, "SET_SPINDLE_MODE(0 0.0000)");
+  swarf_gc_out_text(ex->out, "PROGRAM_END()");
+}
+
+int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
+                     swarf_gc_fault *f) {
+  int status, system = code_of(b, SWARF_GC_GROUP_COORD_SYSTEM);
+  run_comment(b, ex);
+  run_feed_mode(b, next, ex);
+  set_values(b, next, ex);
+  run_m_codes(b, next, ex);
+  run_dwell(b, next, ex);
+  run_plane_units(b, next, ex);
+  status = run_cutter_comp(b, next, f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_tool_length(b, next, ex, f);
   if (status != SWARF_GCODE_OK) return status;
-  if (stop == 20 || stop == 300) next->ended = 1;
+  if (system >= 0) swarf_gc_select_system(system, next, ex);
+  run_path_control(b, next, ex);
+  set_modes(b, &next->modal);
+  status = swarf_gc_offsets(b, next, ex, f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_motion(b, next, ex, f);
+  if (status != SWARF_GCODE_OK) return status;
+  run_stop(b, next, ex);
+  if (ex->out->overflow)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1, "out of memory (too many moves on one line)");
   return SWARF_GCODE_OK;
 }

@@ -7,9 +7,10 @@
  * point ("1.", ".5", "-.5", "+3"). Numbers are converted here, without the C
  * locale's help, and must stay within SWARF_GC_NUMBER_MAX.
  *
- * A word's value is a separate step so that parameters (#1) and expressions
- * ([1+2]) can be added as further value kinds; today they are refused, at
- * their column. The lexer owns nothing: tokens point into the caller's line.
+ * A value that is not a plain number (#1, [1+2], -#2, SIN[30]) goes to
+ * expr.c; `#n = value` and `#<name> = value` are assignment tokens. An O
+ * word here is out of place (oword.c reads control lines before the lexer).
+ * The lexer owns nothing: tokens point into the caller's line.
  */
 #include <math.h>
 #include <stdint.h>
@@ -45,10 +46,21 @@ static int column_of(size_t pos) {
   return (int)pos + 1;
 }
 
-void swarf_gc_lexer_init(swarf_gc_lexer *lx, const char *line, size_t len) {
+void swarf_gc_lexer_init(swarf_gc_lexer *lx, const char *line, size_t len,
+                         const swarf_gc_params *params) {
   lx->line = line;
   lx->len = len;
   lx->pos = 0;
+  lx->params = params;
+}
+
+void swarf_gc_lexer_skip_blanks(swarf_gc_lexer *lx) {
+  skip_blanks(lx);
+}
+
+int swarf_gc_lexer_peek(swarf_gc_lexer *lx) {
+  skip_blanks(lx);
+  return lx->pos < lx->len ? (unsigned char)lx->line[lx->pos] : -1;
 }
 
 /* 'x' for a printable character, '\xNN' otherwise. */
@@ -155,40 +167,128 @@ static void word_text(char *out, char letter, const char *num, size_t len) {
   strcpy(out + 1 + keep, keep < len ? "..." : "");
 }
 
-static int refuse_value(swarf_gc_lexer *lx, char letter, swarf_gc_fault *f) {
-  char c = lx->line[lx->pos];
-  const char *what = c == '#' ? "parameters (#)" : "expressions ([...])";
-  return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column_of(lx->pos),
-                       "%s are not supported yet (in the value of a %c word)", what, letter);
+static int number_status(int status, int column, const char *word, swarf_gc_fault *f) {
+  switch (status) {
+  case NUMBER_BAD:
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "bad number format in word \"%s\"",
+                         word);
+  case NUMBER_RANGE:
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
+                         "number out of range in word \"%s\" (magnitude above %g)", word,
+                         SWARF_GC_NUMBER_MAX);
+  }
+  return SWARF_GCODE_OK;
+}
+
+/* A number inside an expression: a sign only first, then digits and one
+ * point (blanks skipped), so that "1-2" stays an operation. */
+static size_t gather_operand(swarf_gc_lexer *lx, char *buf, size_t *len) {
+  size_t total = 0;
+  *len = 0;
+  for (;;) {
+    char c;
+    skip_blanks(lx);
+    if (lx->pos >= lx->len) break;
+    c = lx->line[lx->pos];
+    if (!(is_digit(c) || c == '.' || (total == 0 && (c == '+' || c == '-')))) break;
+    if (*len < NUMBER_TEXT_MAX) buf[(*len)++] = c;
+    total++;
+    lx->pos++;
+  }
+  return total;
+}
+
+int swarf_gc_lexer_number(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
+  char buf[NUMBER_TEXT_MAX], word[SWARF_GC_WORD_TEXT];
+  size_t len, total;
+  int column = column_of(lx->pos);
+  total = gather_operand(lx, buf, &len);
+  word_text(word, ' ', buf, len);
+  if (total == 0)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
+                         "bad number format (conversion failed) parsing '%s'", word + 1);
+  if (total > NUMBER_TEXT_MAX)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "number too long");
+  return number_status(number_value(buf, len, v), column, word + 1, f);
+}
+
+/* The text of a word from `from` to the lexer's position, blanks removed. */
+static void raw_text(const swarf_gc_lexer *lx, size_t from, char *out) {
+  size_t n = 0;
+  for (size_t i = from; i < lx->pos && n + 4 < SWARF_GC_WORD_TEXT; i++)
+    if (!is_blank(lx->line[i])) out[n++] = upper(lx->line[i]);
+  if (n + 4 >= SWARF_GC_WORD_TEXT) strcpy(out + n, "...");
+  else out[n] = '\0';
+}
+
+static int is_value_start(int c) {
+  return c == '#' || c == '[' || is_letter((char)c);
+}
+
+/* A value that is not a plain number: expr.c reads it. */
+static int lex_expr_word(swarf_gc_lexer *lx, swarf_gc_token *tok, size_t from, char letter,
+                         int column, swarf_gc_fault *f) {
+  int status = swarf_gc_expr_value(lx, &tok->value, f);
+  if (status != SWARF_GCODE_OK) return status;
+  raw_text(lx, from, tok->word);
+  if (!isfinite(tok->value) || fabs(tok->value) > SWARF_GC_NUMBER_MAX)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
+                         "number out of range in word \"%s\" (magnitude above %g)", tok->word,
+                         SWARF_GC_NUMBER_MAX);
+  tok->kind = SWARF_GC_TOKEN_WORD;
+  tok->letter = letter;
+  tok->column = column;
+  return SWARF_GCODE_OK;
 }
 
 static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
   char buf[NUMBER_TEXT_MAX];
-  size_t len, total;
-  int column = column_of(lx->pos);
+  size_t len, total, from = lx->pos;
+  int column = column_of(lx->pos), next;
   char letter = upper(lx->line[lx->pos++]);
   if (letter == 'O')
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
-                         "O-words (subroutines and flow control) are not supported yet");
+                         "O word must come first on its line (after an N word)");
+  next = swarf_gc_lexer_peek(lx);
+  if (next != -1 && is_value_start(next)) return lex_expr_word(lx, tok, from, letter, column, f);
+  if (next == '-' || next == '+') {
+    size_t save = lx->pos;
+    int after;
+    lx->pos++;
+    after = swarf_gc_lexer_peek(lx);
+    lx->pos = save;
+    if (after != -1 && is_value_start(after)) return lex_expr_word(lx, tok, from, letter, column, f);
+  }
   total = gather_number(lx, buf, &len);
-  if (total == 0 && lx->pos < lx->len && (lx->line[lx->pos] == '#' || lx->line[lx->pos] == '['))
-    return refuse_value(lx, letter, f);
   word_text(tok->word, letter, buf, len);
   if (total > NUMBER_TEXT_MAX)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "number too long in word \"%s\"",
                          tok->word);
-  switch (number_value(buf, len, &tok->value)) {
-  case NUMBER_BAD:
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "bad number format in word \"%s\"",
-                         tok->word);
-  case NUMBER_RANGE:
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
-                         "number out of range in word \"%s\" (magnitude above %g)", tok->word,
-                         SWARF_GC_NUMBER_MAX);
-  }
+  if (number_status(number_value(buf, len, &tok->value), column, tok->word, f) != SWARF_GCODE_OK)
+    return f->status;
   tok->kind = SWARF_GC_TOKEN_WORD;
   tok->letter = letter;
-  tok->value_kind = SWARF_GC_VALUE_NUMBER;
+  tok->column = column;
+  return SWARF_GCODE_OK;
+}
+
+/* #n = value or #<name> = value. */
+static int lex_assign(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
+  int column = column_of(lx->pos), status;
+  if (lx->params == NULL)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "parameters (#) are not allowed here");
+  status = swarf_gc_expr_param_ref(lx, &tok->index, tok->name, f);
+  if (status != SWARF_GCODE_OK) return status;
+  if (swarf_gc_lexer_peek(lx) != '=')
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column_of(lx->pos),
+                         "Equal sign missing in parameter setting");
+  lx->pos++;
+  status = swarf_gc_expr_value(lx, &tok->value, f);
+  if (status != SWARF_GCODE_OK) return status;
+  if (tok->index >= 5400 && tok->index <= 5428)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, column, "Parameter #%d is read-only",
+                         tok->index);
+  tok->kind = SWARF_GC_TOKEN_ASSIGN;
   tok->column = column;
   return SWARF_GCODE_OK;
 }
@@ -196,11 +296,6 @@ static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) 
 static int lex_bad_char(swarf_gc_lexer *lx, swarf_gc_fault *f) {
   char c = lx->line[lx->pos], shown[8];
   int column = column_of(lx->pos);
-  if (c == '#')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "parameters (#) are not supported yet");
-  if (c == '[')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
-                         "expressions ([...]) are not supported yet");
   describe_char(c, shown, sizeof shown);
   return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "Bad character %s used", shown);
 }
@@ -223,5 +318,6 @@ int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault 
     return SWARF_GCODE_OK;
   }
   if (is_letter(c)) return lex_word(lx, tok, f);
+  if (c == '#') return lex_assign(lx, tok, f);
   return lex_bad_char(lx, f);
 }

@@ -20,10 +20,21 @@
 
 #define READ_CHUNK (64 * 1024)
 
+#define NTOOLS 1000 /* tool numbers 1..999 */
+
 struct swarf_gcode_parser {
   swarf_gcode_move_fn fn;
   void *user;
+  swarf_gcode_canon_fn canon;
+  void *canon_user;
+  long seq;           /* rs274's call counter */
+  int canon_started;  /* the preamble was printed */
   swarf_gc_state state;
+  swarf_gc_params params;
+  swarf_gc_flow *flow;
+  swarf_gc_out out;
+  double tools[NTOOLS][2];
+  long cur_line;      /* line of the block being run (stored lines too) */
   swarf_gcode_error error; /* .file holds the program's name from the start */
   int status;              /* first error, sticky */
   long lines;              /* lines read so far */
@@ -37,7 +48,7 @@ struct swarf_gcode_parser {
 
 static int set_error(swarf_gcode_parser *p, int status, int column, const char *message) {
   p->status = status;
-  p->error.line = p->lines;
+  p->error.line = p->cur_line;
   p->error.column = column;
   snprintf(p->error.message, sizeof p->error.message, "%s", message);
   return status;
@@ -53,6 +64,142 @@ static size_t skip_blanks(const char *text, size_t n, size_t i) {
   return i;
 }
 
+/* ---- canon text ------------------------------------------------------- */
+
+static void canon_line(swarf_gcode_parser *p, const char *nfield, const char *call) {
+  char buf[512];
+  if (p->canon == NULL) return;
+  if (strlen(call) + 32 < sizeof buf) {
+    snprintf(buf, sizeof buf, "%5ld %s %s", ++p->seq, nfield, call);
+    p->canon(buf, p->canon_user);
+  } else {
+    size_t n = strlen(call) + 32;
+    char *big = malloc(n);
+    if (big == NULL) return;
+    snprintf(big, n, "%5ld %s %s", ++p->seq, nfield, call);
+    p->canon(big, p->canon_user);
+    free(big);
+  }
+}
+
+static void canon_start(swarf_gcode_parser *p) {
+  static const char *pre[] = {"USE_LENGTH_UNITS(CANON_UNITS_MM)",
+                              "SET_G5X_OFFSET(1, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+                              "SET_G92_OFFSET(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+                              "SET_XY_ROTATION(0.0000)", "SET_FEED_REFERENCE(CANON_XYZ)",
+                              "ON_RESET()"};
+  if (p->canon_started || p->canon == NULL) return;
+  p->canon_started = 1;
+  for (size_t i = 0; i < sizeof pre / sizeof pre[0]; i++)
+    canon_line(p, "N.....", pre[i]);
+}
+
+/* rs274's N field: "N123" (fraction dropped) if the block starts with an
+ * N word, else "N.....". */
+static void n_field(const char *text, size_t n, char out[24]) {
+  size_t i = 0, k = 1;
+  while (i < n && (text[i] == ' ' || text[i] == '\t' || text[i] == '/'))
+    i++;
+  if (i < n && (text[i] == 'N' || text[i] == 'n')) {
+    out[0] = 'N';
+    for (i++; i < n && k < 12; i++) {
+      if (text[i] == ' ' || text[i] == '\t') continue;
+      if (text[i] < '0' || text[i] > '9') break;
+      out[k++] = text[i];
+    }
+    out[k] = '\0';
+    if (k > 1) return;
+  }
+  strcpy(out, "N.....");
+}
+
+static void print_call(swarf_gcode_parser *p, const swarf_gc_call *c, const char *nf) {
+  char buf[400];
+  const double *v = c->prog;
+  switch (c->kind) {
+  case SWARF_GC_CALL_TEXT:
+    canon_line(p, nf, p->out.text + c->text_at);
+    return;
+  case SWARF_GC_CALL_TRAVERSE:
+  case SWARF_GC_CALL_FEED:
+    snprintf(buf, sizeof buf, "%s(%.4f, %.4f, %.4f, %.4f, %.4f, %.4f)",
+             c->kind == SWARF_GC_CALL_FEED ? "STRAIGHT_FEED" : "STRAIGHT_TRAVERSE", v[0], v[1],
+             v[2], v[3], v[4], v[5]);
+    break;
+  case SWARF_GC_CALL_ARC:
+    snprintf(buf, sizeof buf, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, %.4f, %.4f)",
+             v[0], v[1], v[2], v[3], (int)v[4], v[5], v[6], v[7], v[8]);
+    break;
+  case SWARF_GC_CALL_DWELL:
+    snprintf(buf, sizeof buf, "DWELL(%.4f)", v[0]);
+    break;
+  default:
+    return;
+  }
+  canon_line(p, nf, buf);
+}
+
+/* ---- blocks ------------------------------------------------------------ */
+
+static int emit(swarf_gcode_parser *p, const char *text, size_t n) {
+  char nf[24];
+  if (p->canon != NULL) n_field(text, n, nf);
+  for (size_t i = 0; i < p->out.count; i++) {
+    swarf_gc_call *c = &p->out.calls[i];
+    if (p->canon != NULL) print_call(p, c, nf);
+    if (c->kind == SWARF_GC_CALL_TEXT) continue;
+    c->move.line = p->cur_line;
+    if (p->fn != NULL && p->fn(&c->move, p->user) != 0)
+      return set_error(p, SWARF_GCODE_ERR_STOPPED, c->move.column, "stopped by the move callback");
+  }
+  return SWARF_GCODE_OK;
+}
+
+static void apply_assigns(swarf_gcode_parser *p, const swarf_gc_block *b) {
+  for (int i = 0; i < b->assign_count; i++) {
+    const swarf_gc_assign *a = &b->assigns[i];
+    if (a->index > 0) swarf_gc_param_set(&p->params, &p->state, a->index, a->value);
+    else swarf_gc_param_set_named(&p->params, a->name, a->value);
+  }
+}
+
+static int fault_error(swarf_gcode_parser *p, const swarf_gc_fault *f) {
+  return set_error(p, f->status, f->column, f->message);
+}
+
+/* Read, check, execute on a copy; commit only if all of it succeeded. */
+static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
+  swarf_gc_block b;
+  swarf_gc_fault f;
+  swarf_gc_state next = p->state;
+  swarf_gc_exec ex = {&p->params, &p->out, p->tools, NTOOLS};
+  int status;
+  swarf_gc_out_reset(&p->out);
+  status = swarf_gc_block_read(text, n, &p->params, &b, &f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_block_check(&b, &p->state, &f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_execute(&b, &next, &ex, &f);
+  if (status != SWARF_GCODE_OK) return fault_error(p, &f);
+  p->state = next;
+  apply_assigns(p, &b);
+  p->ended = next.ended;
+  status = emit(p, text, n);
+  if (p->ended && p->canon != NULL) {
+    canon_line(p, "N.....", "ON_RESET()");
+    canon_line(p, "N.....", "ON_RESET()");
+  }
+  return status;
+}
+
+/* The flow's callback for an ordinary line (streamed or stored). */
+static int run_line(void *ctx, const char *text, size_t n, long line) {
+  swarf_gcode_parser *p = ctx;
+  size_t first = skip_blanks(text, n, 0);
+  if (p->ended || p->status != SWARF_GCODE_OK) return p->status;
+  p->cur_line = line;
+  if (first == n || text[first] == '/') return SWARF_GCODE_OK;
+  return run_block(p, text, n);
+}
+
 /* A line made of `%` alone: opens the program first, closes it later. */
 static int percent_line(swarf_gcode_parser *p, size_t at) {
   if (!p->seen_code) {
@@ -62,42 +209,25 @@ static int percent_line(swarf_gcode_parser *p, size_t at) {
   }
   if (p->percent_open) {
     p->ended = 1;
+    if (p->canon != NULL) {
+      canon_line(p, "N.....", "FINISH()");
+      canon_line(p, "N.....", "ON_RESET()");
+      canon_line(p, "N.....", "ON_RESET()");
+    }
     return SWARF_GCODE_OK;
   }
   return set_error(p, SWARF_GCODE_ERR_SYNTAX, (int)at + 1,
                    "Bad character '%' used (the program did not open with a % line)");
 }
 
-static int emit(swarf_gcode_parser *p, swarf_gc_moves *out) {
-  for (int i = 0; i < out->count; i++) {
-    out->moves[i].line = p->lines;
-    if (p->fn != NULL && p->fn(&out->moves[i], p->user) != 0)
-      return set_error(p, SWARF_GCODE_ERR_STOPPED, out->moves[i].column,
-                       "stopped by the move callback");
-  }
-  return SWARF_GCODE_OK;
-}
-
-/* Read, check, execute on a copy; commit only if all of it succeeded. */
-static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
-  swarf_gc_block b;
-  swarf_gc_fault f;
-  swarf_gc_state next = p->state;
-  swarf_gc_moves out;
-  int status;
-  out.count = 0;
-  status = swarf_gc_block_read(text, n, &b, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_block_check(&b, &p->state, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_execute(&b, &next, &out, &f);
-  if (status != SWARF_GCODE_OK) return set_error(p, status, f.column, f.message);
-  p->state = next;
-  p->ended = next.ended;
-  return emit(p, &out);
-}
-
 static int process_line(swarf_gcode_parser *p, const char *text, size_t n) {
   size_t first, rest;
+  swarf_gc_fault f;
+  long err_line;
+  int status;
   p->lines++;
+  p->cur_line = p->lines;
+  canon_start(p);
   if (n > SWARF_GC_LINE_MAX)
     return set_error(p, SWARF_GCODE_ERR_SYNTAX, 1, "line too long (more than 1 MiB)");
   first = skip_blanks(text, n, 0);
@@ -106,14 +236,19 @@ static int process_line(swarf_gcode_parser *p, const char *text, size_t n) {
   if (text[first] == '%' && rest == n) return percent_line(p, first);
   p->seen_code = 1;
   if (text[first] == '/') return SWARF_GCODE_OK;
-  return run_block(p, text, n);
+  status = swarf_gc_flow_line(p->flow, text, n, p->lines, &err_line, &f);
+  if (status != SWARF_GCODE_OK && p->status == SWARF_GCODE_OK) {
+    p->cur_line = err_line;
+    return fault_error(p, &f);
+  }
+  return p->status;
 }
 
 /* Keeps bytes of an unterminated line; refuses to hold more than a line may be. */
 static int keep_partial(swarf_gcode_parser *p, const char *s, size_t n) {
   size_t need = p->partial_len + n;
   if (need > SWARF_GC_LINE_MAX) {
-    p->lines++;
+    p->cur_line = ++p->lines;
     return set_error(p, SWARF_GCODE_ERR_SYNTAX, 1, "line too long (more than 1 MiB)");
   }
   if (need > p->partial_cap) {
@@ -148,6 +283,14 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
   p->fn = fn;
   p->user = user;
   swarf_gc_state_init(&p->state);
+  swarf_gc_params_init(&p->params);
+  p->params.state = &p->state;
+  swarf_gc_out_init(&p->out);
+  p->flow = swarf_gc_flow_new(&p->params, run_line, p);
+  if (p->flow == NULL) {
+    free(p);
+    return NULL;
+  }
   snprintf(p->error.file, sizeof p->error.file, "%s", filename ? filename : "");
   return p;
 }
@@ -172,8 +315,58 @@ int swarf_gcode_parser_finish(swarf_gcode_parser *p) {
     process_line(p, p->partial, p->partial_len);
     p->partial_len = 0;
   }
+  if (p->status == SWARF_GCODE_OK && !p->ended && !p->finished &&
+      swarf_gc_flow_open_line(p->flow) > 0) {
+    p->cur_line = swarf_gc_flow_open_line(p->flow);
+    set_error(p, SWARF_GCODE_ERR_SEMANTIC, 1,
+              "The program ended inside an O-word construct opened here");
+  }
   p->finished = 1;
   return p->status;
+}
+
+int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn, void *user) {
+  if (p == NULL || p->lines > 0) return SWARF_GCODE_ERR_ARG;
+  p->canon = fn;
+  p->canon_user = user;
+  p->out.want_text = fn != NULL;
+  return SWARF_GCODE_OK;
+}
+
+/* One tool table line: T<n> then words like Z0.5 D0.25; ';' comments. */
+static void tool_line(swarf_gcode_parser *p, const char *line) {
+  int t = -1;
+  double z = 0, d = 0;
+  for (const char *s = line; *s && *s != ';'; s++) {
+    char c = (char)(*s & ~0x20);
+    if (c == 'T') t = atoi(s + 1);
+    if (c == 'Z') z = atof(s + 1);
+    if (c == 'D') d = atof(s + 1);
+  }
+  if (t > 0 && t < NTOOLS) {
+    p->tools[t][0] = z * SWARF_GC_MM_PER_INCH;
+    p->tools[t][1] = d * SWARF_GC_MM_PER_INCH;
+  }
+}
+
+int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                  swarf_gcode_error *err) {
+  char line[512];
+  FILE *in;
+  if (p == NULL || path == NULL) return SWARF_GCODE_ERR_ARG;
+  in = fopen(path, "r");
+  if (in == NULL) {
+    if (err != NULL) {
+      memset(err, 0, sizeof *err);
+      snprintf(err->file, sizeof err->file, "%s", path);
+      snprintf(err->message, sizeof err->message, "cannot open tool table: %s", strerror(errno));
+    }
+    return SWARF_GCODE_ERR_ARG;
+  }
+  while (fgets(line, sizeof line, in) != NULL)
+    tool_line(p, line);
+  fclose(in);
+  return SWARF_GCODE_OK;
 }
 
 const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p) {
@@ -190,6 +383,9 @@ int swarf_gcode_parser_ended(const swarf_gcode_parser *p) {
 
 void swarf_gcode_parser_free(swarf_gcode_parser *p) {
   if (p == NULL) return;
+  swarf_gc_flow_free(p->flow);
+  swarf_gc_params_clear(&p->params);
+  swarf_gc_out_clear(&p->out);
   free(p->partial);
   free(p);
 }

@@ -13,11 +13,14 @@
 #include "stock.h"
 
 static const char parse_help[] =
-    "usage: swarf parse PROGRAM [--quiet]\n"
+    "usage: swarf parse PROGRAM [--quiet | --canon] [--tools TABLE]\n"
     "\n"
     "Checks PROGRAM and lists its canonical moves, one per line:\n"
     "  LINE KIND X Y Z [centre CX CY CZ normal NX NY NZ angle DEG rise MM] F feed T tool\n"
-    "in mm, mm/min and degrees (G20 programs converted). --quiet prints only the count.\n"
+    "in the machine frame (offsets applied), mm, mm/min and degrees (G20 programs\n"
+    "converted). --quiet prints only the count. --canon prints the canonical calls as\n"
+    "`rs274 -g` does instead (program coordinates, active unit), to compare line by\n"
+    "line. --tools reads a LinuxCNC tool table (inches, as rs274 without an INI).\n"
     "Exit status 2 with FILE:LINE:COL: message on the first error.\n";
 
 static const char info_help[] =
@@ -46,21 +49,67 @@ static int print_move(const swarf_move *m, void *user) {
   return 0;
 }
 
+static void print_canon(const char *call, void *user) {
+  (void)user;
+  puts(call);
+}
+
+static int count_move(const swarf_move *m, void *user) {
+  (void)m;
+  (*(long *)user)++;
+  return 0;
+}
+
+/* Streams the program through a parser with the canon listener set. */
+static int parse_canon(const char *program, const char *tools, long *count,
+                       swarf_gcode_error *err) {
+  char chunk[65536];
+  size_t got;
+  int rc = SWARF_GCODE_OK;
+  FILE *in = fopen(program, "rb");
+  swarf_gcode_parser *p;
+  memset(err, 0, sizeof *err);
+  snprintf(err->file, sizeof err->file, "%s", program);
+  if (in == NULL) {
+    snprintf(err->message, sizeof err->message, "cannot open file: %s", strerror(errno));
+    return SWARF_GCODE_ERR_ARG;
+  }
+  p = swarf_gcode_parser_new(program, count_move, count);
+  if (p == NULL) return fclose(in), SWARF_GCODE_ERR_MEMORY;
+  swarf_gcode_parser_set_canon(p, print_canon, NULL);
+  if (tools != NULL) rc = swarf_gcode_parser_load_tools(p, tools, err);
+  while (rc == SWARF_GCODE_OK && !swarf_gcode_parser_ended(p) &&
+         (got = fread(chunk, 1, sizeof chunk, in)) > 0)
+    rc = swarf_gcode_parser_feed(p, chunk, got);
+  if (rc == SWARF_GCODE_OK) rc = swarf_gcode_parser_finish(p);
+  if (rc != SWARF_GCODE_OK && swarf_gcode_parser_error(p) != NULL) *err = *swarf_gcode_parser_error(p);
+  swarf_gcode_parser_free(p);
+  fclose(in);
+  return rc;
+}
+
 int swarf_cli_parse(int argc, char **argv) {
   long count[2] = {0, 0};
-  const char *program = NULL;
+  const char *program = NULL, *tools = NULL;
   swarf_gcode_error err;
-  int rc;
+  int rc, canon = 0;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(parse_help, stdout), 0;
     if (!strcmp(argv[i], "--quiet")) count[1] = 1;
+    else if (!strcmp(argv[i], "--canon")) canon = 1;
+    else if (!strcmp(argv[i], "--tools") && i + 1 < argc) tools = argv[++i];
     else if (argv[i][0] == '-' || program) {
       fprintf(stderr, "swarf parse: unexpected \"%s\"\n%s", argv[i], parse_help);
       return 2;
     } else program = argv[i];
   }
   if (program == NULL) return fputs(parse_help, stderr), 2;
-  rc = swarf_gcode_parse_file(program, print_move, count, &err);
+  if (canon || tools != NULL) {
+    fflush(stdout);
+    rc = canon ? parse_canon(program, tools, count, &err) : SWARF_GCODE_ERR_ARG;
+    if (!canon) snprintf(err.message, sizeof err.message, "--tools needs --canon"), err.line = 0;
+  } else
+    rc = swarf_gcode_parse_file(program, print_move, count, &err);
   if (rc != SWARF_GCODE_OK) {
     if (err.line > 0) fprintf(stderr, "%s:%ld:%d: %s\n", err.file, err.line, err.column, err.message);
     else fprintf(stderr, "%s: %s\n", err.file, err.message);

@@ -1,0 +1,312 @@
+/* expr.c -- values of words: numbers, #parameters, [expressions], functions.
+ *
+ * LinuxCNC's read_real_value and read_real_expression, over the lexer's
+ * line: blanks mean nothing, letters are case-insensitive. Binary operators
+ * by precedence (all left-associative): ** ; * / MOD ; + - ; EQ NE GT GE
+ * LT LE ; AND OR XOR. Functions: ABS ACOS ASIN ATAN[y]/[x] COS EXP FIX FUP
+ * LN ROUND SIN SQRT TAN (degrees) and EXISTS[#<name>]. A parameter is #n
+ * (n a value, 1..5601) or #<name>; reading an unset named parameter is an
+ * error. Nothing is owned or changed here; values come from lx->params.
+ */
+#include <ctype.h>
+#include <math.h>
+#include <string.h>
+
+#include "gcode_private.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+#define MAX_DEPTH 64 /* nesting of brackets and parameters */
+
+static int col(const swarf_gc_lexer *lx) {
+  return (int)lx->pos + 1;
+}
+
+static int peek(swarf_gc_lexer *lx) {
+  return swarf_gc_lexer_peek(lx);
+}
+
+/* Matches `word` (upper case) at the position, blanks between letters
+ * allowed; advances only on a match. */
+static int match(swarf_gc_lexer *lx, const char *word) {
+  size_t save = lx->pos;
+  for (const char *w = word; *w; w++) {
+    swarf_gc_lexer_skip_blanks(lx);
+    if (lx->pos >= lx->len || toupper((unsigned char)lx->line[lx->pos]) != *w) {
+      lx->pos = save;
+      return 0;
+    }
+    lx->pos++;
+  }
+  return 1;
+}
+
+static int expect(swarf_gc_lexer *lx, char c, const char *message, swarf_gc_fault *f) {
+  if (peek(lx) != c) return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "%s", message);
+  lx->pos++;
+  return SWARF_GCODE_OK;
+}
+
+static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f);
+static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f);
+
+int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_gc_fault *f) {
+  size_t n = 0;
+  int at = col(lx);
+  lx->pos++; /* '<' */
+  for (; lx->pos < lx->len && lx->line[lx->pos] != '>'; lx->pos++) {
+    char c = lx->line[lx->pos];
+    if (c == ' ' || c == '\t' || c == '\r') continue;
+    if (n + 1 >= SWARF_GC_NAME_MAX)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Named parameter name too long");
+    name[n++] = (char)tolower((unsigned char)c);
+  }
+  if (lx->pos >= lx->len)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Named parameter not terminated");
+  lx->pos++;
+  name[n] = '\0';
+  if (n == 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Empty named parameter");
+  return SWARF_GCODE_OK;
+}
+
+/* After '#': a name or an index value. */
+static int param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX], int depth,
+                     swarf_gc_fault *f) {
+  double v;
+  int at = col(lx), status;
+  *index = 0;
+  name[0] = '\0';
+  if (peek(lx) == '<') return swarf_gc_expr_name(lx, name, f);
+  status = value(lx, &v, depth + 1, f);
+  if (status != SWARF_GCODE_OK) return status;
+  if (fabs(v - floor(v + 0.5)) > 1e-4)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Non-integer value for integer");
+  if (v < 1 || v >= SWARF_GC_NPARAMS)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Parameter number out of range");
+  *index = (int)floor(v + 0.5);
+  return SWARF_GCODE_OK;
+}
+
+int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX],
+                            swarf_gc_fault *f) {
+  lx->pos++; /* '#' */
+  return param_ref(lx, index, name, 0, f);
+}
+
+static int parameter(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+  char name[SWARF_GC_NAME_MAX];
+  int index, at = col(lx), status;
+  if (lx->params == NULL)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "parameters (#) are not allowed here");
+  lx->pos++;
+  status = param_ref(lx, &index, name, depth, f);
+  if (status != SWARF_GCODE_OK) return status;
+  if (index > 0) {
+    *v = swarf_gc_param_get(lx->params, index);
+    return SWARF_GCODE_OK;
+  }
+  if (swarf_gc_param_named(lx->params, name, v) != 0)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Named parameter #<%s> not defined",
+                         name);
+  return SWARF_GCODE_OK;
+}
+
+static int exists(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
+  char name[SWARF_GC_NAME_MAX];
+  double ignored;
+  int index, status = expect(lx, '[', "Left bracket missing after unary operation name", f);
+  if (status == SWARF_GCODE_OK && peek(lx) != '#')
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Expected # reading parameter");
+  if (status == SWARF_GCODE_OK) {
+    lx->pos++;
+    status = param_ref(lx, &index, name, 1, f);
+  }
+  if (status == SWARF_GCODE_OK)
+    status = expect(lx, ']', "Expected ] reading bracketed parameter", f);
+  if (status != SWARF_GCODE_OK) return status;
+  *v = index > 0 || (lx->params && swarf_gc_param_named(lx->params, name, &ignored) == 0);
+  return SWARF_GCODE_OK;
+}
+
+typedef enum { F_ABS, F_ACOS, F_ASIN, F_COS, F_EXP, F_FIX, F_FUP, F_LN, F_ROUND, F_SIN,
+               F_SQRT, F_TAN, F_ATAN, F_EXISTS, F_NONE } func_id;
+
+static func_id function_name(swarf_gc_lexer *lx) {
+  static const char *names[] = {"ABS", "ACOS", "ASIN", "COS",   "EXP",  "FIX", "FUP", "LN",
+                                "ROUND", "SIN", "SQRT", "TAN", "ATAN", "EXISTS"};
+  /* Longest names first where one is a prefix of another: none are, but
+   * ATAN must not be read as A... (axes are not functions). */
+  for (int i = F_EXISTS; i >= 0; i--)
+    if (match(lx, names[i])) return (func_id)i;
+  return F_NONE;
+}
+
+static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
+  switch (id) {
+  case F_ABS: *v = fabs(x); break;
+  case F_ACOS:
+  case F_ASIN:
+    if (x < -1 || x > 1)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Argument to %s out of range",
+                           id == F_ACOS ? "acos" : "asin");
+    *v = (id == F_ACOS ? acos(x) : asin(x)) / DEG;
+    break;
+  case F_COS: *v = cos(x * DEG); break;
+  case F_EXP: *v = exp(x); break;
+  case F_FIX: *v = floor(x); break;
+  case F_FUP: *v = ceil(x); break;
+  case F_LN:
+    if (x <= 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Zero or negative argument to ln");
+    *v = log(x);
+    break;
+  case F_ROUND: *v = floor(x + 0.5); break;
+  case F_SIN: *v = sin(x * DEG); break;
+  case F_SQRT:
+    if (x < 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Negative argument to sqrt");
+    *v = sqrt(x);
+    break;
+  case F_TAN: *v = tan(x * DEG); break;
+  default: *v = x; break;
+  }
+  if (!isfinite(*v)) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
+  return SWARF_GCODE_OK;
+}
+
+static int function(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+  int at = col(lx), status;
+  double x, y;
+  func_id id = function_name(lx);
+  char c = (char)peek(lx);
+  if (id == F_NONE)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Unknown word starting with %c",
+                         (char)tolower((unsigned char)c));
+  if (id == F_EXISTS) return exists(lx, v, f);
+  if (peek(lx) != '[')
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx),
+                         "Left bracket missing after unary operation name");
+  status = expression(lx, &x, depth + 1, f);
+  if (status != SWARF_GCODE_OK) return status;
+  if (id != F_ATAN) return apply(id, x, at, v, f);
+  if (peek(lx) != '/')
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Slash missing after first ATAN argument");
+  lx->pos++;
+  if (peek(lx) != '[')
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Left bracket missing after slash with ATAN");
+  status = expression(lx, &y, depth + 1, f);
+  if (status == SWARF_GCODE_OK) *v = atan2(x, y) / DEG;
+  return status;
+}
+
+static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+  int c = peek(lx);
+  if (depth > MAX_DEPTH)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Expression nested too deeply");
+  if (c == '[') return expression(lx, v, depth, f);
+  if (c == '#') return parameter(lx, v, depth, f);
+  if (c == '+' || c == '-') {
+    size_t save = lx->pos;
+    int next;
+    lx->pos++;
+    next = peek(lx);
+    if (next != -1 && next != '.' && !isdigit(next)) {
+      int status = value(lx, v, depth + 1, f);
+      if (c == '-') *v = -*v;
+      return status;
+    }
+    lx->pos = save;
+  }
+  if (c != -1 && isalpha(c)) return function(lx, v, depth, f);
+  return swarf_gc_lexer_number(lx, v, f);
+}
+
+enum { OP_NONE, OP_POW, OP_MUL, OP_DIV, OP_MOD, OP_ADD, OP_SUB, OP_EQ, OP_NE, OP_GT, OP_GE,
+       OP_LT, OP_LE, OP_AND, OP_OR, OP_XOR };
+
+static int precedence(int op) {
+  static const int p[] = {0, 6, 5, 5, 5, 4, 4, 3, 3, 3, 3, 3, 3, 2, 2, 2};
+  return p[op];
+}
+
+/* Reads an operator if one is next (advances), else OP_NONE. */
+static int read_op(swarf_gc_lexer *lx) {
+  static const struct { const char *text; int op; } words[] = {
+      {"MOD", OP_MOD}, {"EQ", OP_EQ}, {"NE", OP_NE}, {"GT", OP_GT}, {"GE", OP_GE}, {"LT", OP_LT},
+      {"LE", OP_LE}, {"AND", OP_AND}, {"OR", OP_OR}, {"XOR", OP_XOR}};
+  int c = peek(lx);
+  if (c == '*') return lx->pos++, match(lx, "*") ? OP_POW : OP_MUL;
+  if (c == '/') return lx->pos++, OP_DIV;
+  if (c == '+') return lx->pos++, OP_ADD;
+  if (c == '-') return lx->pos++, OP_SUB;
+  for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
+    if (match(lx, words[i].text)) return words[i].op;
+  return OP_NONE;
+}
+
+static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault *f) {
+  switch (op) {
+  case OP_POW:
+    if (a < 0 && floor(b) != b)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at,
+                           "Attempt to raise negative to non-integer power");
+    *v = pow(a, b);
+    break;
+  case OP_MUL: *v = a * b; break;
+  case OP_DIV:
+  case OP_MOD:
+    if (b == 0.0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Attempt to divide by zero");
+    if (op == OP_DIV) *v = a / b;
+    else {
+      *v = fmod(a, b);
+      if (*v < 0) *v += fabs(b);
+    }
+    break;
+  case OP_ADD: *v = a + b; break;
+  case OP_SUB: *v = a - b; break;
+  case OP_EQ: *v = a == b; break;
+  case OP_NE: *v = a != b; break;
+  case OP_GT: *v = a > b; break;
+  case OP_GE: *v = a >= b; break;
+  case OP_LT: *v = a < b; break;
+  case OP_LE: *v = a <= b; break;
+  case OP_AND: *v = a != 0 && b != 0; break;
+  case OP_OR: *v = a != 0 || b != 0; break;
+  default: *v = (a != 0) != (b != 0); break;
+  }
+  if (!isfinite(*v)) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
+  return SWARF_GCODE_OK;
+}
+
+/* Precedence climbing: operands of operators binding at least `min`. */
+static int climb(swarf_gc_lexer *lx, double *lhs, int min, int depth, swarf_gc_fault *f) {
+  for (;;) {
+    size_t save = lx->pos;
+    int at = col(lx) + 1, op = read_op(lx), status;
+    double rhs;
+    if (op == OP_NONE || precedence(op) < min) {
+      lx->pos = save;
+      return SWARF_GCODE_OK;
+    }
+    status = value(lx, &rhs, depth + 1, f);
+    if (status == SWARF_GCODE_OK) status = climb(lx, &rhs, precedence(op) + 1, depth + 1, f);
+    if (status == SWARF_GCODE_OK) status = binary(op, *lhs, rhs, at, lhs, f);
+    if (status != SWARF_GCODE_OK) return status;
+  }
+}
+
+static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+  int status;
+  lx->pos++; /* '[' */
+  status = value(lx, v, depth + 1, f);
+  if (status == SWARF_GCODE_OK) status = climb(lx, v, 2, depth, f);
+  if (status == SWARF_GCODE_OK && peek(lx) != ']') {
+    int c = peek(lx);
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx),
+                         c == -1 ? "Unclosed expression" : "Unknown operation name starting with %c",
+                         (char)c);
+  }
+  if (status == SWARF_GCODE_OK) lx->pos++;
+  return status;
+}
+
+int swarf_gc_expr_value(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
+  return value(lx, v, 0, f);
+}

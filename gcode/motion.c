@@ -1,0 +1,137 @@
+/* motion.c -- G0, G1, G2, G3 (with G53), and the dispatch to canned cycles.
+ *
+ * End points are program coordinates in mm: axis words in the active unit,
+ * made absolute (G91 adds to the current point). Under G53 the words are
+ * machine coordinates and are turned back into program coordinates, as
+ * LinuxCNC does, so that the canon shows where the move goes in the active
+ * system. Under G93 (inverse time) every feed move first sets its feed rate:
+ * the move's length (XYZ, else ABC) times F, as interp_inverse.cc does.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "gcode_private.h"
+
+static const char axes[SWARF_NAXES] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
+
+static int is_g53(const swarf_gc_block *b) {
+  return b->g[SWARF_GC_GROUP_NONMODAL].code == 530;
+}
+
+void swarf_gc_find_end(const swarf_gc_block *b, const swarf_gc_state *st, double end[SWARF_NAXES]) {
+  int incremental = st->modal.distance == 910;
+  double s = swarf_gc_scale(st);
+  if (is_g53(b)) {
+    double m[SWARF_NAXES];
+    swarf_gc_to_machine(st, st->pos, m);
+    for (int i = 0; i < SWARF_NAXES; i++) {
+      const swarf_gc_word *w = swarf_gc_block_word(b, axes[i]);
+      if (w->present) m[i] = w->value * (i < 3 ? s : 1.0);
+    }
+    swarf_gc_from_machine(st, m, end);
+    for (int i = 0; i < SWARF_NAXES; i++)
+      if (!swarf_gc_block_word(b, axes[i])->present) end[i] = st->pos[i];
+    return;
+  }
+  for (int i = 0; i < SWARF_NAXES; i++) {
+    const swarf_gc_word *w = swarf_gc_block_word(b, axes[i]);
+    double v = w->value * (i < 3 ? s : 1.0);
+    end[i] = !w->present ? st->pos[i] : incremental ? st->pos[i] + v : v;
+  }
+}
+
+/* Length for inverse time: XYZ distance, else ABC (program units). */
+static double inverse_length(const swarf_gc_state *st, const double *end, const swarf_move *arc) {
+  double d = 0, r = 0;
+  if (arc != NULL) {
+    double v[3];
+    for (int i = 0; i < 3; i++)
+      v[i] = arc->start[i] - arc->center[i];
+    r = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    d = hypot(r * arc->angle, arc->rise);
+  } else
+    d = sqrt(pow(end[0] - st->pos[0], 2) + pow(end[1] - st->pos[1], 2) +
+             pow(end[2] - st->pos[2], 2));
+  if (d > 0) return d / swarf_gc_scale(st);
+  return sqrt(pow(end[3] - st->pos[3], 2) + pow(end[4] - st->pos[4], 2) +
+              pow(end[5] - st->pos[5], 2));
+}
+
+static int inverse_feed(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                        const double *end, const swarf_move *arc, swarf_gc_fault *f) {
+  double len, rate;
+  if (st->modal.feed_mode != 930) return SWARF_GCODE_OK;
+  if (!swarf_gc_block_has(b, 'F'))
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
+                         "F word missing with inverse time %s move", b->motion == 10 ? "G1" : "arc");
+  len = inverse_length(st, end, arc);
+  rate = len * st->feed;
+  swarf_gc_out_text(ex->out, "SET_FEED_RATE(%.4f)", rate);
+  return SWARF_GCODE_OK;
+}
+
+/* The last call's move feed under G93: units per minute, in mm. */
+static void fix_inverse(swarf_gc_exec *ex, const swarf_gc_state *st, const double *end,
+                        const swarf_move *arc) {
+  if (st->modal.feed_mode == 930 && ex->out->count > 0) {
+    double len = inverse_length(st, end, arc);
+    int xyz = len > 0 && (arc != NULL || fabs(end[0] - st->pos[0]) + fabs(end[1] - st->pos[1]) +
+                                                 fabs(end[2] - st->pos[2]) > 0);
+    ex->out->calls[ex->out->count - 1].move.feed = len * st->feed * (xyz ? swarf_gc_scale(st) : 1);
+  }
+}
+
+static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                    swarf_gc_fault *f) {
+  double end[SWARF_NAXES];
+  swarf_gc_find_end(b, st, end);
+  if (b->motion == 10) {
+    int status;
+    if (st->feed <= 0 && st->modal.feed_mode != 930)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
+                           "Cannot do G1 with zero feed rate");
+    status = inverse_feed(b, st, ex, end, NULL, f);
+    if (status != SWARF_GCODE_OK) return status;
+  }
+  swarf_gc_out_straight(ex->out, st, b->motion == 0 ? SWARF_GC_CALL_TRAVERSE : SWARF_GC_CALL_FEED,
+                        end, b->motion_column);
+  if (b->motion == 10) fix_inverse(ex, st, end, NULL);
+  memcpy(st->pos, end, sizeof st->pos);
+  return SWARF_GCODE_OK;
+}
+
+static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_gc_fault *f) {
+  swarf_move mv;
+  int turns, status;
+  memset(&mv, 0, sizeof mv);
+  memcpy(mv.start, st->pos, sizeof mv.start);
+  swarf_gc_find_end(b, st, mv.end);
+  if (st->modal.feed_mode == 930 && st->feed <= 0 && !swarf_gc_block_has(b, 'F'))
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
+                         "F word missing with inverse time arc move");
+  status = swarf_gc_arc(b, st, &mv, &turns, f);
+  if (status == SWARF_GCODE_OK) status = inverse_feed(b, st, ex, mv.end, &mv, f);
+  if (status != SWARF_GCODE_OK) return status;
+  swarf_gc_out_arc(ex->out, st, &mv, turns, b->motion_column);
+  fix_inverse(ex, st, mv.end, &mv);
+  memcpy(st->pos, mv.end, sizeof st->pos);
+  return SWARF_GCODE_OK;
+}
+
+int swarf_gc_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                    swarf_gc_fault *f) {
+  int m = b->motion;
+  if (m < 0) return SWARF_GCODE_OK;
+  if (m == 800) {
+    st->modal.motion = 800;
+    return SWARF_GCODE_OK;
+  }
+  if (m == 730 || (m >= 810 && m <= 890)) {
+    int status = swarf_gc_cycle(b, st, ex, f);
+    if (status == SWARF_GCODE_OK) st->modal.motion = m;
+    return status;
+  }
+  st->modal.motion = m;
+  if (m == 0 || m == 10) return straight(b, st, ex, f);
+  return arc(b, st, ex, f);
+}

@@ -1,0 +1,175 @@
+/* params.c -- numbered, named and computed parameters.
+ *
+ * Numbered parameters #1..#5601 are plain doubles, except the ranges that
+ * mirror the interpreter state, as in LinuxCNC: #5161-#5169 (G28 home),
+ * #5181-#5189 (G30 home), #5210-#5219 (G92 on, offsets), #5220 (active
+ * system), #5221-#5399 (G54..G59.3 origins, rotation at +9), #5400-#5410
+ * (tool, its offsets, diameter), #5420-#5428 (current position, read only).
+ * Offsets are shown in inches, as rs274 without an INI file does (its "user
+ * units"); the current position in the active unit.
+ *
+ * Named parameters live in small lists owned by the store: `_`-names are
+ * global, others belong to the running sub (main program included). The
+ * store owns its lists; swarf_gc_params_clear frees them.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gcode_private.h"
+
+struct swarf_gc_named {
+  char name[SWARF_GC_NAME_MAX];
+  double value;
+  swarf_gc_named *next;
+};
+
+void swarf_gc_params_init(swarf_gc_params *ps) {
+  memset(ps, 0, sizeof *ps);
+}
+
+void swarf_gc_named_free(swarf_gc_named *list) {
+  while (list != NULL) {
+    swarf_gc_named *next = list->next;
+    free(list);
+    list = next;
+  }
+}
+
+void swarf_gc_params_clear(swarf_gc_params *ps) {
+  swarf_gc_named_free(ps->globals);
+  swarf_gc_named_free(ps->locals);
+  ps->globals = ps->locals = NULL;
+}
+
+swarf_gc_named *swarf_gc_params_swap_locals(swarf_gc_params *ps, swarf_gc_named *locals) {
+  swarf_gc_named *old = ps->locals;
+  ps->locals = locals;
+  return old;
+}
+
+/* A mirrored slot: where it lives in the state and how it is scaled. */
+typedef struct {
+  double *slot;   /* NULL: not mirrored */
+  double scale;   /* parameter = slot / scale */
+  int read_only;
+} mirror;
+
+static mirror axis_slot(double *axes, int axis) {
+  mirror m = {NULL, 1.0, 0};
+  if (axis < 0 || axis > 8) return m;
+  if (axis >= SWARF_NAXES) { /* U V W: always zero here */
+    m.read_only = 1;
+    return m;
+  }
+  m.slot = &axes[axis];
+  m.scale = axis < 3 ? SWARF_GC_MM_PER_INCH : 1.0;
+  return m;
+}
+
+static mirror mirror_of(swarf_gc_state *st, int i) {
+  mirror none = {NULL, 1.0, 0};
+  if (st == NULL) return none;
+  if (i >= 5161 && i <= 5169) return axis_slot(st->g28, i - 5161);
+  if (i >= 5181 && i <= 5189) return axis_slot(st->g30, i - 5181);
+  if (i >= 5211 && i <= 5219) return axis_slot(st->g92_saved, i - 5211);
+  if (i >= 5221 && i <= 5399) {
+    int k = (i - 5221) / 20, a = (i - 5221) % 20;
+    if (k < SWARF_GC_NSYSTEMS && a == 9) {
+      mirror m = {&st->rotations[k], 1.0, 0};
+      return m;
+    }
+    if (k < SWARF_GC_NSYSTEMS && a < 9) return axis_slot(st->systems[k], a);
+  }
+  if (i >= 5401 && i <= 5409) return axis_slot(st->tlo, i - 5401);
+  return none;
+}
+
+static double computed(const swarf_gc_state *st, int i, int *found) {
+  *found = 1;
+  if (i == 5210) return st->g92_on;
+  if (i == 5220) return swarf_gc_system_index(st) + 1;
+  if (i == 5400) return st->tool;
+  if (i >= 5420 && i <= 5425) {
+    int a = i - 5420;
+    return a < 3 ? st->pos[a] / swarf_gc_scale(st) : st->pos[a];
+  }
+  if (i >= 5426 && i <= 5428) return 0;
+  *found = 0;
+  return 0;
+}
+
+double swarf_gc_param_get(const swarf_gc_params *ps, int i) {
+  int found;
+  double v;
+  if (i <= 0 || i >= SWARF_GC_NPARAMS) return 0;
+  if (ps->state != NULL) {
+    mirror m = mirror_of((swarf_gc_state *)ps->state, i);
+    if (m.slot != NULL) return *m.slot / m.scale;
+    v = computed(ps->state, i, &found);
+    if (found) return v;
+  }
+  return ps->num[i];
+}
+
+void swarf_gc_param_set(swarf_gc_params *ps, swarf_gc_state *st, int i, double v) {
+  mirror m;
+  if (i <= 0 || i >= SWARF_GC_NPARAMS) return;
+  m = mirror_of(st, i);
+  if (m.slot != NULL && !m.read_only) *m.slot = v * m.scale;
+  ps->num[i] = v;
+}
+
+static swarf_gc_named *find(swarf_gc_named *list, const char *name) {
+  for (; list != NULL; list = list->next)
+    if (strcmp(list->name, name) == 0) return list;
+  return NULL;
+}
+
+/* Read-only names computed from the state (a few of LinuxCNC's). */
+static int predefined(const swarf_gc_params *ps, const char *name, double *v) {
+  const swarf_gc_state *st = ps->state;
+  if (strcmp(name, "_value") == 0) return *v = ps->value, 0;
+  if (strcmp(name, "_value_returned") == 0) return *v = ps->value_returned, 0;
+  if (st == NULL) return -1;
+  if (strcmp(name, "_metric") == 0) return *v = st->modal.units == 210, 0;
+  if (strcmp(name, "_imperial") == 0) return *v = st->modal.units == 200, 0;
+  if (strcmp(name, "_absolute") == 0) return *v = st->modal.distance == 900, 0;
+  if (strcmp(name, "_incremental") == 0) return *v = st->modal.distance == 910, 0;
+  if (strcmp(name, "_current_tool") == 0) return *v = st->tool, 0;
+  if (strcmp(name, "_selected_tool") == 0) return *v = st->selected_tool, 0;
+  if (strcmp(name, "_feed") == 0) return *v = st->feed / swarf_gc_scale(st), 0;
+  if (strcmp(name, "_rpm") == 0) return *v = st->speed, 0;
+  if (name[0] == '_' && name[1] != '\0' && name[2] == '\0') {
+    const char *axes = "xyzabc", *at = strchr(axes, name[1]);
+    if (at != NULL) {
+      int a = (int)(at - axes);
+      *v = a < 3 ? st->pos[a] / swarf_gc_scale(st) : st->pos[a];
+      return 0;
+    }
+  }
+  return -1;
+}
+
+int swarf_gc_param_named(const swarf_gc_params *ps, const char *name, double *v) {
+  const swarf_gc_named *n = find(name[0] == '_' ? ps->globals : ps->locals, name);
+  if (n != NULL) {
+    *v = n->value;
+    return 0;
+  }
+  return name[0] == '_' ? predefined(ps, name, v) : -1;
+}
+
+int swarf_gc_param_set_named(swarf_gc_params *ps, const char *name, double v) {
+  swarf_gc_named **list = name[0] == '_' ? &ps->globals : &ps->locals;
+  swarf_gc_named *n = find(*list, name);
+  if (n == NULL) {
+    n = calloc(1, sizeof *n);
+    if (n == NULL) return -1;
+    strncpy(n->name, name, sizeof n->name - 1);
+    n->next = *list;
+    *list = n;
+  }
+  n->value = v;
+  return 0;
+}

@@ -60,6 +60,8 @@ static void substitute(const char *t, size_t n, const swarf_gc_params *ps, char 
       lx.pos = i;
       if (swarf_gc_expr_value(&lx, &v, &f) == SWARF_GCODE_OK) {
         o += (size_t)snprintf(out + o, cap - o, "%f", v);
+        while (lx.pos > i + 1 && (t[lx.pos - 1] == ' ' || t[lx.pos - 1] == '\t'))
+          lx.pos--; /* the blanks after the number are text */
         i = lx.pos;
         continue;
       }

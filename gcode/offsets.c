@@ -45,21 +45,30 @@ int swarf_gc_select_system(int code, swarf_gc_state *st, swarf_gc_exec *ex) {
   return SWARF_GCODE_OK;
 }
 
-static double tool_z(const swarf_gc_exec *ex, int tool) {
-  return (ex->tools != NULL && tool > 0 && tool < ex->ntools) ? ex->tools[tool][0] : 0.0;
+/* A tool's length offset; -1 if the table has no such tool (tool 0: none). */
+static int tool_z(const swarf_gc_exec *ex, int tool, double *z) {
+  *z = 0;
+  if (tool == 0) return 0;
+  if (ex->tools == NULL || tool < 0 || tool >= ex->ntools || isnan(ex->tools[tool][0])) return -1;
+  *z = ex->tools[tool][0];
+  return 0;
 }
 
 int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                          swarf_gc_fault *f) {
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_TOOL_LENGTH];
-  double m[SWARF_NAXES];
-  (void)f;
+  double m[SWARF_NAXES], z = 0;
   if (cw->code < 0) return SWARF_GCODE_OK;
+  if (cw->code == 430) {
+    int h = swarf_gc_block_has(b, 'H') ? (int)(swarf_gc_block_word(b, 'H')->value + 0.5) : st->tool;
+    if (tool_z(ex, h, &z) != 0)
+      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, cw->column,
+                           "Requested tool %d not found in the tool table", h);
+  }
   swarf_gc_to_machine(st, st->pos, m);
   memset(st->tlo, 0, sizeof st->tlo);
   if (cw->code == 430) {
-    int h = swarf_gc_block_has(b, 'H') ? (int)(swarf_gc_block_word(b, 'H')->value + 0.5) : st->tool;
-    st->tlo[2] = tool_z(ex, h);
+    st->tlo[2] = z;
   } else if (cw->code == 431) {
     for (int i = 0; i < SWARF_NAXES; i++)
       if (has(b, i)) st->tlo[i] = word_mm(b, st, i);
@@ -116,6 +125,7 @@ static int set_tool(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
                          "Tool number out of range with G10 L%d", l);
   if (swarf_gc_block_has(b, 'R'))
     ex->tools[t][1] = 2 * swarf_gc_block_word(b, 'R')->value * swarf_gc_scale(st);
+  if (isnan(ex->tools[t][0])) ex->tools[t][0] = 0;
   if (!has(b, 2)) return SWARF_GCODE_OK;
   if (l == 1) {
     ex->tools[t][0] = word_mm(b, st, 2);

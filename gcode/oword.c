@@ -176,6 +176,11 @@ static int read_ctl(const char *text, size_t len, octl *c, swarf_gc_fault *f) {
  * "absent") when there is none. */
 static int read_arg(swarf_gc_lexer *lx, double *v, int *present, swarf_gc_fault *f) {
   *present = 0;
+  while (swarf_gc_lexer_peek(lx) == '(') { /* comments between arguments */
+    while (lx->pos < lx->len && lx->line[lx->pos] != ')')
+      lx->pos++;
+    if (lx->pos < lx->len) lx->pos++;
+  }
   if (swarf_gc_lexer_peek(lx) != '[') return SWARF_GCODE_OK;
   *present = 1;
   return swarf_gc_expr_value(lx, v, f);

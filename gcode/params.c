@@ -85,8 +85,17 @@ static mirror mirror_of(swarf_gc_state *st, int i) {
   return none;
 }
 
+/* Machine position of axis `a` in the active unit (degrees for A B C). */
+static double machine_axis(const swarf_gc_state *st, int a) {
+  double m[SWARF_NAXES];
+  swarf_gc_to_machine(st, st->pos, m);
+  return a < 3 ? m[a] / swarf_gc_scale(st) : m[a];
+}
+
 static double computed(const swarf_gc_state *st, int i, int *found) {
   *found = 1;
+  if (i >= 5021 && i <= 5026) return machine_axis(st, i - 5021);
+  if (i >= 5027 && i <= 5029) return 0;
   if (i == 5210) return st->g92_on;
   if (i == 5220) return swarf_gc_system_index(st) + 1;
   if (i == 5400) return st->tool;
@@ -140,6 +149,10 @@ static int predefined(const swarf_gc_params *ps, const char *name, double *v) {
   if (strcmp(name, "_selected_tool") == 0) return *v = st->selected_tool, 0;
   if (strcmp(name, "_feed") == 0) return *v = st->feed / swarf_gc_scale(st), 0;
   if (strcmp(name, "_rpm") == 0) return *v = st->speed, 0;
+  if (strncmp(name, "_abs_", 5) == 0 && name[5] != '\0' && name[6] == '\0') {
+    const char *at = strchr("xyzabc", name[5]);
+    if (at != NULL) return *v = machine_axis(st, (int)(at - "xyzabc")), 0;
+  }
   if (name[0] == '_' && name[1] != '\0' && name[2] == '\0') {
     const char *axes = "xyzabc", *at = strchr(axes, name[1]);
     if (at != NULL) {

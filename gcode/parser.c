@@ -12,6 +12,7 @@
  * the state and the moves are committed only when the whole block is good.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -276,6 +277,15 @@ static int complete_line(swarf_gcode_parser *p, const char *s, size_t n) {
   return status;
 }
 
+/* Without a table, rs274's built-in one: tools 1-3 (inches). */
+static void default_tools(swarf_gcode_parser *p) {
+  static const double z[3] = {0.511, 0.1, 1.273};
+  for (int t = 0; t < NTOOLS; t++)
+    p->tools[t][0] = NAN, p->tools[t][1] = 0;
+  for (int t = 1; t <= 3; t++)
+    p->tools[t][0] = z[t - 1] * SWARF_GC_MM_PER_INCH;
+}
+
 swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
                                            void *user) {
   swarf_gcode_parser *p = calloc(1, sizeof *p);
@@ -286,6 +296,7 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
   swarf_gc_params_init(&p->params);
   p->params.state = &p->state;
   swarf_gc_out_init(&p->out);
+  default_tools(p);
   p->flow = swarf_gc_flow_new(&p->params, run_line, p);
   if (p->flow == NULL) {
     free(p);
@@ -363,6 +374,8 @@ int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
     }
     return SWARF_GCODE_ERR_ARG;
   }
+  for (int t = 0; t < NTOOLS; t++)
+    p->tools[t][0] = NAN, p->tools[t][1] = 0;
   while (fgets(line, sizeof line, in) != NULL)
     tool_line(p, line);
   fclose(in);

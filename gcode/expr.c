@@ -279,7 +279,10 @@ static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault 
 static int climb(swarf_gc_lexer *lx, double *lhs, int min, int depth, swarf_gc_fault *f) {
   for (;;) {
     size_t save = lx->pos;
-    int at = col(lx) + 1, op = read_op(lx), status;
+    int at, op, status;
+    swarf_gc_lexer_skip_blanks(lx);
+    at = col(lx);
+    op = read_op(lx);
     double rhs;
     if (op == OP_NONE || precedence(op) < min) {
       lx->pos = save;

@@ -44,6 +44,14 @@ typedef struct {
   size_t n, cap;
 } canon_calls;
 
+/* `needle` within the first n bytes of s, or NULL. */
+static inline const char *canon_find(const char *s, size_t n, const char *needle) {
+  size_t k = strlen(needle);
+  for (size_t i = 0; i + k <= n; i++)
+    if (s[i] == needle[0] && memcmp(s + i, needle, k) == 0) return s + i;
+  return NULL;
+}
+
 /* The calls of `text` (motions, or only MESSAGE numbers when `messages`). */
 static inline void canon_extract(const char *text, int messages, canon_calls *out) {
   static const char *names[] = {"STRAIGHT_TRAVERSE(", "STRAIGHT_FEED(", "ARC_FEED(", "DWELL("};
@@ -55,8 +63,8 @@ static inline void canon_extract(const char *text, int messages, canon_calls *ou
     const char *eol = strchr(s, '\n');
     size_t n = eol ? (size_t)(eol - s) : strlen(s);
     if (messages) {
-      p = strstr(s, "MESSAGE(\"");
-      if (p == NULL || p >= s + n) continue;
+      p = canon_find(s, n, "MESSAGE(\"");
+      if (p == NULL) continue;
       c.kind = 4;
       for (p += 9; p < s + n && c.nv < 9; p++) {
         char *end;
@@ -67,8 +75,8 @@ static inline void canon_extract(const char *text, int messages, canon_calls *ou
       }
     } else {
       for (int k = 0; k < 4 && open == NULL; k++) {
-        p = strstr(s, names[k]);
-        if (p != NULL && p < s + n) c.kind = k, open = p + strlen(names[k]);
+        p = canon_find(s, n, names[k]);
+        if (p != NULL) c.kind = k, open = p + strlen(names[k]);
       }
       if (open == NULL) continue;
       for (p = open; c.nv < 9;) {

@@ -107,6 +107,15 @@ int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
 int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
                                   swarf_gcode_error *err);
 
+/* Empties the tool table (the built-in one of rs274 too: without a table,
+ * tools 1-3 have rs274's lengths 0.511, 0.1 and 1.273 in), so that only tools
+ * given with swarf_gcode_parser_set_tool exist; then sets tool `tool`
+ * (1..999): its length offset (mm, what G43 H<tool> applies) and diameter
+ * (mm). Call before the first feed. The simulator gives every cutter length
+ * 0: it follows the tool tip, so G43 with the right H changes nothing. */
+int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
+int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length, double diameter);
+
 /* Feed `len` bytes of program text (any split, CRLF or LF). Complete lines are
  * interpreted at once. Returns SWARF_GCODE_OK or an error; after an error the
  * parser refuses further input and swarf_gcode_parser_error says why. */

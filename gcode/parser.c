@@ -382,6 +382,21 @@ int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
   return SWARF_GCODE_OK;
 }
 
+int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
+  if (p == NULL || p->lines > 0) return SWARF_GCODE_ERR_ARG;
+  for (int t = 0; t < NTOOLS; t++)
+    p->tools[t][0] = NAN, p->tools[t][1] = 0;
+  return SWARF_GCODE_OK;
+}
+
+int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length, double diameter) {
+  if (p == NULL || p->lines > 0 || tool < 1 || tool >= NTOOLS) return SWARF_GCODE_ERR_ARG;
+  if (!isfinite(length) || !isfinite(diameter) || diameter < 0) return SWARF_GCODE_ERR_ARG;
+  p->tools[tool][0] = length;
+  p->tools[tool][1] = diameter;
+  return SWARF_GCODE_OK;
+}
+
 const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p) {
   return (p != NULL && p->status != SWARF_GCODE_OK) ? &p->error : NULL;
 }

@@ -202,6 +202,15 @@ static int parser_outcome(sim_state *st, swarf_gcode_parser *p, int rc) {
   return rc == SWARF_GCODE_ERR_MEMORY ? 1 : 2;
 }
 
+/* The parser's tool table is the cutters given: each with length offset 0,
+ * since the simulated point is the tool tip (G43 H<n> then changes nothing,
+ * G43 H<unknown> is an error at its line). */
+static void set_tool_table(swarf_gcode_parser *p, const swarf_sim_config *cfg) {
+  swarf_gcode_parser_clear_tools(p);
+  for (int i = 0; i < cfg->ntools; i++)
+    swarf_gcode_parser_set_tool(p, cfg->tools[i].number, 0.0, cfg->tools[i].cutter.diameter);
+}
+
 typedef int (*feed_fn)(swarf_gcode_parser *p, sim_state *st, const void *src);
 
 static int run(const swarf_sim_config *cfg, const char *name, feed_fn feed, const void *src,
@@ -215,6 +224,7 @@ static int run(const swarf_sim_config *cfg, const char *name, feed_fn feed, cons
     if (p == NULL) {
       snprintf(msg, msglen, "out of memory");
     } else {
+      set_tool_table(p, cfg);
       rc = feed(p, &st, src);
       if (rc == 0) rc = parser_outcome(&st, p, swarf_gcode_parser_finish(p));
       rep->lines = swarf_gcode_parser_lines(p);

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# offsets.sh SWARF -- the simulator cuts where LinuxCNC's motion controller
+# would put the tool tip: the same slot written plainly, with G43 H1 (the
+# simulator's tool table has length offset 0 for every cutter: it follows the
+# tip), shifted by a G10 L2 work offset or G92 and written back in program
+# coordinates, or in inches, removes the same material (equal volume and the
+# remaining grid: volume within 1e-6 mm^3, same active voxel count); a slot
+# moved off the stock by a work offset removes nothing.
+set -u
+swarf=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+pass=0 fail=0
+
+# remaining PROGRAM-TEXT -> prints "VOLUME ACTIVE": the remaining grid's
+# volume (mm^3, as `swarf info` reads it back) and its active voxel count.
+remaining() {
+  printf '%b' "$1" > "$dir/p.ngc"
+  "$swarf" simulate "$dir/p.ngc" --stock box:0,0,-10,40,30,0 --tool T1=ball,D3,L12 \
+    --voxel 0.25 --out "$dir/out.vdb" --quiet 2> "$dir/stderr" || { cat "$dir/stderr" >&2; echo fail; return; }
+  "$swarf" info "$dir/out.vdb" | awk '/^volume/ { v = $2 } /^active_voxels/ { n = $2 }
+    END { printf "%.3f %d\n", v, n }'
+}
+same() { # same NAME "VOLUME ACTIVE" "VOLUME ACTIVE"
+  if awk -v a="$2" -v b="$3" 'BEGIN { split(a, x, " "); split(b, y, " ");
+      exit !(x[1] > 1 && (x[1] - y[1]) ^ 2 < 1e-12 && x[2] == y[2]) }'; then
+    pass=$((pass + 1))
+  else
+    fail=$((fail + 1)); echo "FAIL $1: $2 vs $3"
+  fi
+}
+
+untouched=$(remaining 'G0 Z5\nG0 X30\n')
+plain=$(remaining 'G0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y12\nG0 Z5\n')
+echo "untouched stock: $untouched, after the slot: $plain (mm^3, active voxels)"
+if awk -v a="$untouched" -v b="$plain" 'BEGIN { split(a, x, " "); split(b, y, " "); exit !(x[1] - y[1] > 100) }'; then
+  pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL the slot removes material"; fi
+same "G43 H1" "$plain" "$(remaining 'T1 M6 G43 H1\nG0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y12\nG0 Z5\n')"
+same "G10 L2 work offset" "$plain" "$(remaining 'G10 L2 P1 X3 Y-2 Z1\nG54\nG0 Z4\nG0 X2 Y12\nG1 Z-3 F100\nG1 X27 Y14\nG0 Z4\n')"
+same "G55 offset" "$plain" "$(remaining 'G10 L2 P2 X10\nG55\nG0 Z5\nG0 X-5 Y10\nG1 Z-2 F100\nG1 X20 Y12\nG0 Z5\n')"
+same "G92" "$plain" "$(remaining 'G0 X5 Y10 Z5\nG92 X0 Y0 Z0\nG1 Z-7 F100\nG1 X25 Y2\nG0 Z0\n')"
+same "G20 inches" "$plain" "$(remaining 'G20\nG0 Z[5/25.4]\nG0 X[5/25.4] Y[10/25.4]\nG1 Z[-2/25.4] F4\nG1 X[30/25.4] Y[12/25.4]\nG0 Z[5/25.4]\n')"
+same "parameters and a subroutine" "$plain" "$(remaining 'o100 sub\nG1 Z#1 F100\nG1 X#2 Y12\no100 endsub\n#<depth>=-2\nG0 Z5\nG0 X5 Y10\no100 call [#<depth>] [30]\nG0 Z5\nM2\n')"
+same "a slot moved 100 mm off the stock by G10 L2 cuts nothing" "$untouched" \
+  "$(remaining 'G10 L2 P1 X100\nG0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y12\nG0 Z5\n')"
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

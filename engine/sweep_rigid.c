@@ -57,7 +57,9 @@ typedef struct {
   int nheap;
 } rctx;
 
-static double norm3(const double a[3]) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+static double norm3(const double a[3]) {
+  return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
 
 static double cutter_body(const void *ctx, const double q[3], double grad[3]) {
   return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
@@ -68,8 +70,10 @@ static rsample reval(rctx *h, double a) {
   rsample r;
   swarf_motion_eval(h->s->motion, a, t, U);
   swarf_motion_velocity(h->s->motion, a, NULL, v, w);
-  for (int k = 0; k < 3; k++) d[k] = h->p[k] - t[k];
-  for (int k = 0; k < 3; k++) q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
+  for (int k = 0; k < 3; k++)
+    d[k] = h->p[k] - t[k];
+  for (int k = 0; k < 3; k++)
+    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
   r.a = a;
   r.g = h->body(h->body_ctx, q, gr);
   dq[0] = -(w[1] * q[2] - w[2] * q[1]) - v[0];
@@ -163,8 +167,10 @@ static void rcertify(rctx *h, const rsample *smp, int n) {
     rspan sp = rpop(h);
     rsample m;
     if (sp.lb >= h->best.g - EPS) break;
-    if (sp.lo.dg < 0.0 && sp.hi.dg > 0.0) m = rrefine(h, sp.lo, sp.hi);
-    else m = reval(h, 0.5 * (sp.lo.a + sp.hi.a));
+    if (sp.lo.dg < 0.0 && sp.hi.dg > 0.0)
+      m = rrefine(h, sp.lo, sp.hi);
+    else
+      m = reval(h, 0.5 * (sp.lo.a + sp.hi.a));
     if (!(m.a > sp.lo.a && m.a < sp.hi.a)) m = reval(h, 0.5 * (sp.lo.a + sp.hi.a));
     rpush(h, sp.lo, m);
     rpush(h, m, sp.hi);
@@ -181,7 +187,8 @@ double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, 
   n = (int)s->aux[RG_N];
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
   h.best.a = 0.0, h.best.g = INFINITY, h.best.dg = 0.0, h.best.dist = 0.0;
-  for (int i = 0; i <= n; i++) smp[i] = reval(&h, (double)i / n);
+  for (int i = 0; i <= n; i++)
+    smp[i] = reval(&h, (double)i / n);
   for (int i = 0; i < n; i++) {
     double w = 1.0 / n, Q = fmax(smp[i].dist, smp[i + 1].dist) + 0.5 * s->aux[RG_V] * w;
     lb = fmin(lb, 0.5 * (smp[i].g + smp[i + 1].g - (s->aux[RG_V] + s->aux[RG_W] * Q) * w));

@@ -16,7 +16,9 @@
 #define PROBE 64
 #define MAXN 512
 
-static double norm3(const double a[3]) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+static double norm3(const double a[3]) {
+  return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
 
 static double dist3(const double a[3], const double b[3]) {
   const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -38,7 +40,8 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
   double r = 0.5 * c->diameter, reach = hypot(r, c->length), tol = 0.1 * voxel;
   double V = 0, W = 0, VD = 0, WD = 0, step, travel, pad;
   s->method = SWARF_SWEEP_RIGID;
-  for (int k = 0; k < 3; k++) x[RG_LO + k] = INFINITY, x[RG_HI + k] = -INFINITY;
+  for (int k = 0; k < 3; k++)
+    x[RG_LO + k] = INFINITY, x[RG_HI + k] = -INFINITY;
   for (int i = 0; i <= PROBE; i++) {
     double a = (double)i / PROBE;
     swarf_motion_eval(s->motion, a, t, U);
@@ -59,9 +62,11 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
   x[RG_N] = fmin(MAXN, fmax(2.0, ceil(travel / step)));
   x[RG_FAR] = 72.0 * voxel;
   pad = r + travel / PROBE;
-  for (int k = 0; k < 3; k++) x[RG_LO + k] -= pad, x[RG_HI + k] += pad;
+  for (int k = 0; k < 3; k++)
+    x[RG_LO + k] -= pad, x[RG_HI + k] += pad;
 }
 
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
-  for (int k = 0; k < 3; k++) lo[k] = s->aux[RG_LO + k], hi[k] = s->aux[RG_HI + k];
+  for (int k = 0; k < 3; k++)
+    lo[k] = s->aux[RG_LO + k], hi[k] = s->aux[RG_HI + k];
 }

@@ -63,8 +63,8 @@ static int parse_key(swarf_machine *m, int npivot, const char **s, char *msg, si
       return 0;
     }
   }
-  snprintf(msg, msglen, "--machine: unknown field \"%.*s\" in \"%s\"; %s",
-           (int)strcspn(*s, ","), *s, spec, usage);
+  snprintf(msg, msglen, "--machine: unknown field \"%.*s\" in \"%s\"; %s", (int)strcspn(*s, ","),
+           *s, spec, usage);
   return -1;
 }
 
@@ -144,7 +144,8 @@ int swarf_machine_motion(const swarf_machine *mc, const swarf_move *mv, swarf_mo
   machine_axes(mc->kind, ax);
   if (check_axes(mc, mv, ax) != 0) return -2;
   flat = *mv; /* the X Y Z part of the move */
-  for (int k = SWARF_AXIS_A; k <= SWARF_AXIS_C; k++) flat.start[k] = flat.end[k] = mv->start[k];
+  for (int k = SWARF_AXIS_A; k <= SWARF_AXIS_C; k++)
+    flat.start[k] = flat.end[k] = mv->start[k];
   if ((rc = swarf_motion_from_move(&flat, out)) != 0) return rc;
   if (mc->kind == SWARF_MACHINE_XYZ) return 0;
   for (int i = 0; i < 2; i++)

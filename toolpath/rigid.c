@@ -34,7 +34,8 @@ static void mat_mul(const double A[9], const double B[9], double C[9]) {
 }
 
 static void angles(const swarf_motion *m, double alpha, double th[2]) {
-  for (int k = 0; k < 2; k++) th[k] = m->th0[k] + alpha * (m->th1[k] - m->th0[k]);
+  for (int k = 0; k < 2; k++)
+    th[k] = m->th0[k] + alpha * (m->th1[k] - m->th0[k]);
 }
 
 /* R(alpha) (workpiece -> machine), row-major; R1 = Rot(e1, th1) if not NULL. */
@@ -54,7 +55,8 @@ static void table_rotation(const swarf_motion *m, double alpha, double R[9], dou
 /* Tip in the machine frame at alpha (joint mode) minus the pivot, and dP/da. */
 static void machine_arm(const swarf_motion *m, double alpha, double d[3], double dP[3]) {
   swarf_path_point(m, alpha, d, dP);
-  for (int k = 0; k < 3; k++) d[k] -= m->pivot[k];
+  for (int k = 0; k < 3; k++)
+    d[k] -= m->pivot[k];
 }
 
 void swarf_rigid_eval(const swarf_motion *m, double alpha, double t[3], double U[9]) {
@@ -62,13 +64,15 @@ void swarf_rigid_eval(const swarf_motion *m, double alpha, double t[3], double U
   table_rotation(m, alpha, R, NULL);
   if (U != NULL)
     for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 3; j++) U[3 * i + j] = R[3 * j + i];
+      for (int j = 0; j < 3; j++)
+        U[3 * i + j] = R[3 * j + i];
   if (m->tcp) {
     swarf_path_point(m, alpha, t, NULL);
     return;
   }
   machine_arm(m, alpha, d, NULL); /* t = pivot + R^T d */
-  for (int k = 0; k < 3; k++) t[k] = m->pivot[k] + R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
+  for (int k = 0; k < 3; k++)
+    t[k] = m->pivot[k] + R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
 }
 
 void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
@@ -77,17 +81,19 @@ void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], d
   double d1 = m->th1[0] - m->th0[0], d2 = m->th1[1] - m->th0[1];
   table_rotation(m, alpha, R, R1);
   for (int k = 0; k < 3; k++)
-    w[k] = -(d1 * m->e1[k] + d2 * (R1[3 * k] * m->e2[0] + R1[3 * k + 1] * m->e2[1] +
-                                    R1[3 * k + 2] * m->e2[2]));
+    w[k] = -(d1 * m->e1[k] +
+             d2 * (R1[3 * k] * m->e2[0] + R1[3 * k + 1] * m->e2[1] + R1[3 * k + 2] * m->e2[2]));
   if (m->tcp) { /* v = U^T tdot = R tdot */
     swarf_path_point(m, alpha, d, td);
-    for (int k = 0; k < 3; k++) vv[k] = R[3 * k] * td[0] + R[3 * k + 1] * td[1] + R[3 * k + 2] * td[2];
+    for (int k = 0; k < 3; k++)
+      vv[k] = R[3 * k] * td[0] + R[3 * k + 1] * td[1] + R[3 * k + 2] * td[2];
   } else { /* v = omega x (P - pivot) + dP/da */
     machine_arm(m, alpha, d, dP);
     vv[0] = w[1] * d[2] - w[2] * d[1] + dP[0];
     vv[1] = w[2] * d[0] - w[0] * d[2] + dP[1];
     vv[2] = w[0] * d[1] - w[1] * d[0] + dP[2];
-    for (int k = 0; k < 3; k++) td[k] = R[k] * vv[0] + R[3 + k] * vv[1] + R[6 + k] * vv[2];
+    for (int k = 0; k < 3; k++)
+      td[k] = R[k] * vv[0] + R[3 + k] * vv[1] + R[6 + k] * vv[2];
   }
   if (tdot != NULL) memcpy(tdot, td, sizeof td);
   if (v != NULL) memcpy(v, vv, sizeof vv);
@@ -100,14 +106,17 @@ void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], d
 #define SAMPLES 64
 void swarf_rigid_bounds(const swarf_motion *m, double lo[3], double hi[3]) {
   double t[3], td[3], speed = 0.0;
-  for (int k = 0; k < 3; k++) lo[k] = INFINITY, hi[k] = -INFINITY;
+  for (int k = 0; k < 3; k++)
+    lo[k] = INFINITY, hi[k] = -INFINITY;
   for (int i = 0; i <= SAMPLES; i++) {
     swarf_rigid_eval(m, (double)i / SAMPLES, t, NULL);
     swarf_rigid_velocity(m, (double)i / SAMPLES, td, NULL, NULL);
     speed = fmax(speed, sqrt(td[0] * td[0] + td[1] * td[1] + td[2] * td[2]));
-    for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], t[k]), hi[k] = fmax(hi[k], t[k]);
+    for (int k = 0; k < 3; k++)
+      lo[k] = fmin(lo[k], t[k]), hi[k] = fmax(hi[k], t[k]);
   }
-  for (int k = 0; k < 3; k++) lo[k] -= speed / SAMPLES, hi[k] += speed / SAMPLES;
+  for (int k = 0; k < 3; k++)
+    lo[k] -= speed / SAMPLES, hi[k] += speed / SAMPLES;
 }
 
 /* Tip path length (workpiece frame) by Simpson's rule on 64 intervals

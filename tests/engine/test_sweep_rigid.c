@@ -23,8 +23,10 @@
 static double instance(const swarf_cutter *c, const swarf_motion *m, const double p[3], double a) {
   double t[3], U[9], d[3], q[3];
   swarf_motion_eval(m, a, t, U);
-  for (int k = 0; k < 3; k++) d[k] = p[k] - t[k];
-  for (int k = 0; k < 3; k++) q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
+  for (int k = 0; k < 3; k++)
+    d[k] = p[k] - t[k];
+  for (int k = 0; k < 3; k++)
+    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
   return swarf_cutter_sdf(c, q);
 }
 
@@ -47,7 +49,8 @@ static double golden(const swarf_cutter *c, const swarf_motion *m, const double 
 static double truth(const swarf_cutter *c, const swarf_motion *m, const double p[3], int n) {
   static double g[60001];
   double best = INFINITY;
-  for (int i = 0; i <= n; i++) g[i] = instance(c, m, p, (double)i / n);
+  for (int i = 0; i <= n; i++)
+    g[i] = instance(c, m, p, (double)i / n);
   for (int i = 0; i <= n; i++) {
     double prev = i > 0 ? g[i - 1] : INFINITY, next = i < n ? g[i + 1] : INFINITY;
     best = fmin(best, g[i]);
@@ -60,7 +63,8 @@ static double truth(const swarf_cutter *c, const swarf_motion *m, const double p
 /* Stamping: the cutter at the n + 1 production poses only. */
 static double stamp(const swarf_cutter *c, const swarf_motion *m, const double p[3], int n) {
   double best = INFINITY;
-  for (int i = 0; i <= n; i++) best = fmin(best, instance(c, m, p, (double)i / n));
+  for (int i = 0; i <= n; i++)
+    best = fmin(best, instance(c, m, p, (double)i / n));
   return best;
 }
 
@@ -69,9 +73,11 @@ static void near_point(tk_rng *r, const swarf_cutter *c, const swarf_motion *m, 
   double n[3], x[3], t[3], U[9], a = tk_uniform(r, 0.0, 1.0), off = tk_uniform(r, -2, 2) * VOXEL;
   tk_unit(r, n);
   swarf_cutter_point(c, n, x);
-  for (int k = 0; k < 3; k++) x[k] += off * n[k];
+  for (int k = 0; k < 3; k++)
+    x[k] += off * n[k];
   swarf_motion_eval(m, a, t, U);
-  for (int k = 0; k < 3; k++) p[k] = t[k] + U[3 * k] * x[0] + U[3 * k + 1] * x[1] + U[3 * k + 2] * x[2];
+  for (int k = 0; k < 3; k++)
+    p[k] = t[k] + U[3 * k] * x[0] + U[3 * k + 1] * x[1] + U[3 * k + 2] * x[2];
 }
 
 typedef struct {
@@ -98,7 +104,8 @@ static errors compare(const char *name, const swarf_cutter *c, const swarf_motio
       CHECK(p[k] > lo[k] - 2 * VOXEL && p[k] < hi[k] + 2 * VOXEL, "%s: point in bounds", name);
   }
   printf("%-28s %3d steps: max error %.2e voxel; stamping at the same poses: max %.3f, mean %.3f "
-         "voxel\n", name, e.steps, e.max_err, e.max_stamp, e.mean_stamp);
+         "voxel\n",
+         name, e.steps, e.max_err, e.max_stamp, e.mean_stamp);
   CHECK(e.max_err < 0.01, "%s: max error %g voxel (aim 0.1)", name, e.max_err);
   CHECK(e.max_stamp > 5 * e.max_err && e.max_stamp > 0.05, "%s: stamping worse (%g vs %g)", name,
         e.max_stamp, e.max_err);
@@ -136,7 +143,8 @@ static void test_rotary_only(void) {
   compare("rotary only, ball (torus)", &c, &m, 1);
   swarf_sweep_init_voxel(&s, &c, &m, VOXEL);
   for (int i = 0; i < 400; i++) {
-    double th = tk_uniform(&r, 0.05, 1.52), rho = tk_uniform(&r, 9.0, 9.9), x = tk_uniform(&r, -1, 1);
+    double th = tk_uniform(&r, 0.05, 1.52), rho = tk_uniform(&r, 9.0, 9.9),
+           x = tk_uniform(&r, -1, 1);
     double p[3] = {x, rho * sin(th), rho * cos(th)};
     double d = swarf_sweep_sdf(&s, p, NULL), torus = hypot(rho - 12.0, x) - 2.0;
     worst = fmax(worst, fabs(d - torus));
@@ -189,7 +197,8 @@ static void test_on_characteristic(void) {
     d = swarf_sweep_sdf(&s, p, &a);
     if (d < 0.2 * VOXEL || a < 0.02 || a > 0.98) continue;
     swarf_motion_eval(&m, a, t, U);
-    for (int k = 0; k < 3; k++) x[k] = p[k];
+    for (int k = 0; k < 3; k++)
+      x[k] = p[k];
     /* nearest surface point, world frame: p - d * grad (grad by differences) */
     double gw[3];
     for (int k = 0; k < 3; k++) {
@@ -197,9 +206,11 @@ static void test_on_characteristic(void) {
       pp[k] += 1e-6;
       gw[k] = (instance(&c, &m, pp, a) - instance(&c, &m, p, a)) / 1e-6;
     }
-    for (int k = 0; k < 3; k++) x[k] = p[k] - d * gw[k];
+    for (int k = 0; k < 3; k++)
+      x[k] = p[k] - d * gw[k];
     if (swarf_sweep_char_curve(&s, a, 1e-3, &cc) <= 0) continue;
-    for (size_t j = 0; j + 1 < cc.len; j++) best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
+    for (size_t j = 0; j + 1 < cc.len; j++)
+      best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
     worst = fmax(worst, best);
     used++;
   }

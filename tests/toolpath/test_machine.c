@@ -50,21 +50,27 @@ static void check_pose(const char *spec, const swarf_motion *m, const double s6[
                        const double e6[6], int tilt_axis, const double pivot[3], int tcp) {
   for (int i = 0; i <= 4; i++) {
     double a = i / 4.0, q[6], A[9], C[9], R[9], t[3], U[9], P[3];
-    for (int k = 0; k < 6; k++) q[k] = s6[k] + a * (e6[k] - s6[k]);
-    if (tilt_axis == 0) rx(q[3] * deg, A);
-    else ry(q[4] * deg, A);
+    for (int k = 0; k < 6; k++)
+      q[k] = s6[k] + a * (e6[k] - s6[k]);
+    if (tilt_axis == 0)
+      rx(q[3] * deg, A);
+    else
+      ry(q[4] * deg, A);
     rz(q[5] * deg, C);
     mul(A, C, R);
     swarf_motion_eval(m, a, t, U);
-    for (int k = 0; k < 9; k++) CHECK_NEAR(U[k], R[3 * (k % 3) + k / 3], 1e-12, "U = R^T");
+    for (int k = 0; k < 9; k++)
+      CHECK_NEAR(U[k], R[3 * (k % 3) + k / 3], 1e-12, "U = R^T");
     if (tcp) {
-      for (int k = 0; k < 3; k++) CHECK_NEAR(t[k], q[k], 1e-12, "TCP: t is the programmed tip");
+      for (int k = 0; k < 3; k++)
+        CHECK_NEAR(t[k], q[k], 1e-12, "TCP: t is the programmed tip");
       continue;
     }
     for (int k = 0; k < 3; k++) /* machine point of the tip: pivot + R (t - pivot) = P */
       P[k] = pivot[k] + R[3 * k] * (t[0] - pivot[0]) + R[3 * k + 1] * (t[1] - pivot[1]) +
              R[3 * k + 2] * (t[2] - pivot[2]);
-    for (int k = 0; k < 3; k++) CHECK_NEAR(P[k], q[k], 1e-12, "joint: tip at the joint position");
+    for (int k = 0; k < 3; k++)
+      CHECK_NEAR(P[k], q[k], 1e-12, "joint: tip at the joint position");
   }
   (void)spec;
 }
@@ -78,10 +84,12 @@ static void check_velocity(const swarf_motion *m) {
     swarf_motion_eval(m, a - h, tm, Um);
     swarf_motion_eval(m, a, t, U);
     swarf_motion_velocity(m, a, td, v, w);
-    for (int k = 0; k < 3; k++) CHECK_NEAR(td[k], (tp[k] - tm[k]) / (2 * h), 1e-6, "tdot");
+    for (int k = 0; k < 3; k++)
+      CHECK_NEAR(td[k], (tp[k] - tm[k]) / (2 * h), 1e-6, "tdot");
     for (int k = 0; k < 3; k++)
       CHECK_NEAR(v[k], U[k] * td[0] + U[3 + k] * td[1] + U[6 + k] * td[2], 1e-12, "v = U^T tdot");
-    for (int k = 0; k < 9; k++) dU[k] = (Up[k] - Um[k]) / (2 * h);
+    for (int k = 0; k < 9; k++)
+      dU[k] = (Up[k] - Um[k]) / (2 * h);
     double S[9]; /* U^T dU */
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++)
@@ -131,8 +139,9 @@ static void test_machines(void) {
 }
 
 static void test_parse_errors(void) {
-  static const char *bad[] = {"xyzq", "xyza,pivot=1", "xyza,pivot=1,2,3", "xyzac-trt,mode=tpc",
-                              "xyz,pivot=1,2", "xyza,mode=tcp", "xyzac-trt,pivot=1,nan,2", ""};
+  static const char *bad[] = {
+      "xyzq",          "xyza,pivot=1",  "xyza,pivot=1,2,3",        "xyzac-trt,mode=tpc",
+      "xyz,pivot=1,2", "xyza,mode=tcp", "xyzac-trt,pivot=1,nan,2", ""};
   swarf_machine m;
   char msg[256];
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {

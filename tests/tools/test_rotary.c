@@ -31,8 +31,10 @@ typedef struct {
 static double instance(const poses *ps, const double p[3], double a) {
   double t[3], U[9], d[3], q[3];
   swarf_motion_eval(ps->m, a, t, U);
-  for (int k = 0; k < 3; k++) d[k] = p[k] - t[k];
-  for (int k = 0; k < 3; k++) q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
+  for (int k = 0; k < 3; k++)
+    d[k] = p[k] - t[k];
+  for (int k = 0; k < 3; k++)
+    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
   return swarf_cutter_sdf(ps->c, q);
 }
 
@@ -41,8 +43,10 @@ static double golden(const poses *ps, const double p[3], double lo, double hi) {
   double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
   double f1 = instance(ps, p, x1), f2 = instance(ps, p, x2);
   for (int it = 0; it < 50; it++) {
-    if (f1 < f2) hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = instance(ps, p, x1);
-    else lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = instance(ps, p, x2);
+    if (f1 < f2)
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = instance(ps, p, x1);
+    else
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = instance(ps, p, x2);
   }
   return fmin(f1, f2);
 }
@@ -56,14 +60,16 @@ static double pose_sdf(const void *ctx, double x, double y, double z) {
   double best = INFINITY, prev = INFINITY, cur = instance(ps, p, 0.0);
   if (ps->polish) {
     double coarse = INFINITY;
-    for (int i = 0; i <= ps->coarse; i++) coarse = fmin(coarse, instance(ps, p, (double)i / ps->coarse));
+    for (int i = 0; i <= ps->coarse; i++)
+      coarse = fmin(coarse, instance(ps, p, (double)i / ps->coarse));
     if (coarse - ps->step > 4 * VOXEL) return coarse - ps->step;
   }
   for (int i = 0; i <= ps->n; i++) {
     double next = i < ps->n ? instance(ps, p, (i + 1.0) / ps->n) : INFINITY;
     best = fmin(best, cur);
     if (ps->polish && cur <= prev && cur <= next && cur < best + 0.5)
-      best = fmin(best, golden(ps, p, i > 0 ? (i - 1.0) / ps->n : 0.0, i < ps->n ? (i + 1.0) / ps->n : 1.0));
+      best = fmin(best, golden(ps, p, i > 0 ? (i - 1.0) / ps->n : 0.0,
+                               i < ps->n ? (i + 1.0) / ps->n : 1.0));
     prev = cur, cur = next;
   }
   return best;
@@ -139,9 +145,12 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   swarf_sweep_init_voxel(&sw, &cfg.tools[0].cutter, &m, VOXEL);
   int n = (int)sw.aux[6]; /* the production's time steps */
   const swarf_cutter *c = &cfg.tools[0].cutter;
-  double dt = 0.0, reach = hypot(0.5 * c->diameter, c->length) + fabs(s6[0]) + fabs(s6[1]) + fabs(s6[2]) + 6;
-  for (int k = 0; k < 3; k++) dt += (e6[k] - s6[k]) * (e6[k] - s6[k]);
-  double step = 1.1 * (sqrt(dt) + reach * (fabs(e6[3] - s6[3]) + fabs(e6[5] - s6[5])) * M_PI / 180) / n;
+  double dt = 0.0,
+         reach = hypot(0.5 * c->diameter, c->length) + fabs(s6[0]) + fabs(s6[1]) + fabs(s6[2]) + 6;
+  for (int k = 0; k < 3; k++)
+    dt += (e6[k] - s6[k]) * (e6[k] - s6[k]);
+  double step =
+      1.1 * (sqrt(dt) + reach * (fabs(e6[3] - s6[3]) + fabs(e6[5] - s6[5])) * M_PI / 180) / n;
   truth = reference(&cfg, pre, c, &m, 10 * n, 1, n, step);
   stamped = reference(&cfg, pre, c, &m, n, 0, n, step);
   if (truth == NULL || stamped == NULL) return;
@@ -156,8 +165,8 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   CHECK(a.n > 1000, "%s: compared %ld voxels", name, a.n);
   CHECK(a.max_err < 0.01, "%s: swept error %g voxel (aim 0.1)", name, a.max_err);
   CHECK(fabs(vp - vt) < 1e-4 * vt, "%s: removed volume %g vs %g", name, vp, vt);
-  CHECK(b.max_err > 0.005 && b.max_err > 10 * a.max_err, "%s: stamping worse: %g vs %g voxel",
-        name, b.max_err, a.max_err);
+  CHECK(b.max_err > 0.005 && b.max_err > 10 * a.max_err, "%s: stamping worse: %g vs %g voxel", name,
+        b.max_err, a.max_err);
   CHECK(fabs(vs - vt) > 10 * fabs(vp - vt), "%s: stamped volume worse", name);
   swarf_stock_free(out);
   swarf_stock_free(truth);
@@ -178,7 +187,8 @@ int main(void) {
   {
     const double s6[6] = {-1, 0, -0.5, 0, 0, 0}, e6[6] = {2, 1, -0.8, 35, 0, 60};
     run_case("xyzac-trt A+C (TCP)", "xyzac-trt", "box:-5,-4,-4,5,5,0", "T1=ball,D2,L6",
-             "G0 X-1 Y0 Z-0.5 A0 C0\nM2\n", "G0 X-1 Y0 Z-0.5 A0 C0\nG1 X2 Y1 Z-0.8 A35 C60 F100\nM2\n", s6, e6);
+             "G0 X-1 Y0 Z-0.5 A0 C0\nM2\n",
+             "G0 X-1 Y0 Z-0.5 A0 C0\nG1 X2 Y1 Z-0.8 A35 C60 F100\nM2\n", s6, e6);
   }
   return check_done();
 }

@@ -146,6 +146,23 @@ typedef struct {
 
 void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m);
 
+/* The same for a stock of voxel edge `voxel` (mm): RIGID motions (rotary
+ * machines) choose their time steps from it (swarf_sweep_init assumes 0.1 mm).
+ * Their sdf is certified to 1e-6 mm within 72 voxels of the volume (within the
+ * work caps; see sweep_rigid.c), a lower bound beyond. */
+void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m,
+                            double voxel);
+
+/* A convex body's signed distance at q (body frame) and its unit gradient. */
+typedef double (*swarf_body_sdf_fn)(const void *ctx, const double q[3], double grad[3]);
+
+/* The sdf of a RIGID sweep (swarf_sweep_init_voxel) with another convex body
+ * `body` in place of the cutter, which then only gives the sizes the time
+ * steps and bounds are chosen from (its radius and length must enclose the
+ * body). For tests of other bodies (QSS). NaN for a non-RIGID sweep. */
+double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                  const double p[3], double *alpha);
+
 /* Axis-aligned bounds of the swept volume, workpiece frame, mm. */
 void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
 

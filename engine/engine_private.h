@@ -9,6 +9,9 @@
  *   sweep_helix.c   arcs and helices: the closed form for planar arcs about
  *                   a vertical axis, the set-up of the others.
  *   sweep_sampled.c any other helix: sampling plus certified refinement.
+ *   sweep_rigid.c   motions with rotation: time steps, characteristic
+ *                   refinement, certification; sweep_rigid_setup.c its
+ *                   per-move constants and bounds.
  *
  * Nothing here allocates; every function works on caller-owned values.
  */
@@ -96,7 +99,8 @@ enum {
   SWARF_SWEEP_RAMP,       /* other line, flat or bull: convex 1-D minimum */
   SWARF_SWEEP_ARC,        /* planar arc about a vertical axis, angle < 2 pi */
   SWARF_SWEEP_RING,       /* planar full circle about a vertical axis */
-  SWARF_SWEEP_HELIX       /* any other helix: sampling and refinement */
+  SWARF_SWEEP_HELIX,      /* any other helix: sampling and refinement */
+  SWARF_SWEEP_RIGID       /* motion with rotation (rotary machines) */
 };
 
 void swarf_sweep_line_init(swarf_sweep *s, const double p0[3], const double p1[3]);
@@ -114,5 +118,13 @@ void swarf_sweep_helix_init(swarf_sweep *s);
 double swarf_sweep_arc_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ring_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+
+/* aux of SWARF_SWEEP_RIGID: bounds LO, HI of the volume; N time steps; V, W
+ * bounds of |v|, |omega| and VD, WD of their alpha-derivatives; FAR mm. */
+enum { RG_LO, RG_HI = 3, RG_N = 6, RG_V, RG_W, RG_VD, RG_WD, RG_FAR };
+
+void swarf_sweep_rigid_init(swarf_sweep *s, double voxel);
+void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
+double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
 #endif

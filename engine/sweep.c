@@ -3,8 +3,8 @@
  *
  * A swarf_sweep is a value that points at a cutter and a motion owned by the
  * caller; init picks the evaluator (engine_private.h lists them) and stores
- * its per-move constants in aux. The evaluators live in sweep_line.c and
- * sweep_helix.c.
+ * its per-move constants in aux. The evaluators live in sweep_line.c,
+ * sweep_helix.c and (motions with rotation) sweep_rigid.c.
  */
 #include <math.h>
 #include <string.h>
@@ -12,11 +12,18 @@
 #include "engine_private.h"
 
 void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m) {
+  swarf_sweep_init_voxel(s, c, m, 0.1);
+}
+
+void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m,
+                            double voxel) {
   memset(s, 0, sizeof *s);
   s->cutter = c;
   s->motion = m;
   if (c == NULL || m == NULL) return;
-  if (m->kind == SWARF_MOTION_LINE)
+  if (m->kind == SWARF_MOTION_RIGID)
+    swarf_sweep_rigid_init(s, voxel > 0 ? voxel : 0.1);
+  else if (m->kind == SWARF_MOTION_LINE)
     swarf_sweep_line_init(s, m->p0, m->p1);
   else
     swarf_sweep_helix_init(s);
@@ -24,6 +31,10 @@ void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion 
 
 void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
   double r = 0.5 * s->cutter->diameter;
+  if (s->method == SWARF_SWEEP_RIGID) {
+    swarf_sweep_rigid_bounds(s, lo, hi);
+    return;
+  }
   swarf_motion_bounds(s->motion, lo, hi);
   for (int k = 0; k < 2; k++) {
     lo[k] -= r;
@@ -46,6 +57,8 @@ double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
     return swarf_sweep_ring_sdf(s, p, alpha);
   case SWARF_SWEEP_HELIX:
     return swarf_sweep_helix_sdf(s, p, alpha);
+  case SWARF_SWEEP_RIGID:
+    return swarf_sweep_rigid_sdf(s, p, alpha);
   default: /* SWARF_SWEEP_PLUNGE */
     return swarf_sweep_plunge_sdf(s, p, alpha);
   }

@@ -1,8 +1,8 @@
 /// @file stock.cc
-/// @brief The stock handle: creation of a box stock, queries (volume, bounds,
+/// @brief The stock handle: creation of a box or cylinder stock, queries (volume, bounds,
 /// samples, active voxels), the level-set check, and their C entry points.
 ///
-/// The box is written directly as the exact box signed distance: the region
+/// The box (or cylinder) is written directly as the exact box signed distance: the region
 /// around the box (padded by the band) is filled with inside tiles, then the
 /// outside of the box is removed with the removal of remove.cc (its sdf is
 /// minus the box sdf). Near the faces each voxel holds the exact distance,
@@ -63,6 +63,23 @@ double box_outside(const void *ctx, double x, double y, double z) {
   return -box_sdf(*static_cast<const Box *>(ctx), p);
 }
 
+/// A cylinder about coordinate axis `axis` through the origin, radius r, from
+/// s0 to s1 along the axis, and its exact signed distance.
+struct Cylinder {
+  int axis;
+  double r, s0, s1;
+};
+
+double cylinder_outside(const void *ctx, double x, double y, double z) {
+  const Cylinder &c = *static_cast<const Cylinder *>(ctx);
+  const double p[3] = {x, y, z};
+  const double u = p[(c.axis + 1) % 3], v = p[(c.axis + 2) % 3];
+  const double dr = std::sqrt(u * u + v * v) - c.r;
+  const double dz = std::fabs(p[c.axis] - 0.5 * (c.s0 + c.s1)) - 0.5 * (c.s1 - c.s0);
+  const double ar = std::max(dr, 0.0), az = std::max(dz, 0.0);
+  return -(std::sqrt(ar * ar + az * az) + std::min(std::max(dr, dz), 0.0));
+}
+
 /// Index box of everything that is not outside background: the leaves and
 /// the tiles that are active or not at +background.
 openvdb::CoordBBox content_box(const openvdb::FloatTree &tree) {
@@ -117,7 +134,9 @@ void check_box_args(const double lo[3], const double hi[3], double voxel, int ha
     throw Error(SWARF_STOCK_ERR_MEMORY, "box too large for this voxel size (band over 4e9 voxels)");
 }
 
-swarf_stock *make_box(const double lo[3], const double hi[3], double voxel, int half_width) {
+/// A stock filling the box [lo, hi] minus the cut `outside` (minus the shape's sdf).
+swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, int half_width,
+                        swarf_stock_sdf_fn outside, const void *ctx) {
   init_openvdb();
   const float bg = float(half_width * voxel);
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bg);
@@ -133,17 +152,19 @@ swarf_stock *make_box(const double lo[3], const double hi[3], double voxel, int 
   const openvdb::CoordBBox region(openvdb::Coord(a[0], a[1], a[2]), openvdb::Coord(b[0], b[1], b[2]));
   grid->tree().fill(region, -bg, false);
   std::unique_ptr<swarf_stock> s(wrap_grid(grid));
-  Box box;
   swarf_stock_cut cut;
-  for (int k = 0; k < 3; k++) {
-    box.lo[k] = lo[k], box.hi[k] = hi[k];
-    cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;
-  }
-  cut.sdf = box_outside;
-  cut.ctx = &box;
+  for (int k = 0; k < 3; k++) cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;
+  cut.sdf = outside;
+  cut.ctx = ctx;
   remove_cuts(*s, &cut, 1);
   openvdb::tools::pruneLevelSet(grid->tree());
   return s.release();
+}
+
+swarf_stock *make_box(const double lo[3], const double hi[3], double voxel, int half_width) {
+  Box box;
+  for (int k = 0; k < 3; k++) box.lo[k] = lo[k], box.hi[k] = hi[k];
+  return make_shape(lo, hi, voxel, half_width, box_outside, &box);
 }
 
 /// Fraction of voxel volume inside the material for a value phi (mm): a ramp
@@ -230,6 +251,24 @@ extern "C" swarf_stock *swarf_stock_new_box(const double lo[3], const double hi[
   swarf::guard(msg, msglen, [&] {
     swarf::check_box_args(lo, hi, voxel, half_width);
     s = swarf::make_box(lo, hi, voxel, half_width);
+  });
+  return s;
+}
+
+extern "C" swarf_stock *swarf_stock_new_cylinder(int axis, double radius, double start, double end,
+                                                 double voxel, int half_width, char *msg,
+                                                 size_t msglen) {
+  swarf_stock *s = nullptr;
+  swarf::guard(msg, msglen, [&] {
+    if (axis < 0 || axis > 2) throw Error(SWARF_STOCK_ERR_ARG, "axis must be 0, 1 or 2 (x, y, z)");
+    if (!std::isfinite(radius) || !(radius > 0.0))
+      throw Error(SWARF_STOCK_ERR_ARG, "radius must be finite and > 0");
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) lo[k] = -radius, hi[k] = radius;
+    lo[axis] = start, hi[axis] = end;
+    swarf::check_box_args(lo, hi, voxel, half_width);
+    const swarf::Cylinder cyl{axis, radius, start, end};
+    s = swarf::make_shape(lo, hi, voxel, half_width, swarf::cylinder_outside, &cyl);
   });
   return s;
 }

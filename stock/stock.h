@@ -47,6 +47,12 @@ typedef double (*swarf_stock_sdf_fn)(const void *ctx, double x, double y, double
 swarf_stock *swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
                                  int half_width, char *msg, size_t msglen);
 
+/* A cylinder stock about the x, y or z axis (axis 0, 1, 2) through the origin:
+ * radius (mm) > 0, from start to end (mm, start < end) along the axis. For
+ * rotary work. Exact signed distance near its surface, like the box. */
+swarf_stock *swarf_stock_new_cylinder(int axis, double radius, double start, double end,
+                                      double voxel, int half_width, char *msg, size_t msglen);
+
 /* Read the grid named "stock" (or the first float level set) of a .vdb file. */
 swarf_stock *swarf_stock_read(const char *path, char *msg, size_t msglen);
 

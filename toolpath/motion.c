@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "toolpath.h"
+#include "toolpath_private.h"
 
 static const double pi = 3.14159265358979323846;
 
@@ -47,6 +47,7 @@ static void fill_common(const swarf_move *mv, swarf_motion *m) {
 static void fill_helix(const swarf_move *mv, swarf_motion *m) {
   double r[3], nr;
   m->kind = SWARF_MOTION_HELIX;
+  m->helix = 1;
   memcpy(m->axis, mv->normal, sizeof m->axis);
   /* Keep the centre in the plane of p0 so that p0 - centre is radial. */
   for (int k = 0; k < 3; k++) r[k] = m->p0[k] - mv->center[k];
@@ -85,29 +86,38 @@ int swarf_motion_from_move(const swarf_move *mv, swarf_motion *m) {
 }
 
 void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double U[9]) {
-  if (U != NULL) set_identity(U);
-  if (m->kind == SWARF_MOTION_LINE) {
-    for (int k = 0; k < 3; k++) t[k] = m->p0[k] + alpha * (m->p1[k] - m->p0[k]);
+  if (m->kind == SWARF_MOTION_RIGID) {
+    swarf_rigid_eval(m, alpha, t, U);
     return;
   }
-  double r[3], rr[3];
+  if (U != NULL) set_identity(U);
+  swarf_path_point(m, alpha, t, NULL);
+}
+
+void swarf_path_point(const swarf_motion *m, double alpha, double t[3], double d[3]) {
+  if (!m->helix) {
+    for (int k = 0; k < 3; k++) t[k] = m->p0[k] + alpha * (m->p1[k] - m->p0[k]);
+    if (d != NULL)
+      for (int k = 0; k < 3; k++) d[k] = m->p1[k] - m->p0[k];
+    return;
+  }
+  double r[3], rr[3], nxr[3];
   for (int k = 0; k < 3; k++) r[k] = m->p0[k] - m->center[k];
   rotate3(m->axis, alpha * m->angle, r, rr);
   for (int k = 0; k < 3; k++) t[k] = m->center[k] + rr[k] + alpha * m->rise * m->axis[k];
+  if (d == NULL) return;
+  cross3(m->axis, rr, nxr);
+  for (int k = 0; k < 3; k++) d[k] = m->angle * nxr[k] + m->rise * m->axis[k];
 }
 
 void swarf_motion_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
                            double omega[3]) {
-  double d[3];
-  if (m->kind == SWARF_MOTION_LINE) {
-    for (int k = 0; k < 3; k++) d[k] = m->p1[k] - m->p0[k];
-  } else {
-    double r[3], rr[3], nxr[3];
-    for (int k = 0; k < 3; k++) r[k] = m->p0[k] - m->center[k];
-    rotate3(m->axis, alpha * m->angle, r, rr);
-    cross3(m->axis, rr, nxr);
-    for (int k = 0; k < 3; k++) d[k] = m->angle * nxr[k] + m->rise * m->axis[k];
+  double d[3], t[3];
+  if (m->kind == SWARF_MOTION_RIGID) {
+    swarf_rigid_velocity(m, alpha, tdot, v, omega);
+    return;
   }
+  swarf_path_point(m, alpha, t, d);
   if (tdot != NULL) memcpy(tdot, d, sizeof d);
   if (v != NULL) memcpy(v, d, sizeof d); /* U = I: v = U^T tdot = tdot */
   if (omega != NULL) omega[0] = omega[1] = omega[2] = 0.0;
@@ -146,6 +156,10 @@ static void helix_extrema(const swarf_motion *m, int k, double lo[3], double hi[
 }
 
 void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]) {
+  if (m->kind == SWARF_MOTION_RIGID) {
+    swarf_rigid_bounds(m, lo, hi);
+    return;
+  }
   for (int k = 0; k < 3; k++) {
     lo[k] = fmin(m->p0[k], m->p1[k]);
     hi[k] = fmax(m->p0[k], m->p1[k]);
@@ -156,6 +170,8 @@ void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]) {
 }
 
 int swarf_motion_is_null(const swarf_motion *m) {
-  if (m->kind == SWARF_MOTION_HELIX) return m->angle == 0.0 && m->rise == 0.0;
+  if (m->kind == SWARF_MOTION_RIGID && (m->th0[0] != m->th1[0] || m->th0[1] != m->th1[1]))
+    return 0;
+  if (m->helix) return m->angle == 0.0 && m->rise == 0.0;
   return m->p0[0] == m->p1[0] && m->p0[1] == m->p1[1] && m->p0[2] == m->p1[2];
 }

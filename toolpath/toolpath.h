@@ -3,14 +3,17 @@
  * Role: a move from the G-code front end becomes a rigid motion
  *   x' = t(alpha) + U(alpha) x,   alpha in [0, 1],
  * that carries a point x of the cutter frame (tip at the origin, axis +z)
- * into the workpiece frame. This first version is the 3-axis machine (xyz):
- * U is the identity and t(alpha) is the tool tip on the programmed path.
- * Arcs stay arcs: a helical motion is evaluated exactly at any alpha.
+ * into the workpiece frame. On the 3-axis machine (xyz) U is the identity
+ * and t(alpha) is the tool tip on the programmed path; arcs stay arcs: a
+ * helical motion is evaluated exactly at any alpha. Machines with rotary
+ * table axes (swarf_machine, machine.c) give RIGID motions with U != I.
  *
  * Units: mm, radians, seconds. Values only, no state: thread-safe.
  */
 #ifndef SWARF_TOOLPATH_H
 #define SWARF_TOOLPATH_H
+
+#include <stddef.h>
 
 #include "gcode.h"
 
@@ -20,7 +23,8 @@ extern "C" {
 
 typedef enum {
   SWARF_MOTION_LINE, /* t(a) = p0 + a (p1 - p0) */
-  SWARF_MOTION_HELIX /* t(a) = center + Rot(axis, a angle)(p0 - center) + a rise axis */
+  SWARF_MOTION_HELIX, /* t(a) = center + Rot(axis, a angle)(p0 - center) + a rise axis */
+  SWARF_MOTION_RIGID  /* rotary machine: U(a) = R(a)^T, see below */
 } swarf_motion_kind;
 
 typedef struct {
@@ -38,6 +42,20 @@ typedef struct {
   int rapid;           /* 1 for G0 */
   long line;           /* source line */
   int column;          /* source column */
+  /* RIGID only. The table turns the workpiece: a workpiece point w sits at
+   * machine point pivot + R(a) (w - pivot), R(a) = Rot(e1, th1(a)) Rot(e2, th2(a)),
+   * th = th0 + a (th1 - th0) (the angles are interpolated linearly, as LinuxCNC
+   * does). The cutter keeps its machine orientation (axis +z), so
+   * U(a) = R(a)^T. P(a) is the programmed tip path: the line p0 p1 or, when
+   * helix = 1, the helix of center/axis/angle/rise. With tcp = 1 it is in the
+   * workpiece frame and t(a) = P(a); with tcp = 0 it is in the machine frame
+   * (joint positions) and t(a) = pivot + U(a) (P(a) - pivot). */
+  int tcp;
+  int helix;             /* 1: the tip path P is the helix of the fields above (any kind) */
+  double e1[3], e2[3]; /* unit rotation axes of the two table axes (e2 = 0: one axis) */
+  double th0[2], th1[2]; /* their angles at a = 0 and a = 1, radians */
+  double pivot[3];       /* a point of both axes, mm */
+  double turn;           /* |th1 - th0| summed over the axes, radians */
 } swarf_motion;
 
 /* Rapid traverse rate used for the duration of G0 moves, mm/min. */
@@ -47,6 +65,32 @@ typedef struct {
  * Returns 0, or -1 if the move has no motion (dwell, tool change) or a
  * rotary axis moves (not handled by the xyz machine). */
 int swarf_motion_from_move(const swarf_move *move, swarf_motion *out);
+
+/* ---- Machines ------------------------------------------------------------ */
+
+typedef enum {
+  SWARF_MACHINE_XYZ,       /* 3 axes (default) */
+  SWARF_MACHINE_XYZA,      /* rotary table about machine X (4th axis), joint kinematics */
+  SWARF_MACHINE_XYZAC_TRT, /* table tilting about X (A) carrying a rotary table about Z (C) */
+  SWARF_MACHINE_XYZBC_TRT  /* table tilting about Y (B) carrying a rotary table about Z (C) */
+} swarf_machine_kind;
+
+typedef struct {
+  swarf_machine_kind kind;
+  int tcp;         /* 5-axis: 1 tool-centre-point mode (default), 0 joint mode */
+  double pivot[3]; /* the rotary axes meet here, machine = workpiece frame at zero angles, mm */
+} swarf_machine;
+
+/* Fill `m` from "NAME[,key=value...]": NAME xyz, xyza, xyzac-trt, xyzbc-trt;
+ * keys pivot=Y,Z (xyza) or pivot=X,Y,Z (trt), mode=tcp|joint (trt).
+ * Returns 0, or -1 with a reason (naming --machine) in msg. */
+int swarf_machine_parse(swarf_machine *m, const char *spec, char *msg, size_t msglen);
+
+/* The rigid motion of the cutter in the workpiece frame for `move` on machine
+ * `mc`. Straight moves that turn a rotary axis become RIGID motions; the rest
+ * as swarf_motion_from_move. Returns 0, -1 for moves without motion, -2 when
+ * the machine does not have an axis the move turns (or an arc turns one). */
+int swarf_machine_motion(const swarf_machine *mc, const swarf_move *move, swarf_motion *out);
 
 /* Pose at alpha: t (3) and U (3x3 row-major). */
 void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double U[9]);

@@ -19,13 +19,18 @@ static const char help[] =
     "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
     "                      --tool T<n>=<shape>,D<diameter>[,R<corner>][,L<length>] ...\n"
     "                      --out FILE.vdb [--mesh FILE.stl] [--image FILE.png]\n"
-    "                      [--voxel MM] [--band VOXELS] [--quiet]\n"
+    "                      [--voxel MM] [--band VOXELS] [--machine NAME[,k=v...]] [--quiet]\n"
     "\n"
-    "Plays PROGRAM (RS274/NGC, LinuxCNC dialect) on a 3-axis machine, removes the exact\n"
+    "Plays PROGRAM (RS274/NGC, LinuxCNC dialect) on the machine, removes the exact\n"
     "volume swept by the cutter from the stock and writes the remaining material.\n"
     "\n"
     "  --stock box:...  stock block in the program frame, mm (G20 programs are still\n"
     "                   converted to mm: give the stock in mm)\n"
+    "  --stock cylinder:AXIS,RADIUS,START,END  a bar about the x, y or z axis through\n"
+    "                   the origin, from START to END along it (rotary work)\n"
+    "  --machine NAME   xyz (default); xyza[,pivot=Y,Z] (rotary table about X);\n"
+    "                   xyzac-trt or xyzbc-trt[,mode=tcp|joint][,pivot=X,Y,Z] (5-axis\n"
+    "                   table-rotary-tilting, tool-centre-point mode by default)\n"
     "  --tool T1=ball,D3.175,L25   a cutter: shape ball, flat or bull; D diameter,\n"
     "                   R corner radius (bull), L cutting length above the tip\n"
     "                   (default 4*D). Repeat for several tools; a single tool is\n"
@@ -96,8 +101,11 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     return 0;
   }
   if (!strcmp(flag, "--stock")) {
-    if (swarf_sim_parse_box(val, o->cfg.stock_lo, o->cfg.stock_hi, msg, sizeof msg))
-      return usage_error(msg);
+    if (swarf_sim_parse_stock(val, &o->cfg, msg, sizeof msg)) return usage_error(msg);
+    return 0;
+  }
+  if (!strcmp(flag, "--machine")) {
+    if (swarf_machine_parse(&o->cfg.machine, val, msg, sizeof msg)) return usage_error(msg);
     return 0;
   }
   if (!strcmp(flag, "--tool")) return -1; /* handled by the caller */

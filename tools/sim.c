@@ -53,10 +53,13 @@ static double sweep_sdf(const void *ctx, double x, double y, double z) {
 
 static double stamp_sdf(const void *ctx, double x, double y, double z) {
   const stamp_ctx *s = ctx;
-  double best = INFINITY, t[3];
+  double best = INFINITY, t[3], U[9];
   for (int i = 0; i <= s->n; i++) {
-    swarf_motion_eval(s->motion, (double)i / s->n, t, NULL);
-    const double q[3] = {x - t[0], y - t[1], z - t[2]};
+    swarf_motion_eval(s->motion, (double)i / s->n, t, U);
+    const double d3[3] = {x - t[0], y - t[1], z - t[2]};
+    const double q[3] = {U[0] * d3[0] + U[3] * d3[1] + U[6] * d3[2],
+                         U[1] * d3[0] + U[4] * d3[1] + U[7] * d3[2],
+                         U[2] * d3[0] + U[5] * d3[1] + U[8] * d3[2]};
     double d = swarf_cutter_sdf(s->cutter, q);
     if (d < best) best = d;
   }
@@ -97,14 +100,16 @@ static int queue_motion(sim_state *st) {
   swarf_motion *m = &st->motions[st->n];
   swarf_sweep *s = &st->sweeps[st->n];
   swarf_stock_cut *c = &st->cuts[st->n];
-  swarf_sweep_init(s, st->cutter, m);
+  swarf_sweep_init_voxel(s, st->cutter, m, st->cfg->voxel);
   swarf_sweep_bounds(s, c->lo, c->hi);
   if (!boxes_overlap(c->lo, c->hi, st->pad_lo, st->pad_hi)) return 0;
   c->sdf = sweep_sdf;
   c->ctx = s;
   if (st->cfg->stamp_step > 0) {
     stamp_ctx *sc = &st->stamps[st->n];
-    double n = ceil(m->length / st->cfg->stamp_step);
+    /* poses stamp_step apart along the path of the cutter's farthest point */
+    double n = ceil((m->length + m->turn * hypot(0.5 * st->cutter->diameter, st->cutter->length)) /
+                    st->cfg->stamp_step);
     sc->cutter = st->cutter;
     sc->motion = m;
     sc->n = n < 1 ? 1 : n > 1e6 ? 1000000 : (int)n;
@@ -139,9 +144,11 @@ static int on_move(const swarf_move *mv, void *user) {
   swarf_motion *m = &st->motions[st->n];
   if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(st, mv);
   if (mv->kind == SWARF_MOVE_DWELL) return 0;
-  if (swarf_motion_from_move(mv, m) != 0)
-    return fail_at(st, mv, "rotary axis motion needs a 4- or 5-axis machine; the xyz machine "
-                           "moves X, Y and Z only");
+  int rc = swarf_machine_motion(&st->cfg->machine, mv, m);
+  if (rc == -2)
+    return fail_at(st, mv, "this move turns a rotary axis the machine does not have; choose "
+                           "one with --machine xyza, xyzac-trt or xyzbc-trt");
+  if (rc != 0) return 0;
   st->rep->moves++;
   st->rep->rapids += m->rapid;
   st->rep->arcs += m->kind == SWARF_MOTION_HELIX;
@@ -172,8 +179,13 @@ static int state_init(sim_state *st, const swarf_sim_config *cfg, const char *na
     return 1;
   }
   if (cfg->ntools == 1) st->cutter = &cfg->tools[0].cutter;
-  st->stock = swarf_stock_new_box(cfg->stock_lo, cfg->stock_hi, cfg->voxel, cfg->half_width,
-                                  msg, msglen);
+  if (cfg->stock_cylinder)
+    st->stock = swarf_stock_new_cylinder(cfg->cyl_axis, cfg->cyl_radius, cfg->stock_lo[cfg->cyl_axis],
+                                         cfg->stock_hi[cfg->cyl_axis], cfg->voxel,
+                                         cfg->half_width, msg, msglen);
+  else
+    st->stock = swarf_stock_new_box(cfg->stock_lo, cfg->stock_hi, cfg->voxel, cfg->half_width,
+                                    msg, msglen);
   if (st->stock == NULL) return 1;
   double band = swarf_stock_voxel(st->stock) * (swarf_stock_half_width(st->stock) + 1);
   for (int k = 0; k < 3; k++) {

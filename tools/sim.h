@@ -29,7 +29,13 @@ typedef struct {
 } swarf_sim_tool;
 
 typedef struct {
-  double stock_lo[3], stock_hi[3]; /* box stock, mm */
+  double stock_lo[3], stock_hi[3]; /* box stock, mm (a cylinder: its bounding box) */
+  int stock_cylinder;              /* 1: cylinder about axis cyl_axis (0 x, 1 y, 2 z) through
+                                    * the origin, radius cyl_radius, from stock_lo to stock_hi
+                                    * along the axis */
+  int cyl_axis;
+  double cyl_radius;
+  swarf_machine machine;           /* kinematics (all zero: the xyz machine) */
   double voxel;                    /* voxel edge, mm */
   int half_width;                  /* narrow band, voxels each side (>= 3) */
   swarf_sim_tool tools[SWARF_SIM_MAX_TOOLS];
@@ -62,6 +68,10 @@ int swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, char *msg, size_
 
 /* Parse "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX". Returns 0 or -1 with a reason. */
 int swarf_sim_parse_box(const char *spec, double lo[3], double hi[3], char *msg, size_t msglen);
+
+/* Parse a --stock value, box:... or cylinder:AXIS,RADIUS,START,END (AXIS x, y
+ * or z), into the stock fields of cfg. Returns 0 or -1 with a reason. */
+int swarf_sim_parse_stock(const char *spec, swarf_sim_config *cfg, char *msg, size_t msglen);
 
 /* Run the program at `path` (or, with swarf_sim_run_text, the `len` bytes of
  * `text`, named `name` in messages). On success returns 0 and *out is a new

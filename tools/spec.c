@@ -1,6 +1,7 @@
 /* spec.c -- parsing of the command line's stock and tool specifications.
  *
  *   box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX        (mm)
+ *   cylinder:AXIS,RADIUS,START,END           (AXIS x, y or z through the origin; mm)
  *   T<n>=<ball|flat|bull>,D<d>[,R<r>][,L<l>]  (mm)
  *
  * Every number must be finite and complete; messages say what to write.
@@ -29,7 +30,8 @@ int swarf_sim_parse_box(const char *spec, double lo[3], double hi[3], char *msg,
   const char *s = spec;
   double v[6];
   if (spec == NULL || strncmp(s, "box:", 4) != 0) {
-    snprintf(msg, msglen, "--stock: unknown stock \"%s\"; %s", spec ? spec : "", usage);
+    snprintf(msg, msglen, "--stock: unknown stock \"%s\"; %s, or cylinder:AXIS,RADIUS,START,END",
+             spec ? spec : "", usage);
     return -1;
   }
   s += 4;
@@ -50,6 +52,41 @@ int swarf_sim_parse_box(const char *spec, double lo[3], double hi[3], char *msg,
     hi[k] = v[k + 3];
   }
   return 0;
+}
+
+static int parse_cylinder(const char *spec, swarf_sim_config *cfg, char *msg, size_t msglen) {
+  static const char usage[] = "write --stock cylinder:AXIS,RADIUS,START,END (AXIS x, y or z; mm)";
+  const char *s = spec + 9, *axes = "xyz", *a = *s ? strchr(axes, tolower((unsigned char)*s)) : NULL;
+  double v[3];
+  if (a == NULL || s[1] != ',') {
+    snprintf(msg, msglen, "--stock: bad axis in \"%s\"; %s", spec, usage);
+    return -1;
+  }
+  s += 2;
+  for (int i = 0; i < 3; i++) {
+    if (read_number(&s, &v[i]) != 0 || (*s != (i < 2 ? ',' : '\0'))) {
+      snprintf(msg, msglen, "--stock: bad number %d in \"%s\"; %s", i + 1, spec, usage);
+      return -1;
+    }
+    s++;
+  }
+  if (!(v[0] > 0) || !(v[1] < v[2])) {
+    snprintf(msg, msglen, "--stock: need RADIUS > 0 and START < END in \"%s\"; %s", spec, usage);
+    return -1;
+  }
+  cfg->stock_cylinder = 1;
+  cfg->cyl_axis = (int)(a - axes);
+  cfg->cyl_radius = v[0];
+  for (int k = 0; k < 3; k++) cfg->stock_lo[k] = -v[0], cfg->stock_hi[k] = v[0];
+  cfg->stock_lo[cfg->cyl_axis] = v[1];
+  cfg->stock_hi[cfg->cyl_axis] = v[2];
+  return 0;
+}
+
+int swarf_sim_parse_stock(const char *spec, swarf_sim_config *cfg, char *msg, size_t msglen) {
+  if (spec != NULL && strncmp(spec, "cylinder:", 9) == 0) return parse_cylinder(spec, cfg, msg, msglen);
+  cfg->stock_cylinder = 0;
+  return swarf_sim_parse_box(spec, cfg->stock_lo, cfg->stock_hi, msg, msglen);
 }
 
 static int parse_shape(const char **s, swarf_cutter_shape *shape) {

@@ -1,0 +1,132 @@
+/* rigid.c -- rigid motions with rotation (RIGID kind, toolpath.h): pose,
+ * velocities and tip bounds for machines with rotary table axes.
+ *
+ * R(a) = Rot(e1, th1(a)) Rot(e2, th2(a)) takes the workpiece to the machine,
+ * the cutter keeps its machine orientation, so U = R^T and, with d = th1 - th0,
+ *   U^T dU/da = [omega]_x,  omega = -(d1 e1 + d2 Rot(e1, th1) e2)
+ * (in the cutter frame, which is parallel to the machine frame). Values only.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "toolpath_private.h"
+
+/* Rotation matrix (row-major) by th about the unit axis n (right-hand rule). */
+static void rot_matrix(const double n[3], double th, double M[9]) {
+  double c = cos(th), s = sin(th), k = 1.0 - c;
+  M[0] = c + n[0] * n[0] * k;
+  M[1] = n[0] * n[1] * k - n[2] * s;
+  M[2] = n[0] * n[2] * k + n[1] * s;
+  M[3] = n[1] * n[0] * k + n[2] * s;
+  M[4] = c + n[1] * n[1] * k;
+  M[5] = n[1] * n[2] * k - n[0] * s;
+  M[6] = n[2] * n[0] * k - n[1] * s;
+  M[7] = n[2] * n[1] * k + n[0] * s;
+  M[8] = c + n[2] * n[2] * k;
+}
+
+static void mat_mul(const double A[9], const double B[9], double C[9]) {
+  double r[9];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      r[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
+  memcpy(C, r, sizeof r);
+}
+
+static void angles(const swarf_motion *m, double alpha, double th[2]) {
+  for (int k = 0; k < 2; k++)
+    th[k] = m->th0[k] + alpha * (m->th1[k] - m->th0[k]);
+}
+
+/* R(alpha) (workpiece -> machine), row-major; R1 = Rot(e1, th1) if not NULL. */
+static void table_rotation(const swarf_motion *m, double alpha, double R[9], double R1[9]) {
+  double th[2], A[9], B[9];
+  angles(m, alpha, th);
+  rot_matrix(m->e1, th[0], A);
+  if (m->e2[0] == 0.0 && m->e2[1] == 0.0 && m->e2[2] == 0.0)
+    memcpy(R, A, sizeof A);
+  else {
+    rot_matrix(m->e2, th[1], B);
+    mat_mul(A, B, R);
+  }
+  if (R1 != NULL) memcpy(R1, A, sizeof A);
+}
+
+/* Tip in the machine frame at alpha (joint mode) minus the pivot, and dP/da. */
+static void machine_arm(const swarf_motion *m, double alpha, double d[3], double dP[3]) {
+  swarf_path_point(m, alpha, d, dP);
+  for (int k = 0; k < 3; k++)
+    d[k] -= m->pivot[k];
+}
+
+void swarf_rigid_eval(const swarf_motion *m, double alpha, double t[3], double U[9]) {
+  double R[9], d[3];
+  table_rotation(m, alpha, R, NULL);
+  if (U != NULL)
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        U[3 * i + j] = R[3 * j + i];
+  if (m->tcp) {
+    swarf_path_point(m, alpha, t, NULL);
+    return;
+  }
+  machine_arm(m, alpha, d, NULL); /* t = pivot + R^T d */
+  for (int k = 0; k < 3; k++)
+    t[k] = m->pivot[k] + R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
+}
+
+void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
+                          double omega[3]) {
+  double R[9], R1[9], w[3], vv[3], td[3], d[3], dP[3];
+  double d1 = m->th1[0] - m->th0[0], d2 = m->th1[1] - m->th0[1];
+  table_rotation(m, alpha, R, R1);
+  for (int k = 0; k < 3; k++)
+    w[k] = -(d1 * m->e1[k] +
+             d2 * (R1[3 * k] * m->e2[0] + R1[3 * k + 1] * m->e2[1] + R1[3 * k + 2] * m->e2[2]));
+  if (m->tcp) { /* v = U^T tdot = R tdot */
+    swarf_path_point(m, alpha, d, td);
+    for (int k = 0; k < 3; k++)
+      vv[k] = R[3 * k] * td[0] + R[3 * k + 1] * td[1] + R[3 * k + 2] * td[2];
+  } else { /* v = omega x (P - pivot) + dP/da */
+    machine_arm(m, alpha, d, dP);
+    vv[0] = w[1] * d[2] - w[2] * d[1] + dP[0];
+    vv[1] = w[2] * d[0] - w[0] * d[2] + dP[1];
+    vv[2] = w[0] * d[1] - w[1] * d[0] + dP[2];
+    for (int k = 0; k < 3; k++)
+      td[k] = R[k] * vv[0] + R[3 + k] * vv[1] + R[6 + k] * vv[2];
+  }
+  if (tdot != NULL) memcpy(tdot, td, sizeof td);
+  if (v != NULL) memcpy(v, vv, sizeof vv);
+  if (omega != NULL) memcpy(omega, w, sizeof w);
+}
+
+/* Tip path bounds: SAMPLES poses, widened by the distance the tip can travel
+ * between two of them (half a step at the largest sampled speed, doubled for
+ * safety: the speed varies by a factor 1 + O(turn) only). */
+#define SAMPLES 64
+void swarf_rigid_bounds(const swarf_motion *m, double lo[3], double hi[3]) {
+  double t[3], td[3], speed = 0.0;
+  for (int k = 0; k < 3; k++)
+    lo[k] = INFINITY, hi[k] = -INFINITY;
+  for (int i = 0; i <= SAMPLES; i++) {
+    swarf_rigid_eval(m, (double)i / SAMPLES, t, NULL);
+    swarf_rigid_velocity(m, (double)i / SAMPLES, td, NULL, NULL);
+    speed = fmax(speed, sqrt(td[0] * td[0] + td[1] * td[1] + td[2] * td[2]));
+    for (int k = 0; k < 3; k++)
+      lo[k] = fmin(lo[k], t[k]), hi[k] = fmax(hi[k], t[k]);
+  }
+  for (int k = 0; k < 3; k++)
+    lo[k] -= speed / SAMPLES, hi[k] += speed / SAMPLES;
+}
+
+/* Tip path length (workpiece frame) by Simpson's rule on 64 intervals
+ * (exact for TCP lines and helices). */
+double swarf_rigid_length(const swarf_motion *m) {
+  double sum = 0.0, td[3];
+  for (int i = 0; i <= SAMPLES; i++) {
+    double w = i == 0 || i == SAMPLES ? 1.0 : (i % 2 ? 4.0 : 2.0);
+    swarf_rigid_velocity(m, (double)i / SAMPLES, td, NULL, NULL);
+    sum += w * sqrt(td[0] * td[0] + td[1] * td[1] + td[2] * td[2]);
+  }
+  return sum / (3.0 * SAMPLES);
+}

@@ -126,15 +126,17 @@ void swarf_xquad_char(swarf_xquad *f, const swarf_xquad *h, const fmpq *v, const
 /* ---- The exact characteristic curve ------------------------------------- */
 
 typedef enum {
-  SWARF_ENV_CURVE,         /* a curve: components > 0, ELM done */
-  SWARF_ENV_STILL,         /* v = omega = 0: no motion */
-  SWARF_ENV_SPIN,          /* rotation about the QSS's own axis: no characteristic */
-  SWARF_ENV_SPHERE,        /* f = 0: the whole sphere is characteristic */
-  SWARF_ENV_EMPTY,         /* Delta < 0 on (-1, 1): empty Gauss image */
-  SWARF_ENV_POINTS,        /* Delta <= 0, zero only at isolated points */
-  SWARF_ENV_CIRCLES,       /* A = B = 0: f depends on z only; latitude circles at the
-                            * roots of C (a translation along the axis: the equator) */
-  SWARF_ENV_NOT_REVOLUTION /* f is not linear per z-slice */
+  SWARF_ENV_CURVE,          /* a curve: components > 0, ELM done */
+  SWARF_ENV_STILL,          /* v = omega = 0: no motion */
+  SWARF_ENV_SPIN,           /* rotation about the QSS's own axis: no characteristic */
+  SWARF_ENV_SPHERE,         /* f = 0: the whole sphere is characteristic */
+  SWARF_ENV_EMPTY,          /* Delta < 0 on (-1, 1): empty Gauss image */
+  SWARF_ENV_POINTS,         /* Delta <= 0, zero only at isolated points */
+  SWARF_ENV_NOT_REVOLUTION, /* f is not linear per z-slice */
+  SWARF_ENV_CIRCLES,        /* A = B = 0: f depends on z only; latitude circles at the
+                             * roots of C (a translation along the axis: the equator) */
+  SWARF_ENV_GREAT_CIRCLE    /* f is linear (a pure translation, or a sphere): the Gauss
+                             * image is the great circle f = 0, no ELM needed */
 } swarf_env_kind;
 
 /* A real root of Delta in [-1, 1]: a certified enclosure (ball), the exact

@@ -12,35 +12,44 @@
 #include <stdlib.h>
 
 #include <arb_fmpz_poly.h>
-#include <flint/fmpz_factor.h>
+#include <flint/ulong_extras.h>
 #include <flint/fmpz_poly_factor.h>
 
 #include "exact_private.h"
 
 #define MAX_PREC 8192
+#define SMALL_PRIMES 1000
 
+/* Square factors are pulled out by trial division up to SMALL_PRIMES and a
+ * final perfect-square test, never by full factorization (which can take
+ * forever on the large integers of arbitrary rational slices): r is then
+ * not a square, which is all the field arithmetic needs. */
 void swarf_exact_sqrt_split(fmpz_t r, fmpq_t q, const fmpq_t x) {
-  fmpz_factor_t fac;
-  fmpz_t nd, sq, p;
-  fmpz_init(nd);
-  fmpz_init(sq);
-  fmpz_init(p);
-  fmpz_factor_init(fac);
+  fmpz_t nd, sq, p, t;
+  fmpz_init(nd), fmpz_init(sq), fmpz_init(p), fmpz_init(t);
   fmpz_mul(nd, fmpq_numref(x), fmpq_denref(x)); /* sqrt(n/d) = sqrt(n d) / d */
-  fmpz_factor(fac, nd);
   fmpz_one(r);
   fmpz_one(sq);
-  for (slong i = 0; i < fac->num; i++) {
-    if (fac->exp[i] & 1) fmpz_mul(r, r, fac->p + i);
-    fmpz_pow_ui(p, fac->p + i, fac->exp[i] / 2);
-    fmpz_mul(sq, sq, p);
-  }
   if (fmpz_is_zero(nd)) fmpz_zero(sq);
+  for (ulong pr = 2; pr < SMALL_PRIMES && !fmpz_is_zero(nd) && !fmpz_is_one(nd);
+       pr = n_nextprime(pr, 1)) {
+    slong e;
+    fmpz_set_ui(p, pr);
+    e = fmpz_remove(nd, nd, p);
+    if (e & 1) fmpz_mul_ui(r, r, pr);
+    fmpz_pow_ui(t, p, (ulong)(e / 2));
+    fmpz_mul(sq, sq, t);
+  }
+  if (!fmpz_is_zero(nd)) {
+    if (fmpz_is_square(nd)) {
+      fmpz_sqrt(t, nd);
+      fmpz_mul(sq, sq, t);
+    } else {
+      fmpz_mul(r, r, nd);
+    }
+  }
   fmpq_set_fmpz_frac(q, sq, fmpq_denref(x));
-  fmpz_factor_clear(fac);
-  fmpz_clear(nd);
-  fmpz_clear(sq);
-  fmpz_clear(p);
+  fmpz_clear(nd), fmpz_clear(sq), fmpz_clear(p), fmpz_clear(t);
 }
 
 int swarf_exact_slice_lines(swarf_envelope_exact *E) {

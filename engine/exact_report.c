@@ -82,6 +82,7 @@ int swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h, 
   }
   if (swarf_exact_delta_roots(E) != 0) return -1;
   if (fmpq_poly_is_zero(E->A) && fmpq_poly_is_zero(E->B)) E->kind = SWARF_ENV_CIRCLES;
+  else if (all_zero(E->f.c, SWARF_X)) E->kind = SWARF_ENV_GREAT_CIRCLE;
   else if (E->ncomp > 0) E->kind = SWARF_ENV_CURVE;
   else E->kind = E->nroots > 0 ? SWARF_ENV_POINTS : SWARF_ENV_EMPTY;
   if (E->kind == SWARF_ENV_CURVE && swarf_exact_elm(E) != 0) E->kind = SWARF_ENV_POINTS;
@@ -127,7 +128,8 @@ static const char *kind_name(swarf_env_kind k) {
                                 "spin about the own axis (no characteristic)",
                                 "whole sphere (degenerate)", "empty Gauss image",
                                 "isolated points", "not a QSS of revolution",
-                                "latitude circles (A = B = 0)"};
+                                "latitude circles (A = B = 0)",
+                                "great circle (f linear: translation or sphere)"};
   return names[k];
 }
 

@@ -11,7 +11,8 @@
 
 static double horner(const double *c, int deg, double x) {
   double p = c[deg];
-  for (int i = deg - 1; i >= 0; i--) p = p * x + c[i];
+  for (int i = deg - 1; i >= 0; i--)
+    p = p * x + c[i];
   return p;
 }
 
@@ -20,18 +21,21 @@ static double bisect(const double *c, int deg, double lo, double hi) {
   for (;;) {
     double mid = 0.5 * (lo + hi);
     if (mid <= lo || mid >= hi) return mid;
-    if ((horner(c, deg, mid) > 0.0) == slo) lo = mid;
-    else hi = mid;
+    if ((horner(c, deg, mid) > 0.0) == slo)
+      lo = mid;
+    else
+      hi = mid;
   }
 }
 
-int swarf_char_poly_roots(const double *c, int deg, double lo, double hi, double *roots,
-                          int max) {
+int swarf_char_poly_roots(const double *c, int deg, double lo, double hi, double *roots, int max) {
   double d[MAX_DEG], ends[MAX_DEG + 1];
   int ncrit, n = 0;
-  while (deg > 0 && c[deg] == 0.0) deg--;
+  while (deg > 0 && c[deg] == 0.0)
+    deg--;
   if (deg <= 0 || deg > MAX_DEG) return 0;
-  for (int i = 1; i <= deg; i++) d[i - 1] = i * c[i];
+  for (int i = 1; i <= deg; i++)
+    d[i - 1] = i * c[i];
   ends[0] = lo;
   ncrit = swarf_char_poly_roots(d, deg - 1, lo, hi, ends + 1, MAX_DEG - 1);
   ends[ncrit + 1] = hi;

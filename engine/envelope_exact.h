@@ -80,8 +80,19 @@ char *swarf_qr_poly_get_str(const swarf_qr_poly *p, const fmpz_t r, const char *
 /* ---- Quadratic polynomials in n = (x, y, z) over Q ---------------------- */
 
 /* Coefficients, in this order, of x^2 y^2 z^2 xy xz yz x y z 1. */
-enum { SWARF_XX, SWARF_YY, SWARF_ZZ, SWARF_XY, SWARF_XZ, SWARF_YZ, SWARF_X, SWARF_Y, SWARF_Z,
-       SWARF_ONE, SWARF_QUAD_TERMS };
+enum {
+  SWARF_XX,
+  SWARF_YY,
+  SWARF_ZZ,
+  SWARF_XY,
+  SWARF_XZ,
+  SWARF_YZ,
+  SWARF_X,
+  SWARF_Y,
+  SWARF_Z,
+  SWARF_ONE,
+  SWARF_QUAD_TERMS
+};
 
 typedef struct {
   fmpq c[SWARF_QUAD_TERMS];
@@ -152,23 +163,23 @@ typedef struct {
 /* Everything the exact path finds, in the paper's order. */
 typedef struct {
   swarf_env_kind kind;
-  swarf_xquad f;             /* eq. 11 over Q */
-  fmpq_poly_t A, B, C;       /* f = A(z) x + B(z) y + C(z) */
-  fmpq_poly_t delta;         /* Delta(z) = (1 - z^2)(A^2 + B^2) - C^2 */
-  fmpz_poly_t delta_prim;    /* Delta scaled to a primitive integer polynomial */
-  int delta_factors;         /* irreducible factors over Q (with multiplicity) */
-  swarf_env_root *roots;     /* real roots in [-1, 1], ascending */
+  swarf_xquad f;          /* eq. 11 over Q */
+  fmpq_poly_t A, B, C;    /* f = A(z) x + B(z) y + C(z) */
+  fmpq_poly_t delta;      /* Delta(z) = (1 - z^2)(A^2 + B^2) - C^2 */
+  fmpz_poly_t delta_prim; /* Delta scaled to a primitive integer polynomial */
+  int delta_factors;      /* irreducible factors over Q (with multiplicity) */
+  swarf_env_root *roots;  /* real roots in [-1, 1], ascending */
   int nroots;
   int ncomp;                 /* components: intervals of [-1, 1] where Delta > 0 */
   double *comp_lo, *comp_hi; /* their z ranges (rounded) */
   /* ELM (kind == SWARF_ENV_CURVE): */
-  fmpz_t r;                  /* P, cubic, ... lie in Q(sqrt r) */
+  fmpz_t r; /* P, cubic, ... lie in Q(sqrt r) */
   fmpq_t z0;
-  swarf_qr P[3], T[3];       /* the point of Lemma 1 and the curve tangent there */
-  swarf_qr cubic[4][4];      /* cubic[i][j]: coefficient of xi^i eta^j */
-  swarf_qr R[2];             /* tangent at P meets z = 0 */
-  swarf_qr_poly k, l, m;     /* t(s) = (k +- sqrt l) / m */
-  swarf_qr_poly D;           /* m in the paper's normalization (eq. 22) */
+  swarf_qr P[3], T[3];   /* the point of Lemma 1 and the curve tangent there */
+  swarf_qr cubic[4][4];  /* cubic[i][j]: coefficient of xi^i eta^j */
+  swarf_qr R[2];         /* tangent at P meets z = 0 */
+  swarf_qr_poly k, l, m; /* t(s) = (k +- sqrt l) / m */
+  swarf_qr_poly D;       /* m in the paper's normalization (eq. 22) */
 } swarf_envelope_exact;
 
 void swarf_envelope_exact_init(swarf_envelope_exact *E);
@@ -189,8 +200,7 @@ int swarf_envelope_exact_slice(const swarf_envelope_exact *E, const fmpq_t z, fm
 /* A point of the ELM parameterization (double precision from the exact
  * coefficients): pencil parameter s, root sign (+1/-1). Returns 0, or -1
  * where l(s) < 0 or m(s) = 0. */
-int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign,
-                                   double n[3]);
+int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign, double n[3]);
 
 /* The back-projection of Theorem 2 checked as polynomial identities in
  * Q(sqrt r)[s, w] / (w^2 - l(s)): with Q(s) = R + (k + w)/m (1 - R_xi, s - R_eta),

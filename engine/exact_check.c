@@ -60,8 +60,7 @@ int swarf_envelope_exact_slice(const swarf_envelope_exact *E, const fmpq_t z, fm
   return sgn > 0 ? 2 : 1;
 }
 
-int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign,
-                                   double n[3]) {
+int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign, double n[3]) {
   const fmpz *r = E->r;
   double k, l, m, t, P[3], Q[3], e[3], pe = 0.0, ee = 0.0;
   if (E->kind != SWARF_ENV_CURVE) return -1;
@@ -70,7 +69,8 @@ int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int 
   m = swarf_qr_poly_evaluate_d(&E->m, r, s);
   if (l < 0.0 || m == 0.0) return -1;
   t = (k + sign * sqrt(l)) / m;
-  for (int i = 0; i < 3; i++) P[i] = swarf_qr_get_d(&E->P[i], r);
+  for (int i = 0; i < 3; i++)
+    P[i] = swarf_qr_get_d(&E->P[i], r);
   Q[0] = swarf_qr_get_d(&E->R[0], r);
   Q[1] = swarf_qr_get_d(&E->R[1], r);
   Q[0] += t * (1.0 - Q[0]);
@@ -82,7 +82,8 @@ int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int 
     ee += e[i] * e[i];
   }
   if (!(ee > 0.0)) return -1;
-  for (int i = 0; i < 3; i++) n[i] = P[i] - 2.0 * pe / ee * e[i];
+  for (int i = 0; i < 3; i++)
+    n[i] = P[i] - 2.0 * pe / ee * e[i];
   return 0;
 }
 
@@ -112,8 +113,7 @@ static void re_sub(relt *z, const relt *x, const relt *y) {
   swarf_qr_poly_sub(&z->p1, &x->p1, &y->p1);
 }
 
-static void re_mul(relt *z, const relt *x, const relt *y, const swarf_qr_poly *l,
-                   const fmpz_t r) {
+static void re_mul(relt *z, const relt *x, const relt *y, const swarf_qr_poly *l, const fmpz_t r) {
   swarf_qr_poly a, b, t;
   swarf_qr_poly_init(&a), swarf_qr_poly_init(&b), swarf_qr_poly_init(&t);
   swarf_qr_poly_mul(&a, &x->p0, &y->p0, r);
@@ -206,7 +206,8 @@ int swarf_envelope_exact_check_elm(const swarf_envelope_exact *E) {
   swarf_qr two;
   int ok;
   if (E == NULL || E->kind != SWARF_ENV_CURVE) return -1;
-  for (int i = 0; i < 3; i++) re_init(&e[i]), re_init(&N[i]);
+  for (int i = 0; i < 3; i++)
+    re_init(&e[i]), re_init(&N[i]);
   re_init(&den), re_init(&pe), re_init(&t), re_init(&fh);
   swarf_qr_init(&two);
   fmpq_set_si(two.a, 2, 1);
@@ -231,7 +232,8 @@ int swarf_envelope_exact_check_elm(const swarf_envelope_exact *E) {
     re_sub(&fh, &fh, &t);
   }
   ok = ok && re_is_zero(&fh) && !re_is_zero(&den);
-  for (int i = 0; i < 3; i++) re_clear(&e[i]), re_clear(&N[i]);
+  for (int i = 0; i < 3; i++)
+    re_clear(&e[i]), re_clear(&N[i]);
   re_clear(&den), re_clear(&pe), re_clear(&t), re_clear(&fh);
   swarf_qr_clear(&two);
   return ok;

@@ -12,8 +12,8 @@
 #include <stdlib.h>
 
 #include <arb_fmpz_poly.h>
-#include <flint/ulong_extras.h>
 #include <flint/fmpz_poly_factor.h>
+#include <flint/ulong_extras.h>
 
 #include "exact_private.h"
 
@@ -204,8 +204,10 @@ static int components(swarf_envelope_exact *E) {
       if (lo != NULL) E->comp_lo = lo;
       hi = lo ? realloc(E->comp_hi, (E->ncomp + 1) * sizeof *hi) : NULL;
       if (hi != NULL) E->comp_hi = hi;
-      if (hi == NULL) err = -1;
-      else E->comp_lo[E->ncomp++] = root_d(E, i - 1);
+      if (hi == NULL)
+        err = -1;
+      else
+        E->comp_lo[E->ncomp++] = root_d(E, i - 1);
     }
     if (pos && !err) E->comp_hi[E->ncomp - 1] = root_d(E, i);
     open = pos;
@@ -235,8 +237,10 @@ static int find_roots(swarf_envelope_exact *E, const fmpz_poly_factor_t fac, slo
   int err = 0;
   for (slong i = 0; i < fac->num && !err; i++) {
     const fmpz_poly_struct *p = fac->p + i;
-    if (fmpz_poly_degree(p) == 1) err = linear_root(E, p, (int)fac->exp[i]);
-    else if (fmpz_poly_degree(p) > 1) err = factor_roots(E, p, (int)fac->exp[i], prec);
+    if (fmpz_poly_degree(p) == 1)
+      err = linear_root(E, p, (int)fac->exp[i]);
+    else if (fmpz_poly_degree(p) > 1)
+      err = factor_roots(E, p, (int)fac->exp[i], prec);
   }
   if (err == 0) qsort(E->roots, E->nroots, sizeof *E->roots, by_mid);
   return err;
@@ -254,7 +258,8 @@ int swarf_exact_delta_roots(swarf_envelope_exact *E) {
     return 0;
   }
   fmpz_poly_factor(fac, E->delta_prim);
-  for (slong i = 0; i < fac->num; i++) E->delta_factors += (int)fac->exp[i];
+  for (slong i = 0; i < fac->num; i++)
+    E->delta_factors += (int)fac->exp[i];
   for (slong prec = 128;; prec *= 4) {
     err = find_roots(E, fac, prec);
     if (err || !overlapping(E) || prec >= MAX_PREC) break;

@@ -19,19 +19,23 @@ typedef struct {
 
 static void bp_init(bipoly *p) {
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++) swarf_qr_init(&p->c[i][j]);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_init(&p->c[i][j]);
 }
 
 static void bp_clear(bipoly *p) {
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++) swarf_qr_clear(&p->c[i][j]);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_clear(&p->c[i][j]);
 }
 
 static void bp_add(bipoly *z, const bipoly *p, const bipoly *q, int sign) {
   for (int i = 0; i < 4; i++)
     for (int j = 0; j < 4; j++) {
-      if (sign > 0) swarf_qr_add(&z->c[i][j], &p->c[i][j], &q->c[i][j]);
-      else swarf_qr_sub(&z->c[i][j], &p->c[i][j], &q->c[i][j]);
+      if (sign > 0)
+        swarf_qr_add(&z->c[i][j], &p->c[i][j], &q->c[i][j]);
+      else
+        swarf_qr_sub(&z->c[i][j], &p->c[i][j], &q->c[i][j]);
     }
 }
 
@@ -56,20 +60,22 @@ static void bp_mul(bipoly *z, const bipoly *p, const bipoly *q, const fmpz_t r) 
   bp_init(&acc);
   bp_addmul(&acc, p, q, r);
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++) swarf_qr_set(&z->c[i][j], &acc.c[i][j]);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_set(&z->c[i][j], &acc.c[i][j]);
   bp_clear(&acc);
 }
 
 static void bp_scale(bipoly *z, const bipoly *p, const swarf_qr *c, const fmpz_t r) {
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++) swarf_qr_mul(&z->c[i][j], &p->c[i][j], c, r);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_mul(&z->c[i][j], &p->c[i][j], c, r);
 }
 
 /* Gradient of f at a point of Q(sqrt r)^3. */
 static void quad_grad(swarf_qr g[3], const swarf_xquad *f, const swarf_qr *n, const fmpz_t r) {
   static const int sq[3] = {SWARF_XX, SWARF_YY, SWARF_ZZ}, lin[3] = {SWARF_X, SWARF_Y, SWARF_Z};
-  static const int mix[3][3] = {{-1, SWARF_XY, SWARF_XZ}, {SWARF_XY, -1, SWARF_YZ},
-                                {SWARF_XZ, SWARF_YZ, -1}};
+  static const int mix[3][3] = {
+      {-1, SWARF_XY, SWARF_XZ}, {SWARF_XY, -1, SWARF_YZ}, {SWARF_XZ, SWARF_YZ, -1}};
   swarf_qr t;
   fmpq_t two;
   swarf_qr_init(&t);
@@ -138,7 +144,8 @@ static void make_cubic(swarf_envelope_exact *E) {
   bp_mul(&t, &F0, &G1, r);
   bp_add(&cub, &cub, &t, -1);
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++) swarf_qr_set(&E->cubic[i][j], &cub.c[i][j]);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_set(&E->cubic[i][j], &cub.c[i][j]);
   for (int k = 0; k < 3; k++) {
     bp_clear(&u[k]);
     swarf_qr_clear(&g[k]);
@@ -152,7 +159,8 @@ static int tangent_point(swarf_envelope_exact *E) {
   const fmpz *r = E->r;
   swarf_qr g[3], a, b, lam;
   int ok = 0;
-  for (int k = 0; k < 3; k++) swarf_qr_init(&g[k]);
+  for (int k = 0; k < 3; k++)
+    swarf_qr_init(&g[k]);
   swarf_qr_init(&a), swarf_qr_init(&b), swarf_qr_init(&lam);
   quad_grad(g, &E->f, E->P, r);
   for (int k = 0; k < 3; k++) {
@@ -170,7 +178,8 @@ static int tangent_point(swarf_envelope_exact *E) {
   } else {
     ok = -1;
   }
-  for (int k = 0; k < 3; k++) swarf_qr_clear(&g[k]);
+  for (int k = 0; k < 3; k++)
+    swarf_qr_clear(&g[k]);
   swarf_qr_clear(&a), swarf_qr_clear(&b), swarf_qr_clear(&lam);
   return ok;
 }
@@ -192,8 +201,10 @@ static int pencil(swarf_envelope_exact *E) {
   fmpq_one(eta.c[1][1].a);
   for (int p = 0; p < 4; p++) {
     bp_init(&xp[p]), bp_init(&ep[p]);
-    if (p == 0) fmpq_one(xp[0].c[0][0].a), fmpq_one(ep[0].c[0][0].a);
-    else bp_mul(&xp[p], &xp[p - 1], &xi, r), bp_mul(&ep[p], &ep[p - 1], &eta, r);
+    if (p == 0)
+      fmpq_one(xp[0].c[0][0].a), fmpq_one(ep[0].c[0][0].a);
+    else
+      bp_mul(&xp[p], &xp[p - 1], &xi, r), bp_mul(&ep[p], &ep[p - 1], &eta, r);
   }
   for (int i = 0; i < 4; i++)
     for (int j = 0; i + j < 4; j++) {
@@ -204,7 +215,8 @@ static int pencil(swarf_envelope_exact *E) {
     }
   for (int i = 0; i < 4; i++) {
     swarf_qr_poly_init(&c[i]);
-    for (int j = 0; j < 4; j++) swarf_qr_poly_set_coeff(&c[i], j, &acc.c[i][j]);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_poly_set_coeff(&c[i], j, &acc.c[i][j]);
   }
   swarf_qr_poly_init(&tmp);
   if (!swarf_qr_poly_is_zero(&c[0]) || swarf_qr_poly_is_zero(&c[3])) ok = -1;
@@ -218,9 +230,11 @@ static int pencil(swarf_envelope_exact *E) {
   fmpq_poly_scalar_mul_si(E->m.a, c[3].a, 2);
   fmpq_poly_scalar_mul_si(E->m.b, c[3].b, 2);
   swarf_qr_poly_primitive(&E->D, &E->m);
-  for (int i = 0; i < 4; i++) swarf_qr_poly_clear(&c[i]);
+  for (int i = 0; i < 4; i++)
+    swarf_qr_poly_clear(&c[i]);
   swarf_qr_poly_clear(&tmp);
-  for (int p = 0; p < 4; p++) bp_clear(&xp[p]), bp_clear(&ep[p]);
+  for (int p = 0; p < 4; p++)
+    bp_clear(&xp[p]), bp_clear(&ep[p]);
   bp_clear(&xi), bp_clear(&eta), bp_clear(&acc), bp_clear(&t);
   return ok;
 }

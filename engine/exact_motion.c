@@ -10,7 +10,8 @@
 #include "envelope_exact.h"
 
 void swarf_xmotion_init(swarf_xmotion *m) {
-  for (int i = 0; i < 9; i++) fmpq_init(m->U + i);
+  for (int i = 0; i < 9; i++)
+    fmpq_init(m->U + i);
   for (int i = 0; i < 3; i++) {
     fmpq_init(m->v + i);
     fmpq_init(m->omega + i);
@@ -20,7 +21,8 @@ void swarf_xmotion_init(swarf_xmotion *m) {
 }
 
 void swarf_xmotion_clear(swarf_xmotion *m) {
-  for (int i = 0; i < 9; i++) fmpq_clear(m->U + i);
+  for (int i = 0; i < 9; i++)
+    fmpq_clear(m->U + i);
   for (int i = 0; i < 3; i++) {
     fmpq_clear(m->v + i);
     fmpq_clear(m->omega + i);
@@ -38,9 +40,9 @@ static int axis_length(fmpq_t len, const fmpq *w) {
   fmpz_init(rn);
   fmpz_init(rd);
   fmpq_zero(len);
-  for (int k = 0; k < 3; k++) fmpq_addmul(len, w + k, w + k);
-  ok = !fmpq_is_zero(len) && fmpz_is_square(fmpq_numref(len)) &&
-       fmpz_is_square(fmpq_denref(len));
+  for (int k = 0; k < 3; k++)
+    fmpq_addmul(len, w + k, w + k);
+  ok = !fmpq_is_zero(len) && fmpz_is_square(fmpq_numref(len)) && fmpz_is_square(fmpq_denref(len));
   if (ok) {
     fmpz_sqrt(rn, fmpq_numref(len));
     fmpz_sqrt(rd, fmpq_denref(len));
@@ -61,12 +63,15 @@ static void rotation_entry(fmpq_t out, int i, int j, const fmpq *k, const fmpq_t
   fmpq_sub(t, t, c);
   fmpq_mul(t, t, k + i);
   fmpq_mul(out, t, k + j);
-  if (i == j) fmpq_add(out, out, c);
+  if (i == j)
+    fmpq_add(out, out, c);
   else {
     int l = 3 - i - j, sign = ((j - i + 3) % 3 == 1) ? -1 : 1; /* [k]x(0,1) = -k2 */
     fmpq_mul(t, s, k + l);
-    if (sign < 0) fmpq_sub(out, out, t);
-    else fmpq_add(out, out, t);
+    if (sign < 0)
+      fmpq_sub(out, out, t);
+    else
+      fmpq_add(out, out, t);
   }
   fmpq_clear(t);
 }
@@ -87,12 +92,15 @@ int swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot, const f
     fmpq_div(c, c, d);
     fmpq_mul_2exp(s, B, 1);
     fmpq_div(s, s, d);
-    for (int k = 0; k < 3; k++) fmpq_div(m->omega + k, w + k, len);
+    for (int k = 0; k < 3; k++)
+      fmpq_div(m->omega + k, w + k, len);
     for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 3; j++) rotation_entry(m->U + 3 * i + j, i, j, m->omega, c, s);
+      for (int j = 0; j < 3; j++)
+        rotation_entry(m->U + 3 * i + j, i, j, m->omega, c, s);
     for (int j = 0; j < 3; j++) { /* v = U^T tdot */
       fmpq_zero(m->v + j);
-      for (int i = 0; i < 3; i++) fmpq_addmul(m->v + j, m->U + 3 * i + j, tdot + i);
+      for (int i = 0; i < 3; i++)
+        fmpq_addmul(m->v + j, m->U + 3 * i + j, tdot + i);
       fmpq_set(m->tdot + j, tdot + j);
     }
     fmpq_set(m->B, B);

@@ -68,7 +68,9 @@ void swarf_qr_mul_fmpq(swarf_qr *z, const swarf_qr *x, const fmpq_t c) {
   fmpq_mul(z->b, x->b, c);
 }
 
-int swarf_qr_is_zero(const swarf_qr *x) { return fmpq_is_zero(x->a) && fmpq_is_zero(x->b); }
+int swarf_qr_is_zero(const swarf_qr *x) {
+  return fmpq_is_zero(x->a) && fmpq_is_zero(x->b);
+}
 
 /* a^2 - r b^2, the norm. */
 static void qr_norm(fmpq_t out, const swarf_qr *x, const fmpz_t r) {
@@ -124,9 +126,11 @@ char *swarf_qr_get_str(const swarf_qr *x, const fmpz_t r) {
   n = strlen(a) + strlen(b) + strlen(rs) + 32;
   out = malloc(n);
   if (out != NULL) {
-    if (fmpq_is_zero(x->a)) snprintf(out, n, "%s*sqrt(%s)", b, rs);
-    else snprintf(out, n, "%s %s %s*sqrt(%s)", a, b[0] == '-' ? "-" : "+",
-                  b[0] == '-' ? b + 1 : b, rs);
+    if (fmpq_is_zero(x->a))
+      snprintf(out, n, "%s*sqrt(%s)", b, rs);
+    else
+      snprintf(out, n, "%s %s %s*sqrt(%s)", a, b[0] == '-' ? "-" : "+", b[0] == '-' ? b + 1 : b,
+               rs);
   }
   flint_free(a);
   flint_free(b);

@@ -17,15 +17,18 @@ static const int expo[SWARF_QUAD_TERMS][3] = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}, {
                                               {0, 0, 1}, {0, 0, 0}};
 
 void swarf_xquad_init(swarf_xquad *q) {
-  for (int i = 0; i < SWARF_QUAD_TERMS; i++) fmpq_init(q->c + i);
+  for (int i = 0; i < SWARF_QUAD_TERMS; i++)
+    fmpq_init(q->c + i);
 }
 
 void swarf_xquad_clear(swarf_xquad *q) {
-  for (int i = 0; i < SWARF_QUAD_TERMS; i++) fmpq_clear(q->c + i);
+  for (int i = 0; i < SWARF_QUAD_TERMS; i++)
+    fmpq_clear(q->c + i);
 }
 
 void swarf_xquad_set_revolution(swarf_xquad *q, const fmpq *abcdef) {
-  for (int i = 0; i < SWARF_QUAD_TERMS; i++) fmpq_zero(q->c + i);
+  for (int i = 0; i < SWARF_QUAD_TERMS; i++)
+    fmpq_zero(q->c + i);
   fmpq_set(q->c + SWARF_XX, abcdef + 0);
   fmpq_set(q->c + SWARF_YY, abcdef + 0);
   fmpq_set(q->c + SWARF_ZZ, abcdef + 1);
@@ -43,7 +46,8 @@ void swarf_xquad_eval(swarf_qr *out, const swarf_xquad *q, const swarf_qr *n, co
     fmpq_one(mono.a);
     fmpq_zero(mono.b);
     for (int k = 0; k < 3; k++)
-      for (int e = 0; e < expo[i][k]; e++) swarf_qr_mul(&mono, &mono, n + k, r);
+      for (int e = 0; e < expo[i][k]; e++)
+        swarf_qr_mul(&mono, &mono, n + k, r);
     swarf_qr_mul_fmpq(&mono, &mono, q->c + i);
     swarf_qr_add(&acc, &acc, &mono);
   }
@@ -74,8 +78,7 @@ char *swarf_xquad_get_str(const swarf_xquad *q) {
   return s;
 }
 
-void swarf_xquad_point_mpoly(fmpq_mpoly_t X[3], const swarf_xquad *h,
-                             const fmpq_mpoly_ctx_t ctx) {
+void swarf_xquad_point_mpoly(fmpq_mpoly_t X[3], const swarf_xquad *h, const fmpq_mpoly_ctx_t ctx) {
   fmpq_mpoly_t hp, g[3], n[3], gn, t;
   fmpq_mpoly_init(hp, ctx);
   fmpq_mpoly_init(gn, ctx);
@@ -109,8 +112,8 @@ int swarf_xquad_is_convex_revolution(const swarf_xquad *h) {
   const fmpq *c = h->c;
   fmpq_t t;
   int ok;
-  if (!fmpq_is_zero(c + SWARF_XY) || !fmpq_is_zero(c + SWARF_XZ) ||
-      !fmpq_is_zero(c + SWARF_YZ) || !fmpq_equal(c + SWARF_XX, c + SWARF_YY))
+  if (!fmpq_is_zero(c + SWARF_XY) || !fmpq_is_zero(c + SWARF_XZ) || !fmpq_is_zero(c + SWARF_YZ) ||
+      !fmpq_equal(c + SWARF_XX, c + SWARF_YY))
     return -1;
   fmpq_init(t);
   if (fmpq_cmp(c + SWARF_XX, c + SWARF_ZZ) <= 0) {
@@ -134,7 +137,8 @@ void swarf_xquad_char(swarf_xquad *f, const swarf_xquad *h, const fmpq *v, const
   const fmpq *c = h->c;
   fmpq_init(t);
   for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 4; j++) fmpq_init(G[i][j]);
+    for (int j = 0; j < 4; j++)
+      fmpq_init(G[i][j]);
   fmpq_mul_2exp(G[0][0], c + SWARF_XX, 1);
   fmpq_mul_2exp(G[1][1], c + SWARF_YY, 1);
   fmpq_mul_2exp(G[2][2], c + SWARF_ZZ, 1);
@@ -147,8 +151,10 @@ void swarf_xquad_char(swarf_xquad *f, const swarf_xquad *h, const fmpq *v, const
   fmpq_set(G[0][3], c + SWARF_X);
   fmpq_set(G[1][3], c + SWARF_Y);
   fmpq_set(G[2][3], c + SWARF_Z);
-  for (int i = 0; i < SWARF_QUAD_TERMS; i++) fmpq_zero(f->c + i);
-  for (int k = 0; k < 3; k++) fmpq_set(f->c + SWARF_X + k, v + k);
+  for (int i = 0; i < SWARF_QUAD_TERMS; i++)
+    fmpq_zero(f->c + i);
+  for (int k = 0; k < 3; k++)
+    fmpq_set(f->c + SWARF_X + k, v + k);
   /* (g x n) . omega = sum over (i, j, l) cyclic of omega_l (g_i n_j - g_j n_i). */
   for (int l = 0; l < 3; l++) {
     int i = (l + 1) % 3, j = (l + 2) % 3;
@@ -160,12 +166,15 @@ void swarf_xquad_char(swarf_xquad *f, const swarf_xquad *h, const fmpq *v, const
                                        {SWARF_XZ, SWARF_YZ, SWARF_ZZ}};
         int term = src == 3 ? SWARF_X + nj : pair[src][nj];
         fmpq_mul(t, G[gi][src], omega + l);
-        if (side) fmpq_sub(f->c + term, f->c + term, t);
-        else fmpq_add(f->c + term, f->c + term, t);
+        if (side)
+          fmpq_sub(f->c + term, f->c + term, t);
+        else
+          fmpq_add(f->c + term, f->c + term, t);
       }
     }
   }
   for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 4; j++) fmpq_clear(G[i][j]);
+    for (int j = 0; j < 4; j++)
+      fmpq_clear(G[i][j]);
   fmpq_clear(t);
 }

@@ -20,9 +20,11 @@ void swarf_envelope_exact_init(swarf_envelope_exact *E) {
   fmpz_poly_init(E->delta_prim);
   fmpz_init_set_ui(E->r, 1);
   fmpq_init(E->z0);
-  for (int k = 0; k < 3; k++) swarf_qr_init(&E->P[k]), swarf_qr_init(&E->T[k]);
+  for (int k = 0; k < 3; k++)
+    swarf_qr_init(&E->P[k]), swarf_qr_init(&E->T[k]);
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++) swarf_qr_init(&E->cubic[i][j]);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_init(&E->cubic[i][j]);
   swarf_qr_init(&E->R[0]), swarf_qr_init(&E->R[1]);
   swarf_qr_poly_init(&E->k), swarf_qr_poly_init(&E->l), swarf_qr_poly_init(&E->m);
   swarf_qr_poly_init(&E->D);
@@ -33,15 +35,18 @@ void swarf_envelope_exact_clear(swarf_envelope_exact *E) {
   fmpq_poly_clear(E->A), fmpq_poly_clear(E->B), fmpq_poly_clear(E->C);
   fmpq_poly_clear(E->delta);
   fmpz_poly_clear(E->delta_prim);
-  for (int i = 0; i < E->nroots; i++) arb_clear(E->roots[i].z), fmpq_clear(E->roots[i].q);
+  for (int i = 0; i < E->nroots; i++)
+    arb_clear(E->roots[i].z), fmpq_clear(E->roots[i].q);
   free(E->roots);
   free(E->comp_lo);
   free(E->comp_hi);
   fmpz_clear(E->r);
   fmpq_clear(E->z0);
-  for (int k = 0; k < 3; k++) swarf_qr_clear(&E->P[k]), swarf_qr_clear(&E->T[k]);
+  for (int k = 0; k < 3; k++)
+    swarf_qr_clear(&E->P[k]), swarf_qr_clear(&E->T[k]);
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++) swarf_qr_clear(&E->cubic[i][j]);
+    for (int j = 0; j < 4; j++)
+      swarf_qr_clear(&E->cubic[i][j]);
   swarf_qr_clear(&E->R[0]), swarf_qr_clear(&E->R[1]);
   swarf_qr_poly_clear(&E->k), swarf_qr_poly_clear(&E->l), swarf_qr_poly_clear(&E->m);
   swarf_qr_poly_clear(&E->D);
@@ -81,10 +86,14 @@ int swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h, 
     return 0;
   }
   if (swarf_exact_delta_roots(E) != 0) return -1;
-  if (fmpq_poly_is_zero(E->A) && fmpq_poly_is_zero(E->B)) E->kind = SWARF_ENV_CIRCLES;
-  else if (all_zero(E->f.c, SWARF_X)) E->kind = SWARF_ENV_GREAT_CIRCLE;
-  else if (E->ncomp > 0) E->kind = SWARF_ENV_CURVE;
-  else E->kind = E->nroots > 0 ? SWARF_ENV_POINTS : SWARF_ENV_EMPTY;
+  if (fmpq_poly_is_zero(E->A) && fmpq_poly_is_zero(E->B))
+    E->kind = SWARF_ENV_CIRCLES;
+  else if (all_zero(E->f.c, SWARF_X))
+    E->kind = SWARF_ENV_GREAT_CIRCLE;
+  else if (E->ncomp > 0)
+    E->kind = SWARF_ENV_CURVE;
+  else
+    E->kind = E->nroots > 0 ? SWARF_ENV_POINTS : SWARF_ENV_EMPTY;
   if (E->kind == SWARF_ENV_CURVE && swarf_exact_elm(E) != 0) E->kind = SWARF_ENV_POINTS;
   return 0;
 }
@@ -124,10 +133,13 @@ static void put_own(text *t, char *s) {
 }
 
 static const char *kind_name(swarf_env_kind k) {
-  static const char *names[] = {"curve", "still (no motion)",
+  static const char *names[] = {"curve",
+                                "still (no motion)",
                                 "spin about the own axis (no characteristic)",
-                                "whole sphere (degenerate)", "empty Gauss image",
-                                "isolated points", "not a QSS of revolution",
+                                "whole sphere (degenerate)",
+                                "empty Gauss image",
+                                "isolated points",
+                                "not a QSS of revolution",
                                 "latitude circles (A = B = 0)",
                                 "great circle (f linear: translation or sphere)"};
   return names[k];
@@ -192,8 +204,10 @@ static void put_roots(text *t, const swarf_envelope_exact *E) {
     const swarf_env_root *rt = E->roots + i;
     snprintf(line, sizeof line, "  z%d = ", i + 1);
     put(t, line);
-    if (rt->rational) put_own(t, fmpq_get_str(NULL, 10, rt->q));
-    else put_own(t, arb_get_str(rt->z, 30, 0));
+    if (rt->rational)
+      put_own(t, fmpq_get_str(NULL, 10, rt->q));
+    else
+      put_own(t, arb_get_str(rt->z, 30, 0));
     snprintf(line, sizeof line, "%s (multiplicity %d)\n", rt->rational ? " exactly" : "",
              rt->multiplicity);
     put(t, line);

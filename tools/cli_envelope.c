@@ -103,13 +103,18 @@ static int parse_options(options *o, int argc, char **argv) {
     }
     if (val == NULL) return bad(a, "unknown option or missing value");
     i++;
-    if (!strcmp(a, "--qss")) have[0] = parse_list(val, o->h, 6, NULL) == 6;
-    else if (!strcmp(a, "--axis")) have[1] = parse_list(val, o->w, 3, NULL) == 3;
-    else if (!strcmp(a, "--tdot")) have[2] = parse_list(val, o->td, 3, NULL) == 3;
-    else if (!strcmp(a, "--half-angle")) have[3] = parse_rational(o->B, val, strlen(val)) == 0;
+    if (!strcmp(a, "--qss"))
+      have[0] = parse_list(val, o->h, 6, NULL) == 6;
+    else if (!strcmp(a, "--axis"))
+      have[1] = parse_list(val, o->w, 3, NULL) == 3;
+    else if (!strcmp(a, "--tdot"))
+      have[2] = parse_list(val, o->td, 3, NULL) == 3;
+    else if (!strcmp(a, "--half-angle"))
+      have[3] = parse_rational(o->B, val, strlen(val)) == 0;
     else if (!strcmp(a, "--at-z")) {
       o->natz = parse_list(val, NULL, -1, &o->atz);
-      if (o->natz <= 0) return o->natz = o->natz < -1 ? -o->natz - 1 : 0, bad(a, "Z1,Z2,... rationals");
+      if (o->natz <= 0)
+        return o->natz = o->natz < -1 ? -o->natz - 1 : 0, bad(a, "Z1,Z2,... rationals");
       for (int k = 0; k < o->natz; k++)
         if (fmpz_cmpabs(fmpq_numref(o->atz + k), fmpq_denref(o->atz + k)) > 0)
           return bad(a, "slices lie in [-1, 1]");
@@ -141,8 +146,10 @@ typedef struct {
 
 static void make_pose(pose *p, const options *o) {
   double w[3], len = 0.0, c, s, td[3];
-  for (int i = 0; i < 6; i++) p->h[i] = fmpq_get_d(o->h + i);
-  for (int k = 0; k < 3; k++) w[k] = fmpq_get_d(o->w + k), len += w[k] * w[k];
+  for (int i = 0; i < 6; i++)
+    p->h[i] = fmpq_get_d(o->h + i);
+  for (int k = 0; k < 3; k++)
+    w[k] = fmpq_get_d(o->w + k), len += w[k] * w[k];
   len = sqrt(len);
   p->alpha = 2.0 * atan(fmpq_get_d(o->B));
   c = cos(p->alpha), s = sin(p->alpha);
@@ -165,14 +172,15 @@ static void make_pose(pose *p, const options *o) {
 static void print_row(const pose *p, double z, int branch, const double n[3]) {
   const double *h = p->h;
   double g[3] = {2 * h[0] * n[0] + h[2], 2 * h[0] * n[1] + h[3], 2 * h[1] * n[2] + h[4]};
-  double hv = h[0] * (n[0] * n[0] + n[1] * n[1]) + h[1] * n[2] * n[2] + h[2] * n[0] +
-              h[3] * n[1] + h[4] * n[2] + h[5];
+  double hv = h[0] * (n[0] * n[0] + n[1] * n[1]) + h[1] * n[2] * n[2] + h[2] * n[0] + h[3] * n[1] +
+              h[4] * n[2] + h[5];
   double gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2], x[3], wld[3];
-  for (int k = 0; k < 3; k++) x[k] = hv * n[k] + g[k] - gn * n[k];
+  for (int k = 0; k < 3; k++)
+    x[k] = hv * n[k] + g[k] - gn * n[k];
   for (int k = 0; k < 3; k++)
     wld[k] = p->t[k] + p->U[3 * k] * x[0] + p->U[3 * k + 1] * x[1] + p->U[3 * k + 2] * x[2];
-  printf("%.17g,%+d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", z, branch, n[0],
-         n[1], n[2], x[0], x[1], x[2], wld[0], wld[1], wld[2]);
+  printf("%.17g,%+d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", z, branch, n[0], n[1],
+         n[2], x[0], x[1], x[2], wld[0], wld[1], wld[2]);
 }
 
 /* Fast-path slice: the body moved by (C, D, 0) turns with v + omega x p. */
@@ -190,15 +198,18 @@ static void print_slice(const pose *p, const swarf_envelope_exact *E, const fmpq
     fmpz_t rz;
     fmpz_init(rz);
     for (int b = 0; b < 2; b++)
-      for (int k = 0; k < 3; k++) swarf_qr_init(&nq[b][k]);
+      for (int k = 0; k < 3; k++)
+        swarf_qr_init(&nq[b][k]);
     cnt = swarf_envelope_exact_slice(E, zq, rz, nq);
     for (int b = 0; b < 2; b++)
-      for (int k = 0; k < 3; k++) n[b][k] = swarf_qr_get_d(&nq[b][k], rz), swarf_qr_clear(&nq[b][k]);
+      for (int k = 0; k < 3; k++)
+        n[b][k] = swarf_qr_get_d(&nq[b][k], rz), swarf_qr_clear(&nq[b][k]);
     fmpz_clear(rz);
   } else {
     cnt = fast_slice(p, z, n);
   }
-  for (int b = 0; b < cnt; b++) print_row(p, z, b == 0 ? 1 : -1, n[b]);
+  for (int b = 0; b < cnt; b++)
+    print_row(p, z, b == 0 ? 1 : -1, n[b]);
 }
 
 /* N slices per z range [lo, hi] (rationals from the doubles). */
@@ -227,10 +238,10 @@ static int fast_summary(const pose *p, double *lo, double *hi, int max) {
   int nb = swarf_char_branch_points_qss(&q, vp, p->omega, z + 1, 64), nr = 0, nc;
   swarf_char_curve_init(&cc);
   nc = swarf_char_curve_compute_qss12(&cc, p->h, p->t, p->U, p->v, p->omega, 1e-3);
-  printf("fast: components %d, points %zu (chord tolerance 1e-3)\nfast: branch points", nc,
-         cc.len);
+  printf("fast: components %d, points %zu (chord tolerance 1e-3)\nfast: branch points", nc, cc.len);
   nb = nb > 64 ? 64 : nb;
-  for (int i = 1; i <= nb; i++) printf(" %.15g", z[i]);
+  for (int i = 1; i <= nb; i++)
+    printf(" %.15g", z[i]);
   printf("\n");
   z[0] = -1.0, z[nb + 1] = 1.0;
   for (int i = 0; i <= nb && nr < max; i++) {
@@ -249,20 +260,28 @@ static int run_exact(const options *o, const pose *p, swarf_envelope_exact *E) {
   swarf_xquad_init(&q);
   swarf_xmotion_init(&m);
   swarf_xquad_set_revolution(&q, o->h);
-  if (swarf_xmotion_set(&m, o->w, o->td, o->B) != 0) rc = 2;
-  else if (swarf_envelope_exact_compute(E, &q, m.v, m.omega) != 0) rc = 1;
-  if (rc == 2) fprintf(stderr, "swarf envelope: --axis: --exact needs an axis of rational length "
-                               "(e.g. 2,1,2 or 0,3,4)\n");
+  if (swarf_xmotion_set(&m, o->w, o->td, o->B) != 0)
+    rc = 2;
+  else if (swarf_envelope_exact_compute(E, &q, m.v, m.omega) != 0)
+    rc = 1;
+  if (rc == 2)
+    fprintf(stderr, "swarf envelope: --axis: --exact needs an axis of rational length "
+                    "(e.g. 2,1,2 or 0,3,4)\n");
   if (rc == 0) {
     printf("v: ");
-    for (int k = 0; k < 3; k++) fmpq_print(m.v + k), printf(k < 2 ? ", " : "\n");
+    for (int k = 0; k < 3; k++)
+      fmpq_print(m.v + k), printf(k < 2 ? ", " : "\n");
     printf("omega: ");
-    for (int k = 0; k < 3; k++) fmpq_print(m.omega + k), printf(k < 2 ? ", " : "\n");
+    for (int k = 0; k < 3; k++)
+      fmpq_print(m.omega + k), printf(k < 2 ? ", " : "\n");
     rep = swarf_envelope_exact_report(E);
-    if (rep == NULL) rc = 1;
-    else fputs(rep, stdout), free(rep);
+    if (rep == NULL)
+      rc = 1;
+    else
+      fputs(rep, stdout), free(rep);
     if (E->kind == SWARF_ENV_CURVE)
-      printf("Theorem 2 identity: %s\n", swarf_envelope_exact_check_elm(E) == 1 ? "holds" : "FAILS");
+      printf("Theorem 2 identity: %s\n",
+             swarf_envelope_exact_check_elm(E) == 1 ? "holds" : "FAILS");
   }
   swarf_xmotion_clear(&m);
   swarf_xquad_clear(&q);
@@ -276,10 +295,13 @@ int swarf_cli_envelope(int argc, char **argv) {
   double lo[64], hi[64];
   int rc, nr;
   for (int i = 1; i < argc; i++)
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(envelope_help, stdout), 0;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
+      return fputs(envelope_help, stdout), 0;
   memset(&o, 0, sizeof o);
-  for (int i = 0; i < 6; i++) fmpq_init(o.h + i);
-  for (int i = 0; i < 3; i++) fmpq_init(o.w + i), fmpq_init(o.td + i);
+  for (int i = 0; i < 6; i++)
+    fmpq_init(o.h + i);
+  for (int i = 0; i < 3; i++)
+    fmpq_init(o.w + i), fmpq_init(o.td + i);
   fmpq_init(o.B);
   swarf_envelope_exact_init(&E);
   rc = parse_options(&o, argc, argv);
@@ -292,15 +314,21 @@ int swarf_cli_envelope(int argc, char **argv) {
   }
   if (rc == 0 && (o.natz > 0 || o.points > 0)) {
     printf("\nz,branch,nx,ny,nz,X,Y,Z,Xw,Yw,Zw\n");
-    for (int k = 0; k < o.natz; k++) print_slice(&p, o.exact ? &E : NULL, o.atz + k);
-    if (o.points > 0 && o.exact) print_ranges(&p, &E, E.comp_lo, E.comp_hi, E.ncomp, o.points);
-    else if (o.points > 0) print_ranges(&p, NULL, lo, hi, nr, o.points);
+    for (int k = 0; k < o.natz; k++)
+      print_slice(&p, o.exact ? &E : NULL, o.atz + k);
+    if (o.points > 0 && o.exact)
+      print_ranges(&p, &E, E.comp_lo, E.comp_hi, E.ncomp, o.points);
+    else if (o.points > 0)
+      print_ranges(&p, NULL, lo, hi, nr, o.points);
   }
   swarf_envelope_exact_clear(&E);
-  for (int i = 0; i < 6; i++) fmpq_clear(o.h + i);
-  for (int i = 0; i < 3; i++) fmpq_clear(o.w + i), fmpq_clear(o.td + i);
+  for (int i = 0; i < 6; i++)
+    fmpq_clear(o.h + i);
+  for (int i = 0; i < 3; i++)
+    fmpq_clear(o.w + i), fmpq_clear(o.td + i);
   fmpq_clear(o.B);
-  for (int k = 0; k < o.natz; k++) fmpq_clear(o.atz + k);
+  for (int k = 0; k < o.natz; k++)
+    fmpq_clear(o.atz + k);
   free(o.atz);
   flint_cleanup();
   return rc;

@@ -23,19 +23,23 @@ static inline void ek_rand(fmpq_t x, tk_rng *r, long pmax, long qmax) {
 }
 
 static inline void ek_vec_init(fmpq *x, int n) {
-  for (int i = 0; i < n; i++) fmpq_init(x + i);
+  for (int i = 0; i < n; i++)
+    fmpq_init(x + i);
 }
 
 static inline void ek_vec_clear(fmpq *x, int n) {
-  for (int i = 0; i < n; i++) fmpq_clear(x + i);
+  for (int i = 0; i < n; i++)
+    fmpq_clear(x + i);
 }
 
 static inline void ek_vec_si(fmpq *x, const long *v, int n) {
-  for (int i = 0; i < n; i++) fmpq_set_si(x + i, v[i], 1);
+  for (int i = 0; i < n; i++)
+    fmpq_set_si(x + i, v[i], 1);
 }
 
 static inline void ek_vec_get_d(double *out, const fmpq *x, int n) {
-  for (int i = 0; i < n; i++) out[i] = fmpq_get_d(x + i);
+  for (int i = 0; i < n; i++)
+    out[i] = fmpq_get_d(x + i);
 }
 
 /* A random QSS of revolution (c = d = 0 unless offaxis) and rational motion
@@ -45,7 +49,8 @@ static inline void ek_random_case(tk_rng *r, fmpq *abcdef, swarf_xmotion *m, int
   fmpq_t B;
   int a = (int)ek_int(r, 0, (long)(sizeof ek_axes / sizeof ek_axes[0]) - 1);
   ek_vec_init(w, 3), ek_vec_init(td, 3), fmpq_init(B);
-  for (int i = 0; i < 6; i++) ek_rand(abcdef + i, r, 5, 3);
+  for (int i = 0; i < 6; i++)
+    ek_rand(abcdef + i, r, 5, 3);
   if (!offaxis) fmpq_zero(abcdef + 2), fmpq_zero(abcdef + 3);
   for (int i = 0; i < 3; i++) {
     int p = (a + i) % 3; /* rotate the axis' components too */
@@ -67,7 +72,8 @@ static inline void ek_sphere_point(fmpq N[3], const fmpq_t p, const fmpq_t q) {
   fmpq_mul_2exp(N + 1, q, 1);
   fmpq_sub_si(N + 2, d, 1);
   fmpq_add_si(d, d, 1);
-  for (int k = 0; k < 3; k++) fmpq_div(N + k, N + k, d);
+  for (int k = 0; k < 3; k++)
+    fmpq_div(N + k, N + k, d);
   fmpq_clear(d);
 }
 

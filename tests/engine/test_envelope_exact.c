@@ -59,7 +59,8 @@ static void test_example1(void) {
     swarf_xquad q;
     fmpq_mpoly_t X[3], want;
     ek_vec_init(c, 6);
-    for (int i = 0; i < 6; i++) fmpq_set_si(c + i, h[e][i], e == 0 ? 2 : 1);
+    for (int i = 0; i < 6; i++)
+      fmpq_set_si(c + i, h[e][i], e == 0 ? 2 : 1);
     swarf_xquad_init(&q);
     swarf_xquad_set_revolution(&q, c);
     fmpq_mpoly_init(want, ctx);
@@ -115,7 +116,8 @@ static void test_example2(void) {
     swarf_qr_poly_get_coeff(&c, &E.D, i);
     CHECK(qr_is(&c, D[i][0], D[i][1]), "eq. 22, coefficient of s^%d", i);
   }
-  for (int i = 0; i < 5; i++) CHECK(fmpz_equal_si(E.delta_prim->coeffs + i, delta[i]), "Delta %d", i);
+  for (int i = 0; i < 5; i++)
+    CHECK(fmpz_equal_si(E.delta_prim->coeffs + i, delta[i]), "Delta %d", i);
   CHECK(E.delta_factors == 1, "Delta irreducible over Q");
   CHECK(E.nroots == 2 && E.ncomp == 1, "two branch points, one component");
   if (E.nroots == 2) {
@@ -148,10 +150,10 @@ static void test_example2_any_B(void) {
       const fmpq *c = E.f.c;
       fmpq_init(B2);
       fmpq_mul(B2, B, B);
-#define COEF(term, expr)                                                                         \
-  do {                                                                                           \
-    fmpq_mul(want, c + term, s);                                                                 \
-    CHECK(fmpq_equal(want, expr), "B = %ld/3, term %d", bn, term);                               \
+#define COEF(term, expr)                                                                           \
+  do {                                                                                             \
+    fmpq_mul(want, c + term, s);                                                                   \
+    CHECK(fmpq_equal(want, expr), "B = %ld/3, term %d", bn, term);                                 \
   } while (0)
       fmpq_t e;
       fmpq_init(e);
@@ -215,14 +217,16 @@ static void test_random_exact(void) {
           double zd = E.comp_lo[c] + (E.comp_hi[c] - E.comp_lo[c]) * j / 8.0;
           fmpq_init(z), fmpz_init(rz);
           for (int b = 0; b < 2; b++)
-            for (int k = 0; k < 3; k++) swarf_qr_init(&n[b][k]);
+            for (int k = 0; k < 3; k++)
+              swarf_qr_init(&n[b][k]);
           fmpq_set_si(z, lround(zd * 4096.0), 4096);
           if (swarf_envelope_exact_slice(&E, z, rz, n) == 2) {
             slices++;
             bad_slice += !on_curve(&E.f, n[0], rz) || !on_curve(&E.f, n[1], rz);
           }
           for (int b = 0; b < 2; b++)
-            for (int k = 0; k < 3; k++) swarf_qr_clear(&n[b][k]);
+            for (int k = 0; k < 3; k++)
+              swarf_qr_clear(&n[b][k]);
           fmpq_clear(z), fmpz_clear(rz);
         }
       bad_elm += swarf_envelope_exact_check_elm(&E) != 1;
@@ -232,7 +236,8 @@ static void test_random_exact(void) {
         ek_vec_get_d(v, m.v, 3), ek_vec_get_d(w, m.omega, 3);
         fv = n[0] * fmpq_get_d(E.f.c + SWARF_X) + n[1] * fmpq_get_d(E.f.c + SWARF_Y) +
              n[2] * fmpq_get_d(E.f.c + SWARF_Z) + n[0] * n[2] * fmpq_get_d(E.f.c + SWARF_XZ) +
-             n[1] * n[2] * fmpq_get_d(E.f.c + SWARF_YZ) + n[2] * n[2] * fmpq_get_d(E.f.c + SWARF_ZZ);
+             n[1] * n[2] * fmpq_get_d(E.f.c + SWARF_YZ) +
+             n[2] * n[2] * fmpq_get_d(E.f.c + SWARF_ZZ);
         bad_float += fabs(fv) > 1e-8 * (1.0 + fabs(fmpq_get_d(E.f.c + SWARF_XZ)) + 10.0) ||
                      fabs(tk_dot(n, n) - 1.0) > 1e-9;
       }
@@ -320,20 +325,24 @@ static void test_fact1(void) {
     fmpq_mul(val, val, val);
     fmpq_mul_2exp(val, val, 1);
     fmpq_div(lhs, lhs, val);
-    for (int i = 0; i < 3; i++) fmpq_addmul(lhs, m.tdot + i, N + i);
+    for (int i = 0; i < 3; i++)
+      fmpq_addmul(lhs, m.tdot + i, N + i);
     /* f at n = U^T N */
     fmpz_init_set_ui(one, 1);
     for (int j = 0; j < 3; j++) {
       swarf_qr_init(&n[j]);
-      for (int i = 0; i < 3; i++) fmpq_addmul(n[j].a, m.U + 3 * i + j, N + i);
+      for (int i = 0; i < 3; i++)
+        fmpq_addmul(n[j].a, m.U + 3 * i + j, N + i);
     }
     swarf_qr_init(&fval);
     swarf_xquad_char(&f, &q, m.v, m.omega);
     swarf_xquad_eval(&fval, &f, n, one);
     fmpq_set(rhs, fval.a);
     bad += !fmpq_equal(lhs, rhs);
-    for (int j = 0; j < 3; j++) swarf_qr_clear(&n[j]), fmpq_poly_clear(u[j]);
-    for (int i = 0; i < 9; i++) fmpq_poly_clear(Un[i]);
+    for (int j = 0; j < 3; j++)
+      swarf_qr_clear(&n[j]), fmpq_poly_clear(u[j]);
+    for (int i = 0; i < 9; i++)
+      fmpq_poly_clear(Un[i]);
     swarf_qr_clear(&fval);
     fmpz_clear(one);
     fmpq_poly_clear(p), fmpq_poly_clear(t), fmpq_poly_clear(one_b2), fmpq_poly_clear(dp);
@@ -355,7 +364,8 @@ static void test_convexity(void) {
     swarf_xquad q;
     double a, b, f, lo = INFINITY;
     ek_vec_init(c, 6);
-    for (int i = 0; i < 6; i++) ek_rand(c + i, &rng, 5, 2);
+    for (int i = 0; i < 6; i++)
+      ek_rand(c + i, &rng, 5, 2);
     swarf_xquad_init(&q);
     swarf_xquad_set_revolution(&q, c);
     a = fmpq_get_d(c + 0), b = fmpq_get_d(c + 1), f = fmpq_get_d(c + 5);

@@ -66,19 +66,23 @@ int main(void) {
       swarf_qss sq = {hd[0], hd[1], hd[4], hd[5]};
       double p[3] = {hd[2], hd[3], 0.0}, wp[3], vp[3];
       tk_cross(w, p, wp);
-      for (int k = 0; k < 3; k++) vp[k] = v[k] + wp[k];
+      for (int k = 0; k < 3; k++)
+        vp[k] = v[k] + wp[k];
       nf = swarf_char_branch_points_qss(&sq, vp, w, zf, 8);
       nc = swarf_char_curve_compute_qss12(&cc, hd, zero3, I3, v, w, 1e-3);
       compared++;
       comp_bad += nc != E.ncomp;
       if (nf != ne || nc != E.ncomp) {
         fprintf(stderr, "case %d: exact %d components, roots", it, E.ncomp);
-        for (int i = 0; i < ne; i++) fprintf(stderr, " %.17g", ze[i]);
+        for (int i = 0; i < ne; i++)
+          fprintf(stderr, " %.17g", ze[i]);
         fprintf(stderr, "; fast %d components, roots", nc);
-        for (int i = 0; i < nf && i < 8; i++) fprintf(stderr, " %.17g", zf[i]);
+        for (int i = 0; i < nf && i < 8; i++)
+          fprintf(stderr, " %.17g", zf[i]);
         fputc('\n', stderr);
       }
-      if (nf != ne) root_bad++;
+      if (nf != ne)
+        root_bad++;
       else
         for (int i = 0; i < ne; i++) {
           worst_root = fmax(worst_root, fabs(zf[i] - ze[i]));
@@ -97,8 +101,8 @@ int main(void) {
     swarf_xquad_clear(&q), swarf_xmotion_clear(&m), swarf_envelope_exact_clear(&E);
     ek_vec_clear(h6, 6);
   }
-  printf("%d cases compared, %d degenerate or near-degenerate skipped; %d float points\n",
-         compared, skipped, pts);
+  printf("%d cases compared, %d degenerate or near-degenerate skipped; %d float points\n", compared,
+         skipped, pts);
   printf("worst branch point difference %.3g, worst relative residual %.3g\n", worst_root,
          worst_res);
   CHECK(compared > CASES / 2, "most cases compared (%d)", compared);

@@ -133,10 +133,37 @@ static double delta_bisect(const swarf_char_profile *pr, const double v[3], cons
   return plo ? lo : hi;
 }
 
+/* A QSS: Delta(z) = (1 - z^2)(A^2 + B^2) - C^2 is a quartic with A, B, C
+ * linear in z; its sign changes come from swarf_char_poly_roots (no narrow
+ * gap between two roots can hide between samples), then each is re-bisected
+ * in sigma on the slice's own Delta so that both agree on which side is >= 0. */
+static int qss_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                           double *roots, int max) {
+  double a0 = v[0] + pr->q1 * omega[1], a1 = 2.0 * pr->q2 * omega[1];
+  double b0 = v[1] - pr->q1 * omega[0], b1 = -2.0 * pr->q2 * omega[0];
+  double s0 = a0 * a0 + b0 * b0, s1 = 2.0 * (a0 * a1 + b0 * b1), s2 = a1 * a1 + b1 * b1;
+  double c[5] = {s0, s1, s2 - s0 - v[2] * v[2], -s1, -s2}, z[4];
+  int n = swarf_char_poly_roots(c, 4, -1.0, 1.0, z, 4);
+  for (int i = 0; i < n && i < max; i++) {
+    double sig = acos(-z[i]), eps = 1e-13;
+    roots[i] = sig;
+    for (int k = 0; k < 60; k++, eps *= 2.0) {
+      double lo = fmax(0.0, sig - eps), hi = fmin(pr->sigma_end, sig + eps);
+      if (delta_positive(pr, v, omega, lo) != delta_positive(pr, v, omega, hi)) {
+        roots[i] = delta_bisect(pr, v, omega, lo, hi);
+        break;
+      }
+    }
+  }
+  return n;
+}
+
 int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
                            double *roots, int max) {
-  int count = 0, prev = delta_positive(pr, v, omega, 0.0);
+  int count = 0, prev;
   double step = pr->sigma_end / DELTA_SAMPLES, last = 0.0;
+  if (pr->is_qss) return qss_delta_roots(pr, v, omega, roots, max);
+  prev = delta_positive(pr, v, omega, 0.0);
   for (int i = 1; i <= DELTA_SAMPLES; i++) {
     double sigma = i == DELTA_SAMPLES ? pr->sigma_end : i * step;
     int cur = delta_positive(pr, v, omega, sigma);

@@ -117,6 +117,13 @@ int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q, const
                                  const double U[9], const double v[3], const double omega[3],
                                  double tol);
 
+/* The same for the full revolution form of eq. 12, coef = a, b, c, d, e, f:
+ * h = a (n_x^2 + n_y^2) + b n_z^2 + c n_x + d n_y + e n_z + f (its axis passes
+ * through (c, d, 0)). Same contract; the exact counterpart is envelope_exact.h. */
+int swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6], const double t[3],
+                                   const double U[9], const double v[3], const double omega[3],
+                                   double tol);
+
 /* The real branch points of the characteristic curve: the z in [-1, 1] where
  * Fact 2's Delta changes sign, sorted, to full double precision (branch
  * points on a cutter's side ruling are reported as z = 0). Writes at most max

@@ -4,6 +4,8 @@
  *   charslice.c     the per-slice closed form of ENVELOPE.md Fact 2 and the
  *                   branch points (roots of Delta), for cutters and QSS.
  *   charcurve.c     characteristic curves: components, adaptive sampling.
+ *   charpoly.c      real roots of a small polynomial (a QSS's Delta quartic).
+ *   charqss.c       the fast path for eq. 12 with an off-axis linear part.
  *   sweep.c         a move's swept volume: method choice, bounds, dispatch.
  *   sweep_line.c    straight moves: closed forms (slot, plunge, ramp).
  *   sweep_helix.c   arcs and helices: the closed form for planar arcs about
@@ -89,6 +91,11 @@ int swarf_char_slice_point(const swarf_char_profile *pr, const swarf_char_slice 
  * end where Delta >= 0. Returns the count (writes at most max). */
 int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
                            double *roots, int max);
+
+/* Real roots in (lo, hi) where the polynomial c[0] + c[1] x + ... + c[deg] x^deg
+ * changes sign (deg <= 8), ascending, to adjacent doubles. Returns the count
+ * (writes at most max). */
+int swarf_char_poly_roots(const double *c, int deg, double lo, double hi, double *roots, int max);
 
 /* ---- Sweeps: per-method evaluators -------------------------------------- */
 

@@ -15,6 +15,7 @@ int swarf_cli_simulate(int argc, char **argv);
 int swarf_cli_parse(int argc, char **argv);
 int swarf_cli_info(int argc, char **argv);
 int swarf_cli_render(int argc, char **argv);
+int swarf_cli_envelope(int argc, char **argv);
 int swarf_cli_help(const char *command);
 
 /* A progress bar on stderr, drawn only when stderr is a terminal. */

@@ -175,6 +175,7 @@ int swarf_cli_help(const char *command) {
   if (!strcmp(command, "parse")) return fputs(parse_help, stdout), 0;
   if (!strcmp(command, "info")) return fputs(info_help, stdout), 0;
   if (!strcmp(command, "render")) return fputs(render_help, stdout), 0;
+  if (!strcmp(command, "envelope")) return swarf_cli_envelope(2, argv);
   fprintf(stderr, "swarf help: unknown command \"%s\"\n", command);
   return 2;
 }

@@ -20,6 +20,10 @@ static const char usage[] =
     "  parse PROGRAM      list the canonical moves of a program (checks it)\n"
     "  info FILE.vdb      describe a stock grid: voxel, volume, bounds, validity\n"
     "  render FILE.vdb --image FILE.png   picture of a stock grid\n"
+    "  envelope --qss A,B,C,D,E,F --axis W --tdot V --half-angle B [--exact]\n"
+    "                     characteristic curve of a moving QSS (exact with --exact)\n"
+    "  envelope --qss A,B,C,D,E,F --axis W --tdot V --half-angle B [--exact]\n"
+    "                     characteristic curve of a moving QSS (exact with --exact)\n"
     "  help [COMMAND]     this text, or a command's options\n"
     "\n"
     "`swarf COMMAND --help` explains each command. Units: mm, degrees, seconds.\n";
@@ -39,6 +43,7 @@ int main(int argc, char **argv) {
   if (!strcmp(cmd, "parse")) return swarf_cli_parse(argc - 1, argv + 1);
   if (!strcmp(cmd, "info")) return swarf_cli_info(argc - 1, argv + 1);
   if (!strcmp(cmd, "render")) return swarf_cli_render(argc - 1, argv + 1);
+  if (!strcmp(cmd, "envelope")) return swarf_cli_envelope(argc - 1, argv + 1);
   fprintf(stderr, "swarf: unknown command \"%s\"; run `swarf --help` for the list\n", cmd);
   return 2;
 }

@@ -7,6 +7,7 @@ Modbus TCP for the frames a well-behaved client library would never send.
 Nothing here knows swarf's internals: only its command line, its output and
 the documented map.
 """
+import atexit
 import os
 import re
 import shutil
@@ -16,6 +17,20 @@ import subprocess
 import sys
 import tempfile
 import time
+
+def require(*programs):
+    """Fail loudly (never skip) when a test helper is missing."""
+    missing = [p for p in programs if shutil.which(p) is None]
+    try:
+        import pymodbus  # noqa: F401
+        import pymodbus.client  # noqa: F401
+    except ImportError as e:
+        missing.append("python3-pymodbus (%s)" % e)
+    if missing:
+        print("FAIL missing test helpers: %s; install them: apt-get install python3-pymodbus "
+              "python3-serial-asyncio mbpoll socat (or run tools/run test)" % ", ".join(missing))
+        sys.exit(1)
+
 
 DEMO = ["--stock", "box:0,0,-20,80,60,0", "--tool", "T1=flat,D6,L24",
         "--tool", "T2=ball,D3.175,L20"]
@@ -52,6 +67,8 @@ class Swarf:
         self.proc = subprocess.Popen(cmd, stdout=self.out, stderr=self.err)
 
     def stderr(self):
+        if getattr(self, "err_text", None) is not None:
+            return self.err_text
         with open(self.err.name) as f:
             return f.read()
 
@@ -74,8 +91,9 @@ class Swarf:
         rc = self.proc.wait(timeout)
         with open(self.out.name) as f:
             out = f.read()
-        print(out, self.stderr(), flush=True)
-        shutil.rmtree(self.dir, ignore_errors=True)
+        self.err_text = self.stderr()
+        print(out, self.err_text, flush=True)
+        atexit.register(shutil.rmtree, self.dir, True)
         return rc, out
 
 

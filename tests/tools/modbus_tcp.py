@@ -12,6 +12,8 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mbkit  # noqa: E402
+
+mbkit.require("mbpoll")
 from pymodbus.client import ModbusTcpClient  # noqa: E402
 
 swarf, fixtures = sys.argv[1], sys.argv[2]

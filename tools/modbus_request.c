@@ -5,7 +5,10 @@
  * this file decides everything libmodbus would not: the unit filter, PDUs
  * whose length does not match their function (exception 03), and writes
  * (exception 01 unless --modbus-commands; then only the command register
- * takes a command, exception 02 elsewhere, 03 for a value that is not one).
+ * takes a command, exception 02 elsewhere, 03 for a value that is not one);
+ * function codes from 0x80 up (exception codes, not functions) are dropped.
+ * Exceptions for unknown functions and bad counts are sent from here:
+ * libmodbus's own path for them sleeps the response timeout and flushes.
  * The responder owns its mapping; the caller owns ctx and the request.
  */
 #include "modbus_private.h"
@@ -46,7 +49,37 @@ static int pdu_ok(const uint8_t *pdu, int n) {
   case MODBUS_FC_WRITE_AND_READ_REGISTERS:
     return n >= 10 && n == 10 + pdu[9];
   default:
-    return 1; /* libmodbus answers exception 01 */
+    return 1;
+  }
+}
+
+static int known(int fc) {
+  return (fc >= MODBUS_FC_READ_COILS && fc <= MODBUS_FC_WRITE_SINGLE_REGISTER) ||
+         fc == MODBUS_FC_WRITE_MULTIPLE_COILS || fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ||
+         fc == MODBUS_FC_REPORT_SLAVE_ID || fc == MODBUS_FC_MASK_WRITE_REGISTER ||
+         fc == MODBUS_FC_WRITE_AND_READ_REGISTERS;
+}
+
+/* Counts within the protocol's limits (libmodbus would answer these
+ * exceptions itself, but after sleeping its response timeout). */
+static int counts_ok(const uint8_t *pdu) {
+  int nb = pdu[3] << 8 | pdu[4], nw = pdu[7] << 8 | pdu[8];
+  switch (pdu[0]) {
+  case MODBUS_FC_READ_COILS:
+  case MODBUS_FC_READ_DISCRETE_INPUTS:
+    return nb >= 1 && nb <= MODBUS_MAX_READ_BITS;
+  case MODBUS_FC_READ_HOLDING_REGISTERS:
+  case MODBUS_FC_READ_INPUT_REGISTERS:
+    return nb >= 1 && nb <= MODBUS_MAX_READ_REGISTERS;
+  case MODBUS_FC_WRITE_MULTIPLE_COILS:
+    return nb >= 1 && nb <= MODBUS_MAX_WRITE_BITS && pdu[5] == (nb + 7) / 8;
+  case MODBUS_FC_WRITE_MULTIPLE_REGISTERS:
+    return nb >= 1 && nb <= MODBUS_MAX_WRITE_REGISTERS && pdu[5] == 2 * nb;
+  case MODBUS_FC_WRITE_AND_READ_REGISTERS:
+    return nb >= 1 && nb <= MODBUS_MAX_WR_READ_REGISTERS && nw >= 1 &&
+           nw <= MODBUS_MAX_WR_WRITE_REGISTERS && pdu[9] == 2 * nw;
+  default:
+    return 1;
   }
 }
 
@@ -90,10 +123,12 @@ int swarf_mb_respond(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, i
   n = len - h - (r->tcp ? 0 : 2); /* RTU frames end with a CRC */
   if (n < 1) return 0;
   unit = req[h - 1];
+  if (req[h] & 0x80) return 0; /* not a function: libmodbus would answer it as FC & 0x7F */
   if (!r->tcp && unit == MODBUS_BROADCAST_ADDRESS) return 0; /* broadcasts are ignored */
   if (r->tcp && unit != r->unit && unit != 0 && unit != MODBUS_TCP_SLAVE)
     return modbus_reply_exception(ctx, req, MODBUS_EXCEPTION_GATEWAY_TARGET);
-  if (!pdu_ok(req + h, n))
+  if (!known(req[h])) return modbus_reply_exception(ctx, req, MODBUS_EXCEPTION_ILLEGAL_FUNCTION);
+  if (!pdu_ok(req + h, n) || !counts_ok(req + h))
     return modbus_reply_exception(ctx, req, MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE);
   if (is_write(req[h])) {
     swarf_status_read(r->status, &s);

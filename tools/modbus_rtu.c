@@ -52,6 +52,7 @@ swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_status *status,
   }
   modbus_set_slave(t->ctx, e->unit);
   modbus_set_indication_timeout(t->ctx, 0, 200000);
+  modbus_set_response_timeout(t->ctx, 0, 1); /* libmodbus sleeps it on errors */
   if (modbus_connect(t->ctx) != 0) {
     snprintf(msg, msglen, "--modbus: cannot open %s: %s (is it the right serial device?)",
              e->device, modbus_strerror(errno));

@@ -201,6 +201,7 @@ swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_status *status,
   atomic_init(&t->stop, 0);
   if (listen_on(t, e, msg, msglen)) goto err;
   t->ctx = modbus_new_tcp("127.0.0.1", t->port);
+  if (t->ctx) modbus_set_response_timeout(t->ctx, 0, 1); /* libmodbus sleeps it on errors */
   if (t->ctx == NULL || swarf_mb_responder_init(&t->resp, status, e->unit, 1) ||
       pipe2(t->wake, O_CLOEXEC) || pthread_create(&t->thread, NULL, loop, t)) {
     snprintf(msg, msglen, "--modbus: cannot start the server: %s", strerror(errno));

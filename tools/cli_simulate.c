@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "modbus_service.h"
 #include "sim.h"
 
 static const char help[] =
@@ -52,6 +53,7 @@ typedef struct {
   const char *program, *out, *mesh, *image;
   int quiet;
   swarf_sim_config cfg;
+  swarf_modbus_options modbus;
 } sim_options;
 
 static int usage_error(const char *what) {
@@ -75,6 +77,8 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   const char *flag = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
   char msg[256];
   double d;
+  int rc = swarf_modbus_option(&o->modbus, flag, val, i);
+  if (rc >= 0) return rc;
   if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
   if (val == NULL) {
     snprintf(msg, sizeof msg, "%s needs a value", flag);
@@ -143,7 +147,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   o->cfg.voxel = 0.2;
   o->cfg.half_width = 3;
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), 1;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
       if (o->program) return usage_error("give one PROGRAM only");
       o->program = argv[i];
@@ -214,11 +218,13 @@ int swarf_cli_simulate(int argc, char **argv) {
   swarf_sim_report rep;
   swarf_stock *stock = NULL;
   swarf_progress pb;
+  swarf_modbus_service *mb = NULL;
   char msg[1024];
   size_t ntri = 0;
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
   if (rc || (rc = check_size(&o.cfg))) return rc;
+  if ((rc = swarf_modbus_start(&o.modbus, o.program, &o.cfg, &mb))) return rc;
   swarf_progress_init(&pb);
   if (!o.quiet) {
     o.cfg.progress = swarf_progress_update;
@@ -228,10 +234,12 @@ int swarf_cli_simulate(int argc, char **argv) {
   swarf_progress_finish(&pb);
   if (rc != 0) {
     fprintf(stderr, "%s\n", msg);
+    swarf_modbus_finish(mb, rc, &rep);
     return rc;
   }
   rc = write_outputs(&o, stock, &ntri);
   if (rc == 0 && !o.quiet) print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
+  swarf_modbus_finish(mb, rc, &rep);
   swarf_stock_free(stock);
   return rc;
 }

@@ -139,6 +139,17 @@ static int on_tool_change(sim_state *st, const swarf_move *mv) {
   return 0;
 }
 
+/* Tell the observer (if any) about the move; 1 if it asks to stop. */
+static int observe(sim_state *st, const swarf_move *mv) {
+  int tool = mv->tool;
+  if (st->cfg->observe == NULL) return 0;
+  if (tool == 0 && st->cutter != NULL && st->cfg->ntools == 1) tool = st->cfg->tools[0].number;
+  if (st->cfg->observe(st->cfg->observe_ctx, st->rep, mv->line, tool, st->stock) == 0) return 0;
+  snprintf(st->msg, st->msglen, "%s:%ld: aborted by a Modbus command", st->name, mv->line);
+  st->status = 3;
+  return 1;
+}
+
 static int on_move(const swarf_move *mv, void *user) {
   sim_state *st = user;
   swarf_motion *m = &st->motions[st->n];
@@ -154,6 +165,7 @@ static int on_move(const swarf_move *mv, void *user) {
   st->rep->arcs += m->kind == SWARF_MOTION_HELIX;
   st->rep->path_mm += m->length;
   st->rep->machining_s += m->duration;
+  if (observe(st, mv)) return 1;
   if (st->cutter == NULL || swarf_motion_is_null(m)) return 0;
   if (st->cfg->progress && st->rep->moves % 4096 == 0)
     st->cfg->progress(st->cfg->progress_ctx, -1.0, st->rep->moves);

@@ -29,6 +29,18 @@ typedef struct {
 } swarf_sim_tool;
 
 typedef struct {
+  long lines;          /* program lines read */
+  long moves;          /* motion moves (rapid, line, arc) */
+  long cutting_moves;  /* moves whose sweep touched the stock's bounds */
+  long rapids, arcs;   /* counts among moves */
+  long tool_changes;
+  double path_mm;      /* tip path length */
+  double machining_s;  /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
+  double volume_before, volume_after; /* stock volume, mm^3 */
+  double seconds;      /* wall time of the run */
+} swarf_sim_report;
+
+typedef struct {
   double stock_lo[3], stock_hi[3]; /* box stock, mm (a cylinder: its bounding box) */
   int stock_cylinder;              /* 1: cylinder about axis cyl_axis (0 x, 1 y, 2 z) through
                                     * the origin, radius cyl_radius, from stock_lo to stock_hi
@@ -48,19 +60,14 @@ typedef struct {
   /* Called now and then with the fraction of the program read (0..1). */
   void (*progress)(void *ctx, double fraction, long moves);
   void *progress_ctx;
+  /* Called after every motion move with the report so far, the move's
+   * source line, the tool in the spindle (0: none) and the stock as of the
+   * last pass. A non-zero return stops the run (status 3, "aborted"). It
+   * runs in the simulation's thread: it must not block (tools/status.h). */
+  int (*observe)(void *ctx, const swarf_sim_report *sofar, long line, int tool,
+                 const swarf_stock *stock);
+  void *observe_ctx;
 } swarf_sim_config;
-
-typedef struct {
-  long lines;          /* program lines read */
-  long moves;          /* motion moves (rapid, line, arc) */
-  long cutting_moves;  /* moves whose sweep touched the stock's bounds */
-  long rapids, arcs;   /* counts among moves */
-  long tool_changes;
-  double path_mm;      /* tip path length */
-  double machining_s;  /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
-  double volume_before, volume_after; /* stock volume, mm^3 */
-  double seconds;      /* wall time of the run */
-} swarf_sim_report;
 
 /* Parse a tool specification "T<n>=<shape>,D<diameter>[,R<corner>][,L<length>]"
  * (shape: ball, flat, bull). Returns 0, or -1 with a reason in msg. */
@@ -76,7 +83,8 @@ int swarf_sim_parse_stock(const char *spec, swarf_sim_config *cfg, char *msg, si
 /* Run the program at `path` (or, with swarf_sim_run_text, the `len` bytes of
  * `text`, named `name` in messages). On success returns 0 and *out is a new
  * stock owned by the caller. On failure returns 2 for bad input (msg holds
- * "file:line:col: what is wrong") or 1 for an internal failure; *out is NULL. */
+ * "file:line:col: what is wrong"), 1 for an internal failure or 3 when the
+ * observer stopped it; *out is NULL. */
 int swarf_sim_run(const swarf_sim_config *cfg, const char *path, swarf_stock **out,
                   swarf_sim_report *rep, char *msg, size_t msglen);
 int swarf_sim_run_text(const swarf_sim_config *cfg, const char *name, const char *text,

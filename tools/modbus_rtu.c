@@ -1,0 +1,83 @@
+/* modbus_rtu.c -- the Modbus RTU status server on a serial line (RS-485).
+ *
+ * One thread owns the line: libmodbus frames the requests (3.5-character
+ * silence, CRC, the unit filter) with a short indication timeout so that
+ * the thread notices when it must stop; bad frames are flushed and
+ * forgotten. A serial line has one master, so there are no clients to
+ * bound here. The server owns its libmodbus context and the open device;
+ * the status must outlive it.
+ */
+#include <errno.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <modbus-rtu.h>
+
+#include "modbus_private.h"
+
+struct swarf_mb_rtu {
+  pthread_t thread;
+  atomic_int stop;
+  modbus_t *ctx;
+  swarf_mb_responder resp;
+};
+
+static void *loop(void *arg) {
+  struct swarf_mb_rtu *t = arg;
+  uint8_t req[MODBUS_RTU_MAX_ADU_LENGTH];
+  while (!atomic_load(&t->stop)) {
+    int n = modbus_receive(t->ctx, req);
+    if (n > 0) {
+      swarf_mb_respond(&t->resp, t->ctx, req, n);
+    } else if (n < 0 && errno != ETIMEDOUT) {
+      modbus_flush(t->ctx); /* bad CRC, garbage, overrun: start afresh */
+    }
+  }
+  return NULL;
+}
+
+swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+                               size_t msglen) {
+  struct swarf_mb_rtu *t;
+  if (e == NULL || status == NULL || e->kind != SWARF_MB_RTU) return NULL;
+  if ((t = calloc(1, sizeof *t)) == NULL) return NULL;
+  atomic_init(&t->stop, 0);
+  t->ctx = modbus_new_rtu(e->device, e->baud, e->parity, e->data_bits, e->stop_bits);
+  if (t->ctx == NULL) {
+    snprintf(msg, msglen, "--modbus: %s: %s", e->device, modbus_strerror(errno));
+    goto err;
+  }
+  modbus_set_slave(t->ctx, e->unit);
+  modbus_set_indication_timeout(t->ctx, 0, 200000);
+  modbus_set_response_timeout(t->ctx, 0, 1); /* libmodbus sleeps it on errors */
+  if (modbus_connect(t->ctx) != 0) {
+    snprintf(msg, msglen, "--modbus: cannot open %s: %s (is it the right serial device?)",
+             e->device, modbus_strerror(errno));
+    goto err;
+  }
+  if (swarf_mb_responder_init(&t->resp, status, e->unit, 0) ||
+      pthread_create(&t->thread, NULL, loop, t)) {
+    snprintf(msg, msglen, "--modbus: cannot start the RTU server");
+    modbus_close(t->ctx);
+    goto err;
+  }
+  return t;
+err:
+  if (t->ctx) modbus_free(t->ctx);
+  swarf_mb_responder_clear(&t->resp);
+  free(t);
+  return NULL;
+}
+
+void swarf_mb_rtu_free(swarf_mb_rtu *t) {
+  if (t == NULL) return;
+  atomic_store(&t->stop, 1);
+  pthread_join(t->thread, NULL); /* within the indication timeout */
+  modbus_close(t->ctx);
+  modbus_free(t->ctx);
+  swarf_mb_responder_clear(&t->resp);
+  free(t);
+}

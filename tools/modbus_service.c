@@ -1,0 +1,159 @@
+/* modbus_service.c -- the --modbus options of `swarf simulate` and the life
+ * of the status service around one run: open the endpoints, announce them,
+ * install the observer, then publish the final state, linger and stop.
+ * The service owns the status, the observer, the pre-count and every
+ * server and push thread; swarf_modbus_finish frees them all.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "modbus_private.h"
+#include "modbus_service.h"
+
+const char swarf_modbus_help[] =
+    "\n"
+    "Status over Modbus (register map in README.md; all off by default):\n"
+    "  --modbus tcp:[HOST:]PORT[,unit=N]  serve the status while the job runs (FC 02,\n"
+    "                   03, 04); HOST defaults to 127.0.0.1 (give 0.0.0.0 to open it\n"
+    "                   to the shop network); PORT 0 picks a free port; unit default 1\n"
+    "  --modbus rtu:DEVICE,BAUD,PARITY,DATABITS,STOPBITS[,unit=N]   the same map on a\n"
+    "                   serial line, e.g. rtu:/dev/ttyUSB0,19200,E,8,1,unit=3\n"
+    "  --modbus-push tcp:HOST:PORT,unit=N,address=A[,interval=S]   write registers\n"
+    "                   0..63 into a controller's holding registers A.. every S s\n"
+    "                   (default 1) with FC 16\n"
+    "  --modbus-linger S  keep serving the final state S seconds after the job\n"
+    "  --modbus-commands  accept commands in holding register 64: 1 pause, 2 resume,\n"
+    "                   3 abort (exit status 3); without it every write is refused\n"
+    "                   with exception 01\n";
+
+struct swarf_modbus_service {
+  swarf_status *status;
+  swarf_status_observer observer;
+  swarf_status_count *count;
+  swarf_mb_tcp *tcp[SWARF_MODBUS_MAX_ENDPOINTS];
+  swarf_mb_rtu *rtu[SWARF_MODBUS_MAX_ENDPOINTS];
+  swarf_mb_push *push[SWARF_MODBUS_MAX_ENDPOINTS];
+  double linger;
+};
+
+static int option_error(const char *flag, const char *what) {
+  fprintf(stderr, "swarf simulate: %s: %s\n(run `swarf simulate --help` for the options)\n", flag,
+          what);
+  return 2;
+}
+
+static int add_endpoint(const char **list, int *n, const char *flag, const char *val, int push) {
+  swarf_mb_endpoint e;
+  char msg[512];
+  if (*n == SWARF_MODBUS_MAX_ENDPOINTS)
+    return option_error(flag, "given too many times (4 at most)");
+  if (swarf_mb_endpoint_parse(val, push, &e, msg, sizeof msg)) return option_error(flag, msg);
+  list[(*n)++] = val;
+  return 0;
+}
+
+int swarf_modbus_option(swarf_modbus_options *o, const char *flag, const char *val, int *i) {
+  char *end;
+  if (o == NULL || flag == NULL || strncmp(flag, "--modbus", 8)) return -1;
+  o->any_flag = 1;
+  if (!strcmp(flag, "--modbus-commands")) return o->commands = 1, 0;
+  if (strcmp(flag, "--modbus") && strcmp(flag, "--modbus-push") && strcmp(flag, "--modbus-linger"))
+    return -1;
+  if (val == NULL) return option_error(flag, "needs a value");
+  (*i)++;
+  if (!strcmp(flag, "--modbus")) return add_endpoint(o->serve, &o->nserve, flag, val, 0);
+  if (!strcmp(flag, "--modbus-push")) return add_endpoint(o->push, &o->npush, flag, val, 1);
+  errno = 0;
+  o->linger = strtod(val, &end);
+  if (end == val || *end || errno || !(o->linger >= 0 && o->linger <= 86400))
+    return option_error(flag, "give 0 to 86400 seconds");
+  return 0;
+}
+
+static void announce(const swarf_mb_endpoint *e, const swarf_mb_tcp *tcp, int push) {
+  if (push)
+    fprintf(stderr, "swarf: Modbus push to %s:%s unit %d, registers %d..%d every %g s\n", e->host,
+            e->port, e->unit, e->address, e->address + SWARF_MB_NREGS - 1, e->interval);
+  else if (e->kind == SWARF_MB_TCP)
+    fprintf(stderr, "swarf: Modbus TCP server on %s:%d unit %d\n", e->host, swarf_mb_tcp_port(tcp),
+            e->unit);
+  else
+    fprintf(stderr, "swarf: Modbus RTU server on %s (%d %c%d%d) unit %d\n", e->device, e->baud,
+            e->parity, e->data_bits, e->stop_bits, e->unit);
+}
+
+/* Open the i-th server (push == 0) or push client; 0 or -1 with msg. */
+static int open_endpoint(swarf_modbus_service *svc, const char *spec, int push, int i, char *msg,
+                         size_t msglen) {
+  swarf_mb_endpoint e;
+  if (swarf_mb_endpoint_parse(spec, push, &e, msg, msglen)) return -1;
+  if (push)
+    svc->push[i] = swarf_mb_push_new(&e, svc->status, msg, msglen);
+  else if (e.kind == SWARF_MB_TCP)
+    svc->tcp[i] = swarf_mb_tcp_new(&e, svc->status, msg, msglen);
+  else
+    svc->rtu[i] = swarf_mb_rtu_new(&e, svc->status, msg, msglen);
+  if (!svc->push[i] && !svc->tcp[i] && !svc->rtu[i]) return -1;
+  announce(&e, svc->tcp[i], push);
+  return 0;
+}
+
+static void stop_all(swarf_modbus_service *svc) {
+  swarf_status_count_free(svc->count);
+  for (int i = 0; i < SWARF_MODBUS_MAX_ENDPOINTS; i++) {
+    swarf_mb_push_free(svc->push[i]);
+    swarf_mb_tcp_free(svc->tcp[i]);
+    swarf_mb_rtu_free(svc->rtu[i]);
+  }
+  swarf_status_free(svc->status);
+  free(svc);
+}
+
+int swarf_modbus_start(const swarf_modbus_options *o, const char *program, swarf_sim_config *cfg,
+                       swarf_modbus_service **out) {
+  swarf_modbus_service *svc;
+  char msg[600] = "out of memory";
+  *out = NULL;
+  if (o == NULL || !o->any_flag) return 0;
+  if (o->nserve + o->npush == 0)
+    return option_error("--modbus-linger/--modbus-commands", "give --modbus or --modbus-push too");
+  if (o->commands && o->nserve == 0)
+    return option_error("--modbus-commands", "commands are written to a --modbus server");
+  if ((svc = calloc(1, sizeof *svc)) == NULL || (svc->status = swarf_status_new(program)) == NULL)
+    goto err;
+  svc->linger = o->linger;
+  swarf_status_set_commands(svc->status, o->commands);
+  for (int i = 0; i < o->nserve; i++)
+    if (open_endpoint(svc, o->serve[i], 0, i, msg, sizeof msg)) goto err;
+  for (int i = 0; i < o->npush; i++)
+    if (open_endpoint(svc, o->push[i], 1, i, msg, sizeof msg)) goto err;
+  swarf_status_observer_init(&svc->observer, svc->status);
+  svc->count = swarf_status_count_new(program, svc->status);
+  cfg->observe = swarf_status_observe;
+  cfg->observe_ctx = &svc->observer;
+  *out = svc;
+  return 0;
+err:
+  fprintf(stderr, "swarf simulate: %s\n", msg);
+  if (svc) stop_all(svc);
+  return 2;
+}
+
+void swarf_modbus_finish(swarf_modbus_service *svc, int rc, const swarf_sim_report *rep) {
+  struct timespec left;
+  if (svc == NULL) return;
+  swarf_status_count_free(svc->count);
+  svc->count = NULL;
+  if (rc == 0 && rep != NULL) swarf_status_set_total(svc->status, rep->moves);
+  swarf_status_observer_final(&svc->observer, rc, rep);
+  fflush(stdout);
+  left.tv_sec = (time_t)svc->linger;
+  left.tv_nsec = (long)((svc->linger - floor(svc->linger)) * 1e9);
+  while (nanosleep(&left, &left) != 0 && errno == EINTR) {
+  }
+  stop_all(svc);
+}

@@ -1,0 +1,59 @@
+/* modbus_service.h -- the Modbus status service of `swarf simulate`, as the
+ * command line sees it: its options, and start/finish around the run.
+ *
+ * Role: while the simulation runs, it publishes a status snapshot (status.h)
+ * through the observer that swarf_modbus_start installs in the simulation's
+ * config; TCP and RTU servers and push clients, each in its own thread,
+ * serve that snapshot. The simulation never waits on the network.
+ *
+ * Ownership: the options are plain values owned by the caller; the service
+ * returned by swarf_modbus_start is owned by the caller until
+ * swarf_modbus_finish, which frees it. Not thread-safe itself: call both
+ * from the thread that runs the simulation.
+ */
+#ifndef SWARF_MODBUS_SERVICE_H
+#define SWARF_MODBUS_SERVICE_H
+
+#include "sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SWARF_MODBUS_MAX_ENDPOINTS 4
+
+typedef struct {
+  const char *serve[SWARF_MODBUS_MAX_ENDPOINTS]; /* --modbus specs */
+  const char *push[SWARF_MODBUS_MAX_ENDPOINTS];  /* --modbus-push specs */
+  int nserve, npush;
+  double linger; /* --modbus-linger, seconds */
+  int commands;  /* --modbus-commands */
+  int any_flag;  /* some --modbus* flag was given */
+} swarf_modbus_options;
+
+/* The --help text of the options below. */
+extern const char swarf_modbus_help[];
+
+/* If `flag` is one of --modbus, --modbus-push, --modbus-linger,
+ * --modbus-commands: record it (advancing *i past its value `val`, which may
+ * be NULL) and return 0, or print what is wrong and return 2. Returns -1 for
+ * any other flag. Endpoint strings are checked here already. */
+int swarf_modbus_option(swarf_modbus_options *o, const char *flag, const char *val, int *i);
+
+typedef struct swarf_modbus_service swarf_modbus_service;
+
+/* Open every endpoint (reporting a busy port or a missing device: returns
+ * 2 with a message on stderr), announce them on stderr, and install the
+ * observer in *cfg. With no --modbus option, *out is NULL and 0 returned. */
+int swarf_modbus_start(const swarf_modbus_options *o, const char *program, swarf_sim_config *cfg,
+                       swarf_modbus_service **out);
+
+/* Publish the final state (run status `rc`: 0 finished, else failed with
+ * that error code; `rep` the run's report), keep serving for the linger
+ * time, then stop every thread and free the service. NULL is a no-op. */
+void swarf_modbus_finish(swarf_modbus_service *svc, int rc, const swarf_sim_report *rep);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

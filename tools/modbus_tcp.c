@@ -1,0 +1,239 @@
+/* modbus_tcp.c -- the Modbus TCP status server: one thread, one select()
+ * loop, at most SWARF_MB_MAX_CLIENTS clients.
+ *
+ * Nothing in the loop blocks: sockets are non-blocking, each client has its
+ * own frame buffer (MBAP framing is done here, so a client that sends half
+ * a frame holds only its own slot), a reply that does not fit in a client's
+ * socket buffer drops that client, and clients idle too long are closed.
+ * When all slots are taken, a newcomer replaces the client idle the longest
+ * (if idle for a second or more) or is turned away. The server owns the
+ * listening socket, the client sockets and its libmodbus context; it only
+ * reads the status it was given, which must outlive it.
+ */
+#define _GNU_SOURCE /* accept4, pipe2 */
+#include <errno.h>
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/select.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "modbus_private.h"
+
+#define SWARF_MB_MAX_CLIENTS 64
+#define IDLE_LIMIT_S 60.0   /* no complete request for this long: closed */
+#define PARTIAL_LIMIT_S 5.0 /* a frame left unfinished for this long: closed */
+
+typedef struct {
+  int fd; /* -1: free slot */
+  int len;
+  double last;          /* last complete request (or connection) */
+  double partial_since; /* first byte of the unfinished frame, 0 if none */
+  uint8_t buf[MODBUS_TCP_MAX_ADU_LENGTH];
+} client;
+
+struct swarf_mb_tcp {
+  pthread_t thread;
+  int listen_fd, wake[2], port;
+  atomic_int stop;
+  modbus_t *ctx; /* TCP backend for framing replies; its socket is set per request */
+  swarf_mb_responder resp;
+  client clients[SWARF_MB_MAX_CLIENTS];
+};
+
+static void drop(client *c) {
+  if (c->fd >= 0) close(c->fd);
+  c->fd = -1;
+  c->len = 0;
+  c->partial_since = 0;
+}
+
+/* Total length of the first frame in c's buffer, 0 if incomplete, -1 if it
+ * cannot be a Modbus TCP frame (a TCP stream cannot resync: drop it). */
+static int frame_length(const client *c) {
+  int proto, n;
+  if (c->len < 7) return 0;
+  proto = c->buf[2] << 8 | c->buf[3];
+  n = c->buf[4] << 8 | c->buf[5];
+  if (proto != 0 || n < 2 || n > MODBUS_TCP_MAX_ADU_LENGTH - 6) return -1;
+  return c->len >= 6 + n ? 6 + n : 0;
+}
+
+static void serve_frames(struct swarf_mb_tcp *t, client *c, double now) {
+  int n;
+  while (c->fd >= 0 && (n = frame_length(c)) != 0) {
+    modbus_set_socket(t->ctx, c->fd);
+    if (n < 0 || swarf_mb_respond(&t->resp, t->ctx, c->buf, n) < 0) {
+      drop(c);
+      return;
+    }
+    memmove(c->buf, c->buf + n, (size_t)(c->len - n));
+    c->len -= n;
+    c->last = now;
+    c->partial_since = 0;
+  }
+  if (c->fd >= 0 && c->len > 0 && c->partial_since == 0) c->partial_since = now;
+}
+
+static void on_readable(struct swarf_mb_tcp *t, client *c, double now) {
+  ssize_t got = recv(c->fd, c->buf + c->len, sizeof c->buf - (size_t)c->len, 0);
+  if (got == 0 || (got < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+    drop(c);
+    return;
+  }
+  if (got > 0) c->len += (int)got;
+  serve_frames(t, c, now);
+}
+
+/* A free slot, or the slot of the client idle the longest if idle >= 1 s. */
+static client *free_slot(struct swarf_mb_tcp *t, double now) {
+  client *oldest = NULL;
+  for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++) {
+    client *c = &t->clients[i];
+    if (c->fd < 0) return c;
+    if (oldest == NULL || c->last < oldest->last) oldest = c;
+  }
+  if (oldest == NULL || now - oldest->last < 1.0) return NULL;
+  drop(oldest);
+  return oldest;
+}
+
+static void on_accept(struct swarf_mb_tcp *t, double now) {
+  int fd = accept4(t->listen_fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
+  client *c;
+  if (fd < 0) return;
+  if (fd >= FD_SETSIZE || (c = free_slot(t, now)) == NULL) {
+    close(fd);
+    return;
+  }
+  c->fd = fd;
+  c->len = 0;
+  c->last = now;
+  c->partial_since = 0;
+}
+
+static void close_stale(struct swarf_mb_tcp *t, double now) {
+  for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++) {
+    client *c = &t->clients[i];
+    if (c->fd < 0) continue;
+    if (now - c->last > IDLE_LIMIT_S ||
+        (c->partial_since > 0 && now - c->partial_since > PARTIAL_LIMIT_S))
+      drop(c);
+  }
+}
+
+static int fill_set(struct swarf_mb_tcp *t, fd_set *rd) {
+  int top = t->listen_fd > t->wake[0] ? t->listen_fd : t->wake[0];
+  FD_ZERO(rd);
+  FD_SET(t->listen_fd, rd);
+  FD_SET(t->wake[0], rd);
+  for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++) {
+    if (t->clients[i].fd < 0) continue;
+    FD_SET(t->clients[i].fd, rd);
+    if (t->clients[i].fd > top) top = t->clients[i].fd;
+  }
+  return top;
+}
+
+static void *loop(void *arg) {
+  struct swarf_mb_tcp *t = arg;
+  while (!atomic_load(&t->stop)) {
+    fd_set rd;
+    struct timeval tv = {0, 250000};
+    int top = fill_set(t, &rd);
+    int n = select(top + 1, &rd, NULL, NULL, &tv);
+    double now = swarf_status_now();
+    if (n < 0 && errno != EINTR) break;
+    if (n > 0) {
+      for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++)
+        if (t->clients[i].fd >= 0 && FD_ISSET(t->clients[i].fd, &rd))
+          on_readable(t, &t->clients[i], now);
+      if (FD_ISSET(t->listen_fd, &rd)) on_accept(t, now);
+    }
+    close_stale(t, now);
+  }
+  return NULL;
+}
+
+/* Bind and listen on e's host and port; fills t->listen_fd and t->port. */
+static int listen_on(struct swarf_mb_tcp *t, const swarf_mb_endpoint *e, char *msg, size_t msglen) {
+  struct addrinfo hints = {0}, *ai = NULL;
+  struct sockaddr_storage ss;
+  socklen_t sl = sizeof ss;
+  int one = 1, rc;
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_PASSIVE;
+  if ((rc = getaddrinfo(e->host, e->port, &hints, &ai)) != 0) {
+    snprintf(msg, msglen, "--modbus: cannot resolve \"%s\": %s", e->host, gai_strerror(rc));
+    return -1;
+  }
+  t->listen_fd = socket(ai->ai_family, ai->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (t->listen_fd >= 0) setsockopt(t->listen_fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  rc = t->listen_fd < 0 || bind(t->listen_fd, ai->ai_addr, ai->ai_addrlen) ||
+       listen(t->listen_fd, 16) || getsockname(t->listen_fd, (struct sockaddr *)&ss, &sl);
+  freeaddrinfo(ai);
+  if (rc) {
+    snprintf(msg, msglen,
+             "--modbus: cannot listen on %s:%s: %s (choose another port, or 0 for a free one)",
+             e->host, e->port, strerror(errno));
+    return -1;
+  }
+  t->port = ntohs(ss.ss_family == AF_INET6 ? ((struct sockaddr_in6 *)&ss)->sin6_port
+                                           : ((struct sockaddr_in *)&ss)->sin_port);
+  return 0;
+}
+
+swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+                               size_t msglen) {
+  struct swarf_mb_tcp *t;
+  if (e == NULL || status == NULL || e->kind != SWARF_MB_TCP) return NULL;
+  if ((t = calloc(1, sizeof *t)) == NULL) return NULL;
+  t->listen_fd = t->wake[0] = t->wake[1] = -1;
+  for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++)
+    t->clients[i].fd = -1;
+  atomic_init(&t->stop, 0);
+  if (listen_on(t, e, msg, msglen)) goto err;
+  t->ctx = modbus_new_tcp("127.0.0.1", t->port);
+  if (t->ctx) modbus_set_response_timeout(t->ctx, 0, 1); /* libmodbus sleeps it on errors */
+  if (t->ctx == NULL || swarf_mb_responder_init(&t->resp, status, e->unit, 1) ||
+      pipe2(t->wake, O_CLOEXEC) || pthread_create(&t->thread, NULL, loop, t)) {
+    snprintf(msg, msglen, "--modbus: cannot start the server: %s", strerror(errno));
+    goto err;
+  }
+  return t;
+err:
+  if (t->ctx) modbus_free(t->ctx);
+  swarf_mb_responder_clear(&t->resp);
+  if (t->listen_fd >= 0) close(t->listen_fd);
+  if (t->wake[0] >= 0) close(t->wake[0]), close(t->wake[1]);
+  free(t);
+  return NULL;
+}
+
+int swarf_mb_tcp_port(const swarf_mb_tcp *t) {
+  return t ? t->port : -1;
+}
+
+void swarf_mb_tcp_free(swarf_mb_tcp *t) {
+  if (t == NULL) return;
+  atomic_store(&t->stop, 1);
+  if (write(t->wake[1], "x", 1) < 0) { /* select wakes within 0.25 s anyway */
+  }
+  pthread_join(t->thread, NULL);
+  for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++)
+    drop(&t->clients[i]);
+  modbus_set_socket(t->ctx, -1);
+  modbus_free(t->ctx);
+  swarf_mb_responder_clear(&t->resp);
+  close(t->listen_fd);
+  close(t->wake[0]);
+  close(t->wake[1]);
+  free(t);
+}

@@ -227,7 +227,57 @@ void collapse(Pass &p) {
   }
 }
 
+/// First voxel of the block at o lying deeper than depth in both the
+/// material and the cut; false if none. Blocks the cut's Lipschitz bound
+/// keeps away, and blocks without material, are passed over whole.
+bool block_overlap(const Pass &p, ConstAcc &acc, const Coord &o, double depth, Vec3d &where) {
+  const swarf_stock_cut &cut = p.cuts[0];
+  const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
+  const double dc = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
+  if (dc - (p.reach - p.bgf) >= -depth) return false;  // no voxel of it is that deep in the cut
+  const Leaf *leaf = acc.probeConstLeaf(o);
+  if (leaf == nullptr) {  // a tile: all material (-w) or all outside (+w)
+    if (!(acc.getValue(o) < -depth)) return false;
+    for (int x = 0; x < 8; x++)
+      for (int y = 0; y < 8; y++)
+        for (int z = 0; z < 8; z++) {
+          const Vec3d q = block_point(p, o, x, y, z);
+          if (cut.sdf(cut.ctx, q.x(), q.y(), q.z()) < -depth) {
+            where = q;
+            return true;
+          }
+        }
+    return false;
+  }
+  const float *v = leaf->buffer().data();
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        if (!(v[(x << 6) | (y << 3) | z] < -depth)) continue;
+        const Vec3d q = block_point(p, o, x, y, z);
+        if (cut.sdf(cut.ctx, q.x(), q.y(), q.z()) < -depth) {
+          where = q;
+          return true;
+        }
+      }
+  return false;
+}
+
 }  // namespace
+
+/// True if the cut overlaps the material deeper than depth (see stock.h).
+bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  init_pass(p);
+  Coord a, b;
+  if (!cut_blocks(p, cut, a, b)) return false;
+  ConstAcc acc(s.grid->constTree());
+  for (int x = a.x(); x <= b.x(); x += 8)
+    for (int y = a.y(); y <= b.y(); y += 8)
+      for (int z = a.z(); z <= b.z(); z += 8)
+        if (block_overlap(p, acc, Coord(x, y, z), depth, where)) return true;
+  return false;
+}
 
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts) {
   Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}};
@@ -283,6 +333,23 @@ extern "C" int swarf_stock_remove(swarf_stock *s, const double lo[3], const doub
     cut.ctx = ctx;
     check_cut(cut, 0);
     swarf::remove_cuts(*s, &cut, 1);
+  });
+}
+
+extern "C" int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut,
+                                    double depth, int *hit, double where[3], char *msg,
+                                    size_t msglen) {
+  return swarf::guard(msg, msglen, [&] {
+    if (s == nullptr || cut == nullptr || hit == nullptr)
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, cut or hit is NULL");
+    *hit = 0;
+    check_cut(*cut, 0);
+    if (!(depth >= 0.0 && depth < s->background))
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be >= 0 and below the band half-width");
+    openvdb::Vec3d q;
+    *hit = swarf::cut_overlaps(*s, *cut, depth, q) ? 1 : 0;
+    if (*hit && where != nullptr)
+      for (int k = 0; k < 3; k++) where[k] = q[k];
   });
 }
 

@@ -73,6 +73,14 @@ typedef struct {
 int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts, size_t ncuts,
                              char *msg, size_t msglen);
 
+/* Whether the volume {sdf < 0} of `cut` overlaps the material by more than
+ * `depth` mm: some voxel centre lies deeper than `depth` inside both (stock
+ * value < -depth and sdf < -depth; 0 <= depth < the band half-width in mm).
+ * Read-only: the stock is not changed. *hit gets 1 or 0; where (may be NULL)
+ * the first such voxel centre found (mm). For a rapid move that would cut. */
+int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut, double depth, int *hit,
+                         double where[3], char *msg, size_t msglen);
+
 /* Facts about the grid. */
 double swarf_stock_voxel(const swarf_stock *s);
 int swarf_stock_half_width(const swarf_stock *s);

@@ -104,6 +104,11 @@ swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid);
 /// valid narrow band.
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts);
 
+/// True if the cut (checked) overlaps the material deeper than depth (mm):
+/// a voxel centre, returned in where, lies that deep inside both (remove.cc).
+bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth,
+                  openvdb::Vec3d &where);
+
 /// World position (mm) of the centre of voxel ijk.
 inline openvdb::Vec3d index_to_world(const swarf_stock &s, const openvdb::Coord &ijk) {
   return s.origin + s.voxel * ijk.asVec3d();

@@ -192,6 +192,16 @@ static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t 
   return rc == 0 ? 0 : 1;
 }
 
+/* Each alarm (up to the report's record of them) as a located warning. */
+static void print_alarms(const sim_options *o, const swarf_sim_report *r) {
+  for (long i = 0; i < r->alarms && i < SWARF_SIM_MAX_ALARMS; i++)
+    fprintf(stderr, "%s:%ld:%d: warning: rapid move (G0) cuts into the material\n", o->program,
+            r->alarm_line[i], r->alarm_column[i]);
+  if (r->alarms > SWARF_SIM_MAX_ALARMS)
+    fprintf(stderr, "%s: warning: %ld more rapid moves cut into the material\n", o->program,
+            r->alarms - SWARF_SIM_MAX_ALARMS);
+}
+
 static void print_summary(const sim_options *o, const swarf_stock *stock,
                           const swarf_sim_report *r, double total_s, size_t ntri) {
   double removed = r->volume_before - r->volume_after;
@@ -203,6 +213,7 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
   printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
          r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
          r->volume_after);
+  printf("  alarms %ld (rapid moves cutting into material)\n", r->alarms);
   printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
          r->seconds > 0 ? r->moves / r->seconds : 0.0, total_s);
   printf("  grid: voxel %g mm, active voxels %llu\n", swarf_stock_voxel(stock),
@@ -237,6 +248,7 @@ int swarf_cli_simulate(int argc, char **argv) {
     swarf_modbus_finish(mb, rc, &rep);
     return rc;
   }
+  print_alarms(&o, &rep);
   rc = write_outputs(&o, stock, &ntri);
   if (rc == 0 && !o.quiet) print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
   swarf_modbus_finish(mb, rc, &rep);

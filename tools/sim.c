@@ -95,6 +95,32 @@ static int boxes_overlap(const double alo[3], const double ahi[3], const double 
   return 1;
 }
 
+/* A rapid move is checked against the stock as it stands when it runs:
+ * cutting deeper than half a voxel into material raises an alarm. The moves
+ * queued before it have been removed (queue_motion). */
+static int check_rapid(sim_state *st, const swarf_motion *m, const swarf_stock_cut *c) {
+  swarf_sim_report *r = st->rep;
+  int hit = 0;
+  if (swarf_stock_overlaps(st->stock, c, 0.5 * st->cfg->voxel, &hit, NULL, st->msg, st->msglen) != 0) {
+    st->status = 1;
+    return 1;
+  }
+  if (hit && r->alarms < SWARF_SIM_MAX_ALARMS) {
+    r->alarm_line[r->alarms] = m->line;
+    r->alarm_column[r->alarms] = m->column;
+  }
+  r->alarms += hit;
+  return 0;
+}
+
+/* Remove the queued moves before the rapid in slot st->n, which moves to slot 0. */
+static int flush_before_rapid(sim_state *st) {
+  swarf_motion m = st->motions[st->n];
+  if (flush(st) != 0) return 1;
+  st->motions[0] = m;
+  return 0;
+}
+
 /* Queue the sweep of the motion in slot st->n if it can touch the stock. */
 static int queue_motion(sim_state *st) {
   swarf_motion *m = &st->motions[st->n];
@@ -103,6 +129,8 @@ static int queue_motion(sim_state *st) {
   swarf_sweep_init_voxel(s, st->cutter, m, st->cfg->voxel);
   swarf_sweep_bounds(s, c->lo, c->hi);
   if (!boxes_overlap(c->lo, c->hi, st->pad_lo, st->pad_hi)) return 0;
+  if (m->rapid && st->n > 0) /* checked against the stock as it stands: once, from slot 0 */
+    return flush_before_rapid(st) != 0 ? 1 : queue_motion(st);
   c->sdf = sweep_sdf;
   c->ctx = s;
   if (st->cfg->stamp_step > 0) {
@@ -117,6 +145,7 @@ static int queue_motion(sim_state *st) {
     c->ctx = sc;
   }
   st->rep->cutting_moves++;
+  if (m->rapid && check_rapid(st, m, c) != 0) return 1;
   if (++st->n == st->cap) return flush(st);
   return 0;
 }

@@ -22,6 +22,7 @@ extern "C" {
 #endif
 
 #define SWARF_SIM_MAX_TOOLS 64
+#define SWARF_SIM_MAX_ALARMS 16
 
 typedef struct {
   int number; /* T number */
@@ -38,6 +39,13 @@ typedef struct {
   double machining_s;  /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
   double volume_before, volume_after; /* stock volume, mm^3 */
   double seconds;      /* wall time of the run */
+  /* Alarms: rapid moves (G0) that cut into material still there when they
+   * run (deeper than half a voxel), the first SWARF_SIM_MAX_ALARMS of them
+   * with their source line and column. The cut is still made, as the
+   * machine would make it. */
+  long alarms;
+  long alarm_line[SWARF_SIM_MAX_ALARMS];
+  int alarm_column[SWARF_SIM_MAX_ALARMS];
 } swarf_sim_report;
 
 typedef struct {

@@ -48,6 +48,7 @@ int swarf_status_observe(void *ctx, const swarf_sim_report *sofar, long line, in
   ob->snap.line = line;
   ob->snap.tool = tool;
   ob->snap.moves_done = sofar->moves;
+  ob->snap.alarms = sofar->alarms;
   refresh_volume(ob, sofar, stock, now);
   if (swarf_status_pause_requested(ob->status)) hold_while_paused(ob);
   swarf_status_publish(ob->status, &ob->snap);
@@ -62,6 +63,7 @@ void swarf_status_observer_final(swarf_status_observer *ob, int rc, const swarf_
   if (rep != NULL) {
     if (rc == 0) ob->snap.line = rep->lines;
     ob->snap.moves_done = rep->moves;
+    ob->snap.alarms = rep->alarms;
     if (rc == 0) ob->snap.removed = rep->volume_before - rep->volume_after;
   }
   swarf_status_publish_final(ob->status, &ob->snap);

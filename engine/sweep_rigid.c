@@ -65,13 +65,13 @@ static double cutter_body(const void *ctx, const double q[3], double grad[3]) {
   return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
 }
 
-static rsample reval(rctx *h, double a) {
-  double t[3], U[9], v[3], w[3], d[3], q[3], gr[3], dq[3];
+/* g and g' at time a from the pose there. */
+static rsample rsample_at(rctx *h, double a, const swarf_pose *P) {
+  const double *U = P->U, *v = P->v, *w = P->omega;
+  double d[3], q[3], gr[3], dq[3];
   rsample r;
-  swarf_motion_eval(h->s->motion, a, t, U);
-  swarf_motion_velocity(h->s->motion, a, NULL, v, w);
   for (int k = 0; k < 3; k++)
-    d[k] = h->p[k] - t[k];
+    d[k] = h->p[k] - P->t[k];
   for (int k = 0; k < 3; k++)
     q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
   r.a = a;
@@ -84,6 +84,12 @@ static rsample reval(rctx *h, double a) {
   h->evals++;
   if (r.g < h->best.g) h->best = r;
   return r;
+}
+
+static rsample reval(rctx *h, double a) {
+  swarf_pose P;
+  swarf_motion_pose(h->s->motion, a, &P);
+  return rsample_at(h, a, &P);
 }
 
 /* Lower bound of g over [A.a, B.a] (see the top of the file). */
@@ -180,6 +186,7 @@ static void rcertify(rctx *h, const rsample *smp, int n) {
 double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
                                   const double p[3], double *alpha) {
   rsample smp[MAXN + 1];
+  const swarf_pose *table;
   rctx h;
   int n;
   double lb = INFINITY;
@@ -187,8 +194,9 @@ double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, 
   n = (int)s->aux[RG_N];
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
   h.best.a = 0.0, h.best.g = INFINITY, h.best.dg = 0.0, h.best.dist = 0.0;
+  table = swarf_motion_pose_table(s->motion, n);
   for (int i = 0; i <= n; i++)
-    smp[i] = reval(&h, (double)i / n);
+    smp[i] = table ? rsample_at(&h, (double)i / n, &table[i]) : reval(&h, (double)i / n);
   for (int i = 0; i < n; i++) {
     double w = 1.0 / n, Q = fmax(smp[i].dist, smp[i + 1].dist) + 0.5 * s->aux[RG_V] * w;
     lb = fmin(lb, 0.5 * (smp[i].g + smp[i + 1].g - (s->aux[RG_V] + s->aux[RG_W] * Q) * w));

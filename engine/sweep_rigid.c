@@ -15,7 +15,12 @@
  *     more than STEP = sqrt(8 r tol) between two poses (the spacing at which
  *     balls of radius r leave scallops of depth tol): from the rotation
  *     angle (W, times the cutter's reach), the path's speed and curvature
- *     (V and V') and the voxel (tol = voxel / 10).
+ *     (V and V') and the voxel (tol = voxel / 10). Their poses come from
+ *     the per-thread pose table (swarf_motion_pose_table: computed once per
+ *     move, not per voxel). Coarse to fine: every S-th step (S ~ sqrt(N))
+ *     first; the steps inside a coarse interval are sampled only if its
+ *     lower bound (step 3's) is below the best value so far, lowest first.
+ *     The others cannot hold a value below best - EPS: step 3 drops them.
  *  2. between steps the envelope is resolved on the characteristic curve:
  *     every interval where g' goes from - to + is refined (Illinois regula
  *     falsi) to g' = 0.
@@ -23,8 +28,9 @@
  *     envelope of the two concave parabolas of curvature -K through the end
  *     data) is below best - EPS are split, lowest first, within caps.
  * Beyond FAR (72 voxels, more than any narrow band plus a block) the value
- * is the Lipschitz lower bound only. Nothing allocates; pure function of the
- * sweep and p.
+ * is the lower bound of the coarse intervals only. Nothing allocates here
+ * (the pose table belongs to the thread's cache); pure function of the sweep
+ * and p.
  */
 #include <math.h>
 #include <string.h>

@@ -62,10 +62,10 @@ static double pose_sdf(const swarf_cutter *c, const double t[3], const double U[
 }
 
 /* Minimum over the stamped poses, from the per-thread pose table (the same
- * one the swept sdf uses) when there is memory for it. */
+ * one the swept sdf uses) for moves of up to 4096 stamps (600 kB a slot). */
 static double stamp_sdf(const void *ctx, double x, double y, double z) {
   const stamp_ctx *s = ctx;
-  const swarf_pose *table = swarf_motion_pose_table(s->motion, s->n);
+  const swarf_pose *table = s->n <= 4096 ? swarf_motion_pose_table(s->motion, s->n) : NULL;
   double best = INFINITY, t[3], U[9];
   for (int i = 0; i <= s->n; i++) {
     double d;

@@ -15,7 +15,12 @@
  *     more than STEP = sqrt(8 r tol) between two poses (the spacing at which
  *     balls of radius r leave scallops of depth tol): from the rotation
  *     angle (W, times the cutter's reach), the path's speed and curvature
- *     (V and V') and the voxel (tol = voxel / 10).
+ *     (V and V') and the voxel (tol = voxel / 10). Their poses come from
+ *     the per-thread pose table (swarf_motion_pose_table: computed once per
+ *     move, not per voxel). Coarse to fine: every S-th step (S ~ sqrt(N))
+ *     first; the steps inside a coarse interval are sampled only if its
+ *     lower bound (step 3's) is below the best value so far, lowest first.
+ *     The others cannot hold a value below best - EPS: step 3 drops them.
  *  2. between steps the envelope is resolved on the characteristic curve:
  *     every interval where g' goes from - to + is refined (Illinois regula
  *     falsi) to g' = 0.
@@ -23,8 +28,9 @@
  *     envelope of the two concave parabolas of curvature -K through the end
  *     data) is below best - EPS are split, lowest first, within caps.
  * Beyond FAR (72 voxels, more than any narrow band plus a block) the value
- * is the Lipschitz lower bound only. Nothing allocates; pure function of the
- * sweep and p.
+ * is the lower bound of the coarse intervals only. Nothing allocates here
+ * (the pose table belongs to the thread's cache); pure function of the sweep
+ * and p.
  */
 #include <math.h>
 #include <string.h>
@@ -57,6 +63,14 @@ typedef struct {
   int nheap;
 } rctx;
 
+static inline double min2(double a, double b) {
+  return a < b ? a : b;
+}
+
+static inline double max2(double a, double b) {
+  return a > b ? a : b;
+}
+
 static double norm3(const double a[3]) {
   return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
@@ -65,13 +79,13 @@ static double cutter_body(const void *ctx, const double q[3], double grad[3]) {
   return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
 }
 
-static rsample reval(rctx *h, double a) {
-  double t[3], U[9], v[3], w[3], d[3], q[3], gr[3], dq[3];
+/* g and g' at time a from the pose there. */
+static rsample rsample_at(rctx *h, double a, const swarf_pose *P) {
+  const double *U = P->U, *v = P->v, *w = P->omega;
+  double d[3], q[3], gr[3], dq[3];
   rsample r;
-  swarf_motion_eval(h->s->motion, a, t, U);
-  swarf_motion_velocity(h->s->motion, a, NULL, v, w);
   for (int k = 0; k < 3; k++)
-    d[k] = h->p[k] - t[k];
+    d[k] = h->p[k] - P->t[k];
   for (int k = 0; k < 3; k++)
     q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
   r.a = a;
@@ -86,26 +100,40 @@ static rsample reval(rctx *h, double a) {
   return r;
 }
 
+static rsample reval(rctx *h, double a) {
+  swarf_pose P;
+  swarf_motion_pose(h->s->motion, a, &P);
+  return rsample_at(h, a, &P);
+}
+
+/* The Lipschitz part of the lower bound over [A.a, B.a]. */
+static inline double rbound_lip(const rctx *h, const rsample *A, const rsample *B) {
+  const double *x = h->s->aux;
+  double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x[RG_V] * w;
+  return 0.5 * (A->g + B->g - (x[RG_V] + x[RG_W] * Q) * w);
+}
+
 /* Lower bound of g over [A.a, B.a] (see the top of the file). */
 static double rbound(const rctx *h, const rsample *A, const rsample *B) {
   const double *x = h->s->aux;
-  double w = B->a - A->a, Q = fmax(A->dist, B->dist) + 0.5 * x[RG_V] * w;
-  double lip = x[RG_V] + x[RG_W] * Q;
+  double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x[RG_V] * w;
   double K = (x[RG_WD] + x[RG_W] * x[RG_W]) * Q + x[RG_W] * x[RG_V] + x[RG_VD];
-  double k2 = 0.5 * K, lb_lip = 0.5 * (A->g + B->g - lip * w);
+  double k2 = 0.5 * K, lb_lip = rbound_lip(h, A, B);
   double ta_b = A->g + A->dg * w - k2 * w * w, tb_a = B->g - B->dg * w - k2 * w * w;
-  double lb = fmin(fmax(A->g, tb_a), fmax(B->g, ta_b));
+  double lb = min2(max2(A->g, tb_a), max2(B->g, ta_b));
   double c0 = A->g - tb_a, c1 = A->dg - B->dg - K * w; /* T_A - T_B = c0 + c1 x */
   if (c1 != 0.0) {
     double xs = -c0 / c1;
-    if (xs > 0.0 && xs < w) lb = fmin(lb, A->g + A->dg * xs - k2 * xs * xs);
+    if (xs > 0.0 && xs < w) lb = min2(lb, A->g + A->dg * xs - k2 * xs * xs);
   }
-  return fmax(lb, lb_lip);
+  return max2(lb, lb_lip);
 }
 
 static void rpush(rctx *h, rsample lo, rsample hi) {
-  rspan sp = {lo, hi, rbound(h, &lo, &hi)};
+  rspan sp;
   int i;
+  if (rbound_lip(h, &lo, &hi) >= h->best.g - EPS) return; /* cheap test first */
+  sp.lo = lo, sp.hi = hi, sp.lb = rbound(h, &lo, &hi);
   if (sp.lb >= h->best.g - EPS || h->nheap == HEAP || hi.a - lo.a < 1e-12) return;
   for (i = h->nheap++; i > 0 && h->heap[(i - 1) / 2].lb > sp.lb; i = (i - 1) / 2)
     h->heap[i] = h->heap[(i - 1) / 2];
@@ -177,26 +205,68 @@ static void rcertify(rctx *h, const rsample *smp, int n) {
   }
 }
 
+/* The sample at step i of n, from the pose table if there is one. */
+static rsample rstep(rctx *h, const swarf_pose *table, int i, int n) {
+  return table ? rsample_at(h, (double)i / n, &table[i]) : reval(h, (double)i / n);
+}
+
+/* Coarse intervals (every S-th step, S ~ sqrt(n)) sorted by lower bound. */
+static int rcoarse(rctx *h, const swarf_pose *table, int n, int S, rsample *smp, char *have,
+                   int *order, double *lbc) {
+  int nc = (n + S - 1) / S;
+  for (int j = 0; j <= nc; j++) {
+    int i = j * S < n ? j * S : n;
+    smp[i] = rstep(h, table, i, n), have[i] = 1;
+  }
+  for (int j = 0; j < nc; j++) {
+    int i0 = j * S, i1 = (j + 1) * S < n ? (j + 1) * S : n, k;
+    lbc[j] = rbound(h, &smp[i0], &smp[i1]);
+    for (k = j; k > 0 && lbc[order[k - 1]] > lbc[j]; k--)
+      order[k] = order[k - 1];
+    order[k] = j;
+  }
+  return nc;
+}
+
+/* Step 1: the samples at the time steps, evaluated only in the coarse
+ * intervals whose lower bound is below the best value so far (most promising
+ * first; the others cannot hold a lower value). Compacts the samples, in
+ * time order, to the front of smp and returns their number minus one; *lb
+ * receives a lower bound of g over the whole move. */
+static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double *lb) {
+  char have[MAXN + 1];
+  int order[MAXN], S = (int)sqrt((double)n), nc, m = 0;
+  double lbc[MAXN];
+  if (S < 1) S = 1;
+  order[0] = 0, lbc[0] = INFINITY;
+  memset(have, 0, (size_t)n + 1);
+  nc = rcoarse(h, table, n, S, smp, have, order, lbc);
+  *lb = lbc[order[0]];
+  if (*lb > h->s->aux[RG_FAR]) return -1;
+  for (int k = 0; k < nc; k++) {
+    int j = order[k], i1 = (j + 1) * S < n ? (j + 1) * S : n;
+    if (lbc[j] >= h->best.g - EPS) break;
+    for (int i = j * S + 1; i < i1; i++)
+      smp[i] = rstep(h, table, i, n), have[i] = 1;
+  }
+  for (int i = 0; i <= n; i++)
+    if (have[i]) smp[m++] = smp[i];
+  return m - 1;
+}
+
 double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
                                   const double p[3], double *alpha) {
   rsample smp[MAXN + 1];
   rctx h;
   int n;
-  double lb = INFINITY;
+  double lb;
   if (s == NULL || s->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL) return NAN;
-  n = (int)s->aux[RG_N];
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
   h.best.a = 0.0, h.best.g = INFINITY, h.best.dg = 0.0, h.best.dist = 0.0;
-  for (int i = 0; i <= n; i++)
-    smp[i] = reval(&h, (double)i / n);
-  for (int i = 0; i < n; i++) {
-    double w = 1.0 / n, Q = fmax(smp[i].dist, smp[i + 1].dist) + 0.5 * s->aux[RG_V] * w;
-    lb = fmin(lb, 0.5 * (smp[i].g + smp[i + 1].g - (s->aux[RG_V] + s->aux[RG_W] * Q) * w));
-  }
-  if (lb > s->aux[RG_FAR]) {
-    if (alpha != NULL) *alpha = h.best.a;
-    return lb;
-  }
+  n = (int)s->aux[RG_N];
+  n = rsteps(&h, swarf_motion_pose_table(s->motion, n), n, smp, &lb);
+  if (alpha != NULL) *alpha = h.best.a;
+  if (n < 0) return lb;
   h.evals = 0;
   rcertify(&h, smp, n);
   if (alpha != NULL) *alpha = h.best.a;

@@ -24,7 +24,8 @@ static void cross3(const double a[3], const double b[3], double out[3]) {
 static void rotate3(const double n[3], double th, const double v[3], double out[3]) {
   double c = cos(th), s = sin(th), nxv[3], nv = dot3(n, v);
   cross3(n, v, nxv);
-  for (int k = 0; k < 3; k++) out[k] = v[k] * c + nxv[k] * s + n[k] * nv * (1.0 - c);
+  for (int k = 0; k < 3; k++)
+    out[k] = v[k] * c + nxv[k] * s + n[k] * nv * (1.0 - c);
 }
 
 static void set_identity(double U[9]) {
@@ -50,10 +51,13 @@ static void fill_helix(const swarf_move *mv, swarf_motion *m) {
   m->helix = 1;
   memcpy(m->axis, mv->normal, sizeof m->axis);
   /* Keep the centre in the plane of p0 so that p0 - centre is radial. */
-  for (int k = 0; k < 3; k++) r[k] = m->p0[k] - mv->center[k];
+  for (int k = 0; k < 3; k++)
+    r[k] = m->p0[k] - mv->center[k];
   nr = dot3(r, m->axis);
-  for (int k = 0; k < 3; k++) m->center[k] = mv->center[k] + nr * m->axis[k];
-  for (int k = 0; k < 3; k++) r[k] = m->p0[k] - m->center[k];
+  for (int k = 0; k < 3; k++)
+    m->center[k] = mv->center[k] + nr * m->axis[k];
+  for (int k = 0; k < 3; k++)
+    r[k] = m->p0[k] - m->center[k];
   m->radius = sqrt(dot3(r, r));
   m->angle = mv->angle;
   m->rise = mv->rise;
@@ -75,7 +79,8 @@ int swarf_motion_from_move(const swarf_move *mv, swarf_motion *m) {
     fill_helix(mv, m);
   } else {
     m->kind = SWARF_MOTION_LINE;
-    for (int k = 0; k < 3; k++) d[k] = m->p1[k] - m->p0[k];
+    for (int k = 0; k < 3; k++)
+      d[k] = m->p1[k] - m->p0[k];
     m->length = sqrt(dot3(d, d));
   }
   if (m->rapid)
@@ -96,18 +101,23 @@ void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double 
 
 void swarf_path_point(const swarf_motion *m, double alpha, double t[3], double d[3]) {
   if (!m->helix) {
-    for (int k = 0; k < 3; k++) t[k] = m->p0[k] + alpha * (m->p1[k] - m->p0[k]);
+    for (int k = 0; k < 3; k++)
+      t[k] = m->p0[k] + alpha * (m->p1[k] - m->p0[k]);
     if (d != NULL)
-      for (int k = 0; k < 3; k++) d[k] = m->p1[k] - m->p0[k];
+      for (int k = 0; k < 3; k++)
+        d[k] = m->p1[k] - m->p0[k];
     return;
   }
   double r[3], rr[3], nxr[3];
-  for (int k = 0; k < 3; k++) r[k] = m->p0[k] - m->center[k];
+  for (int k = 0; k < 3; k++)
+    r[k] = m->p0[k] - m->center[k];
   rotate3(m->axis, alpha * m->angle, r, rr);
-  for (int k = 0; k < 3; k++) t[k] = m->center[k] + rr[k] + alpha * m->rise * m->axis[k];
+  for (int k = 0; k < 3; k++)
+    t[k] = m->center[k] + rr[k] + alpha * m->rise * m->axis[k];
   if (d == NULL) return;
   cross3(m->axis, rr, nxr);
-  for (int k = 0; k < 3; k++) d[k] = m->angle * nxr[k] + m->rise * m->axis[k];
+  for (int k = 0; k < 3; k++)
+    d[k] = m->angle * nxr[k] + m->rise * m->axis[k];
 }
 
 void swarf_motion_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
@@ -138,7 +148,8 @@ static void helix_include(const swarf_motion *m, double theta, double lo[3], dou
  * stationary points solve sin(theta - theta_k) = s / (r rho). */
 static void helix_extrema(const swarf_motion *m, int k, double lo[3], double hi[3]) {
   double r[3], e2[3], a, b, rho, thk, s, q;
-  for (int j = 0; j < 3; j++) r[j] = m->p0[j] - m->center[j];
+  for (int j = 0; j < 3; j++)
+    r[j] = m->p0[j] - m->center[j];
   cross3(m->axis, r, e2);
   a = r[k];  /* coefficient of cos(theta) */
   b = e2[k]; /* coefficient of sin(theta) */
@@ -151,7 +162,8 @@ static void helix_extrema(const swarf_motion *m, int k, double lo[3], double hi[
   double roots[2] = {thk + asin(q), thk + pi - asin(q)};
   for (int i = 0; i < 2; i++) {
     double th = roots[i] - 2.0 * pi * floor(roots[i] / (2.0 * pi));
-    for (; th <= m->angle; th += 2.0 * pi) helix_include(m, th, lo, hi);
+    for (; th <= m->angle; th += 2.0 * pi)
+      helix_include(m, th, lo, hi);
   }
 }
 
@@ -166,12 +178,21 @@ void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]) {
   }
   if (m->kind != SWARF_MOTION_HELIX) return;
   helix_include(m, m->angle, lo, hi);
-  for (int k = 0; k < 3; k++) helix_extrema(m, k, lo, hi);
+  for (int k = 0; k < 3; k++)
+    helix_extrema(m, k, lo, hi);
 }
 
 int swarf_motion_is_null(const swarf_motion *m) {
-  if (m->kind == SWARF_MOTION_RIGID && (m->th0[0] != m->th1[0] || m->th0[1] != m->th1[1]))
-    return 0;
+  if (m->kind == SWARF_MOTION_RIGID && (m->th0[0] != m->th1[0] || m->th0[1] != m->th1[1])) return 0;
   if (m->helix) return m->angle == 0.0 && m->rise == 0.0;
   return m->p0[0] == m->p1[0] && m->p0[1] == m->p1[1] && m->p0[2] == m->p1[2];
+}
+
+void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose *out) {
+  if (m->kind == SWARF_MOTION_RIGID) {
+    swarf_rigid_pose(m, alpha, out->t, out->U, NULL, out->v, out->omega);
+    return;
+  }
+  swarf_motion_eval(m, alpha, out->t, out->U);
+  swarf_motion_velocity(m, alpha, NULL, out->v, out->omega);
 }

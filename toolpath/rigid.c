@@ -59,36 +59,30 @@ static void machine_arm(const swarf_motion *m, double alpha, double d[3], double
     d[k] -= m->pivot[k];
 }
 
-void swarf_rigid_eval(const swarf_motion *m, double alpha, double t[3], double U[9]) {
-  double R[9], d[3];
-  table_rotation(m, alpha, R, NULL);
+/* Pose (t, U) and velocities (tdot, v, omega) at alpha from one table
+ * rotation (sin and cos once per axis); any output may be NULL. */
+void swarf_rigid_pose(const swarf_motion *m, double alpha, double t[3], double U[9], double tdot[3],
+                      double v[3], double omega[3]) {
+  double R[9], R1[9], w[3], vv[3], td[3], d[3], dP[3];
+  double d1 = m->th1[0] - m->th0[0], d2 = m->th1[1] - m->th0[1];
+  table_rotation(m, alpha, R, R1);
   if (U != NULL)
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++)
         U[3 * i + j] = R[3 * j + i];
-  if (m->tcp) {
-    swarf_path_point(m, alpha, t, NULL);
-    return;
-  }
-  machine_arm(m, alpha, d, NULL); /* t = pivot + R^T d */
-  for (int k = 0; k < 3; k++)
-    t[k] = m->pivot[k] + R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
-}
-
-void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
-                          double omega[3]) {
-  double R[9], R1[9], w[3], vv[3], td[3], d[3], dP[3];
-  double d1 = m->th1[0] - m->th0[0], d2 = m->th1[1] - m->th0[1];
-  table_rotation(m, alpha, R, R1);
   for (int k = 0; k < 3; k++)
     w[k] = -(d1 * m->e1[k] +
              d2 * (R1[3 * k] * m->e2[0] + R1[3 * k + 1] * m->e2[1] + R1[3 * k + 2] * m->e2[2]));
-  if (m->tcp) { /* v = U^T tdot = R tdot */
+  if (m->tcp) { /* t = P, v = U^T tdot = R tdot */
     swarf_path_point(m, alpha, d, td);
+    if (t != NULL) memcpy(t, d, sizeof d);
     for (int k = 0; k < 3; k++)
       vv[k] = R[3 * k] * td[0] + R[3 * k + 1] * td[1] + R[3 * k + 2] * td[2];
-  } else { /* v = omega x (P - pivot) + dP/da */
+  } else { /* t = pivot + R^T d, v = omega x (P - pivot) + dP/da */
     machine_arm(m, alpha, d, dP);
+    if (t != NULL)
+      for (int k = 0; k < 3; k++)
+        t[k] = m->pivot[k] + R[k] * d[0] + R[3 + k] * d[1] + R[6 + k] * d[2];
     vv[0] = w[1] * d[2] - w[2] * d[1] + dP[0];
     vv[1] = w[2] * d[0] - w[0] * d[2] + dP[1];
     vv[2] = w[0] * d[1] - w[1] * d[0] + dP[2];
@@ -98,6 +92,15 @@ void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], d
   if (tdot != NULL) memcpy(tdot, td, sizeof td);
   if (v != NULL) memcpy(v, vv, sizeof vv);
   if (omega != NULL) memcpy(omega, w, sizeof w);
+}
+
+void swarf_rigid_eval(const swarf_motion *m, double alpha, double t[3], double U[9]) {
+  swarf_rigid_pose(m, alpha, t, U, NULL, NULL, NULL);
+}
+
+void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
+                          double omega[3]) {
+  swarf_rigid_pose(m, alpha, NULL, NULL, tdot, v, omega);
 }
 
 /* Tip path bounds: SAMPLES poses, widened by the distance the tip can travel

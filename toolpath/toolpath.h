@@ -22,7 +22,7 @@ extern "C" {
 #endif
 
 typedef enum {
-  SWARF_MOTION_LINE, /* t(a) = p0 + a (p1 - p0) */
+  SWARF_MOTION_LINE,  /* t(a) = p0 + a (p1 - p0) */
   SWARF_MOTION_HELIX, /* t(a) = center + Rot(axis, a angle)(p0 - center) + a rise axis */
   SWARF_MOTION_RIGID  /* rotary machine: U(a) = R(a)^T, see below */
 } swarf_motion_kind;
@@ -52,7 +52,7 @@ typedef struct {
    * (joint positions) and t(a) = pivot + U(a) (P(a) - pivot). */
   int tcp;
   int helix;             /* 1: the tip path P is the helix of the fields above (any kind) */
-  double e1[3], e2[3]; /* unit rotation axes of the two table axes (e2 = 0: one axis) */
+  double e1[3], e2[3];   /* unit rotation axes of the two table axes (e2 = 0: one axis) */
   double th0[2], th1[2]; /* their angles at a = 0 and a = 1, radians */
   double pivot[3];       /* a point of both axes, mm */
   double turn;           /* |th1 - th0| summed over the axes, radians */
@@ -100,6 +100,24 @@ void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double 
  * (U^T Udot = [omega]_x). */
 void swarf_motion_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
                            double omega[3]);
+
+/* Pose and velocities at one alpha, as swarf_motion_eval and
+ * swarf_motion_velocity give them (tdot omitted). */
+typedef struct {
+  double t[3], U[9];     /* pose: x' = t + U x */
+  double v[3], omega[3]; /* moving-frame velocity and angular velocity, per unit alpha */
+} swarf_pose;
+
+/* swarf_motion_eval and swarf_motion_velocity in one evaluation (the table
+ * rotation's sines and cosines once). */
+void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose *out);
+
+/* The poses at alpha = i / n, i = 0..n (n >= 1), from a per-thread cache of
+ * the last motions asked for (keyed by the motion's contents, so a motion
+ * changed in place is recomputed). The array belongs to the cache and stays
+ * valid until the next call of this function on the same thread. Returns
+ * NULL when out of memory. Thread-safe (each thread has its own cache). */
+const swarf_pose *swarf_motion_pose_table(const swarf_motion *m, int n);
 
 /* Axis-aligned bounds of the tip path t([0,1]), mm. */
 void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]);

@@ -3,6 +3,7 @@
  *   motion.c   xyz motions (lines, helices) and the public dispatch.
  *   rigid.c    RIGID motions: table rotations, poses, velocities, bounds.
  *   machine.c  machine descriptions (--machine) and moves -> motions.
+ *   pose_table.c  per-thread tables of poses at evenly spaced times.
  */
 #ifndef SWARF_TOOLPATH_PRIVATE_H
 #define SWARF_TOOLPATH_PRIVATE_H
@@ -14,6 +15,8 @@
 void swarf_path_point(const swarf_motion *m, double alpha, double P[3], double d[3]);
 
 void swarf_rigid_eval(const swarf_motion *m, double alpha, double t[3], double U[9]);
+void swarf_rigid_pose(const swarf_motion *m, double alpha, double t[3], double U[9], double tdot[3],
+                      double v[3], double omega[3]);
 void swarf_rigid_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
                           double omega[3]);
 void swarf_rigid_bounds(const swarf_motion *m, double lo[3], double hi[3]);

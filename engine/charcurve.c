@@ -18,6 +18,8 @@
 #define MAX_DEPTH 48       /* bisections of one parameter interval */
 #define MAX_POINTS 4000000 /* refuse to grow beyond this */
 #define MARGIN 0.6         /* accepted middle-point distance, in units of tol */
+#define AIM 0.45           /* middle-point distance aimed at when splitting */
+#define MAX_SPLIT 64       /* most steps one split makes */
 #define SPAN_STEPS 16      /* first steps of a branch over the whole of sigma */
 #define MIN_STEPS 2        /* first steps of any piece */
 #define HALF_PI 1.57079632679489661923
@@ -149,19 +151,36 @@ static double piece_sigma(const piece *p, double tau) {
   return p->s0 + d * tau;
 }
 
-/* Append the points of branch s after (tau0, x0) up to (tau1, n1, x1):
- * split at the middle parameter while the middle point is farther than
- * MARGIN * tol from the chord. On a smooth arc the chord error is largest
- * near the middle, and the margin covers an uneven speed along the arc (the
- * middle point then sees at least 3/4 of the largest error). */
+/* Append the points of branch s after (tau0, x0) up to (tau1, n1, x1). The
+ * step is accepted when its middle point is within MARGIN * tol of the chord:
+ * on a smooth arc the chord error is largest near the middle, and the margin
+ * covers an uneven speed along the arc (the middle point then still sees at
+ * least 3/4 of the largest error). Otherwise the middle distance d fixes the
+ * count: the error falls with the square of the step, so k = sqrt(d / (AIM
+ * tol)) equal steps should pass; each is checked the same way. */
 static int refine(builder *b, const piece *p, double s, double tau0, const double x0[3],
                   double tau1, const double n1[3], const double x1[3], int depth) {
-  double tm = 0.5 * (tau0 + tau1), nm[3], xm[3];
+  double tm = 0.5 * (tau0 + tau1), nm[3], xm[3], d, prev = tau0, xp[3];
+  int k;
   if (depth >= MAX_DEPTH || eval_point(b, piece_sigma(p, tm), s, 0, 0.0, nm, xm) != 0 ||
-      seg_dist(xm, x0, x1) <= MARGIN * b->tol)
+      (d = seg_dist(xm, x0, x1)) <= MARGIN * b->tol)
     return push_new(b, n1, x1);
-  if (refine(b, p, s, tau0, x0, tm, nm, xm, depth + 1) != 0) return -1;
-  return refine(b, p, s, tm, xm, tau1, n1, x1, depth + 1);
+  k = (int)ceil(sqrt(d / (AIM * b->tol)));
+  k = k < 2 ? 2 : k > MAX_SPLIT ? MAX_SPLIT : k;
+  memcpy(xp, x0, sizeof xp);
+  for (int j = 1; j <= k; j++) {
+    double tau = j == k ? tau1 : tau0 + (tau1 - tau0) * j / k, n[3], x[3];
+    if (j == k)
+      memcpy(n, n1, sizeof n), memcpy(x, x1, sizeof x);
+    else if (2 * j == k)
+      memcpy(n, nm, sizeof n), memcpy(x, xm, sizeof x), tau = tm;
+    else if (eval_point(b, piece_sigma(p, tau), s, 0, 0.0, n, x) != 0)
+      continue;
+    if (refine(b, p, s, prev, xp, tau, n, x, depth + 1) != 0) return -1;
+    memcpy(xp, x, sizeof xp);
+    prev = tau;
+  }
+  return 0;
 }
 
 /* Branch s along piece p, forward (dir > 0: tau from 0 to 1) or backward.

@@ -87,9 +87,11 @@ void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3],
 int swarf_char_slice_point(const swarf_char_profile *pr, const swarf_char_slice *sl, double s,
                            double n[3], double x[3]);
 
-/* Roots of Delta(sigma) on [0, sigma_end], sorted, bisected to full double
- * precision: the changes between Delta < 0 and Delta >= 0, each given by its
- * end where Delta >= 0. Returns the count (writes at most max). */
+/* Roots of Delta(sigma) on [0, sigma_end], sorted: the changes between
+ * Delta < 0 and Delta >= 0. A QSS's are bisected to adjacent doubles and
+ * given by the end where Delta >= 0; a cutter's are the zeros of its
+ * per-piece quadratic form (charcutter.c), to a few ulps. Returns the count
+ * (writes at most max). */
 int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
                            double *roots, int max);
 

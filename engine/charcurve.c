@@ -15,10 +15,14 @@
 #include "engine_private.h"
 
 #define MAX_ROOTS 64
-#define MAX_DEPTH 48         /* bisections of one parameter interval */
-#define MAX_POINTS 4000000   /* refuse to grow beyond this */
-#define PROBES 7             /* odd: the middle probe is the split point */
-#define PROBE_MARGIN 0.9
+#define MAX_DEPTH 48       /* bisections of one parameter interval */
+#define MAX_POINTS 4000000 /* refuse to grow beyond this */
+#define MARGIN 0.6         /* accepted middle-point distance, in units of tol */
+#define AIM 0.45           /* middle-point distance aimed at when splitting */
+#define MAX_SPLIT 64       /* most steps one split makes */
+#define SPAN_STEPS 16      /* first steps of a branch over the whole of sigma */
+#define MIN_STEPS 2        /* first steps of any piece */
+#define HALF_PI 1.57079632679489661923
 
 typedef struct {
   swarf_char_curve *cc;
@@ -28,7 +32,9 @@ typedef struct {
   size_t first; /* index of the first point of the open component */
 } builder;
 
-void swarf_char_curve_init(swarf_char_curve *cc) { memset(cc, 0, sizeof *cc); }
+void swarf_char_curve_init(swarf_char_curve *cc) {
+  memset(cc, 0, sizeof *cc);
+}
 
 void swarf_char_curve_clear(swarf_char_curve *cc) {
   free(cc->pts);
@@ -122,53 +128,108 @@ static double seg_dist(const double p[3], const double a[3], const double c[3]) 
   }
   t = dd > 0.0 ? t / dd : 0.0;
   t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-  for (int k = 0; k < 3; k++) r += (w[k] - t * d[k]) * (w[k] - t * d[k]);
+  for (int k = 0; k < 3; k++)
+    r += (w[k] - t * d[k]) * (w[k] - t * d[k]);
   return sqrt(r);
 }
 
-/* Append the points of branch s after (s0, x0) up to (s1, n1, x1), splitting
- * the parameter interval until the chord is within PROBE_MARGIN * tol of the
- * curve at PROBES evenly spaced parameters (the margin covers the curve
- * between probes). */
-static int refine(builder *b, double s, double s0, const double x0[3], double s1,
-                  const double n1[3], const double x1[3], int depth) {
-  double nm[PROBES][3], xm[PROBES][3], mid = 0.5 * (s0 + s1);
-  int split = 0;
-  for (int i = 0; i < PROBES && depth < MAX_DEPTH; i++) {
-    double sig = s0 + (s1 - s0) * (i + 1) / (PROBES + 1);
-    if (eval_point(b, sig, s, 0, 0.0, nm[i], xm[i]) != 0) {
-      split = 0; /* no real point: keep the chord */
-      break;
-    }
-    if (seg_dist(xm[i], x0, x1) > PROBE_MARGIN * b->tol) split = 1;
-  }
-  if (!split) return push_new(b, n1, x1);
-  if (refine(b, s, s0, x0, mid, nm[PROBES / 2], xm[PROBES / 2], depth + 1) != 0) return -1;
-  return refine(b, s, mid, xm[PROBES / 2], s1, n1, x1, depth + 1);
+/* One smooth piece [s0, s1] of a branch, run with tau in [0, 1]. Next to a
+ * branch point sqrt(Delta) grows like sqrt(sigma - root): there sigma moves
+ * quadratically in tau (sigma - root ~ tau^2), which makes the branch smooth
+ * in tau (and the two branches one smooth curve through the branch point),
+ * so that the chord error of equal tau steps is nearly uniform. */
+typedef struct {
+  double s0, s1;
+  int root0, root1; /* the end is a branch point */
+} piece;
+
+static double piece_sigma(const piece *p, double tau) {
+  double d = p->s1 - p->s0;
+  if (p->root0 && p->root1) return p->s0 + d * tau * tau * (3.0 - 2.0 * tau);
+  if (p->root0) return p->s0 + d * tau * tau;
+  if (p->root1) return p->s1 - d * (1.0 - tau) * (1.0 - tau);
+  return p->s0 + d * tau;
 }
 
-/* Branch s from sigma `from` to `to`; the flags say which ends are branch
- * points (roots of Delta) rather than poles. */
-static int branch(builder *b, double s, double from, double to, int root_from, int root_to) {
-  double dir = to > from ? 1.0 : -1.0, span = fabs(to - from);
-  int m = (int)ceil(64.0 * span / b->pr->sigma_end);
-  double n0[3], x0[3], prev = from;
-  if (m < 8) m = 8;
-  if (eval_point(b, from, s, root_from, dir, n0, x0) != 0) return 0;
-  if (push_new(b, n0, x0) != 0) return -1;
-  for (int i = 1; i <= m; i++) {
-    double sig = i == m ? to : from + (to - from) * i / m, n1[3], x1[3];
-    if (eval_point(b, sig, s, i == m && root_to, -dir, n1, x1) != 0) continue;
-    if (refine(b, s, prev, x0, sig, n1, x1, 0) != 0) return -1;
-    memcpy(x0, x1, sizeof x0);
-    prev = sig;
+/* Append the points of branch s after (tau0, x0) up to (tau1, n1, x1). The
+ * step is accepted when its middle point is within MARGIN * tol of the chord:
+ * on a smooth arc the chord error is largest near the middle, and the margin
+ * covers an uneven speed along the arc (the middle point then still sees at
+ * least 3/4 of the largest error). Otherwise the middle distance d fixes the
+ * count: the error falls with the square of the step, so k = sqrt(d / (AIM
+ * tol)) equal steps should pass; each is checked the same way. */
+static int refine(builder *b, const piece *p, double s, double tau0, const double x0[3],
+                  double tau1, const double n1[3], const double x1[3], int depth) {
+  double tm = 0.5 * (tau0 + tau1), nm[3], xm[3], d, prev = tau0, xp[3];
+  int k;
+  if (depth >= MAX_DEPTH || eval_point(b, piece_sigma(p, tm), s, 0, 0.0, nm, xm) != 0 ||
+      (d = seg_dist(xm, x0, x1)) <= MARGIN * b->tol)
+    return push_new(b, n1, x1);
+  k = (int)ceil(sqrt(d / (AIM * b->tol)));
+  k = k < 2 ? 2 : k > MAX_SPLIT ? MAX_SPLIT : k;
+  memcpy(xp, x0, sizeof xp);
+  for (int j = 1; j <= k; j++) {
+    double tau = j == k ? tau1 : tau0 + (tau1 - tau0) * j / k, n[3], x[3];
+    if (j == k)
+      memcpy(n, n1, sizeof n), memcpy(x, x1, sizeof x);
+    else if (2 * j == k)
+      memcpy(n, nm, sizeof n), memcpy(x, xm, sizeof x), tau = tm;
+    else if (eval_point(b, piece_sigma(p, tau), s, 0, 0.0, n, x) != 0)
+      continue;
+    if (refine(b, p, s, prev, xp, tau, n, x, depth + 1) != 0) return -1;
+    memcpy(xp, x, sizeof xp);
+    prev = tau;
   }
   return 0;
 }
 
+/* Branch s along piece p, forward (dir > 0: tau from 0 to 1) or backward.
+ * The piece starts with SPAN_STEPS steps per sigma_end of its length (at
+ * least MIN_STEPS), each refined. */
+static int branch_piece(builder *b, const piece *p, double s, int dir) {
+  int m = (int)ceil(SPAN_STEPS * (p->s1 - p->s0) / b->pr->sigma_end), first = 1;
+  double x0[3], prev = dir > 0 ? 0.0 : 1.0;
+  if (m < MIN_STEPS) m = MIN_STEPS;
+  for (int i = 0; i <= m; i++) {
+    double tau = dir > 0 ? (double)i / m : (double)(m - i) / m, n1[3], x1[3];
+    int at_root = (tau == 0.0 && p->root0) || (tau == 1.0 && p->root1);
+    double inward = tau == 0.0 ? 1.0 : tau == 1.0 ? -1.0 : 0.0;
+    if (eval_point(b, piece_sigma(p, tau), s, at_root, inward, n1, x1) != 0) continue;
+    if (first) {
+      if (push_new(b, n1, x1) != 0) return -1;
+      first = 0;
+    } else if (refine(b, p, s, prev, x0, tau, n1, x1, 0) != 0) {
+      return -1;
+    }
+    memcpy(x0, x1, sizeof x0);
+    prev = tau;
+  }
+  return 0;
+}
+
+/* Split [lo, hi] at the kinks of phi (the ends of a cutter's side ruling),
+ * where the branch has a corner; returns the number of pieces. */
+static int split_pieces(const swarf_char_profile *pr, double lo, double hi, int root_lo,
+                        int root_hi, piece *out) {
+  double cut[2] = {HALF_PI, HALF_PI + pr->plateau}, at = lo;
+  int n = 0, root = root_lo;
+  for (int k = 0; k < 2 && !pr->is_qss; k++) {
+    if (!(cut[k] > at && cut[k] < hi)) continue;
+    out[n++] = (piece){at, cut[k], root, 0};
+    at = cut[k];
+    root = 0;
+  }
+  out[n++] = (piece){at, hi, root, root_hi};
+  return n;
+}
+
 static int component(builder *b, double lo, double hi, int root_lo, int root_hi) {
-  if (branch(b, 1.0, lo, hi, root_lo, root_hi) != 0) return -1;
-  if (branch(b, -1.0, hi, lo, root_hi, root_lo) != 0) return -1;
+  piece p[3];
+  int np = split_pieces(b->pr, lo, hi, root_lo, root_hi, p);
+  for (int i = 0; i < np; i++)
+    if (branch_piece(b, &p[i], 1.0, 1) != 0) return -1;
+  for (int i = np - 1; i >= 0; i--)
+    if (branch_piece(b, &p[i], -1.0, -1) != 0) return -1;
   return close_component(b);
 }
 
@@ -179,10 +240,8 @@ static int compute_general(builder *b) {
   ends[0] = 0.0;
   ends[nr + 1] = b->pr->sigma_end;
   for (int i = 0; i <= nr; i++) {
-    swarf_char_slice sl;
     if (!(ends[i + 1] > ends[i])) continue;
-    swarf_char_slice_eval(b->pr, b->v, b->omega, 0.5 * (ends[i] + ends[i + 1]), &sl);
-    if (!(sl.delta > 0.0)) continue;
+    if (!swarf_char_delta_positive(b->pr, b->v, b->omega, 0.5 * (ends[i] + ends[i + 1]))) continue;
     if (component(b, ends[i], ends[i + 1], i > 0, i < nr) != 0) return -1;
   }
   return 0;

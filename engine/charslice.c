@@ -7,7 +7,8 @@
  * The code scales A and B by sqrt(1 - z^2) (finite at the poles even where
  * phi' is not) and runs over the Gauss image with the polar angle, plus the
  * side ruling of a cutter as an interval of its own (engine_private.h).
- * Pure functions of caller-owned values.
+ * Branch points: a QSS's quartic here (charpoly.c), a cutter's quadratic
+ * forms in charcutter.c. Pure functions of caller-owned values.
  */
 #include <math.h>
 #include <stddef.h>
@@ -15,8 +16,6 @@
 #include "engine_private.h"
 
 static const double half_pi = 1.57079632679489661923;
-
-#define DELTA_SAMPLES 1024 /* sign scan of Delta over the parameter range */
 
 void swarf_char_profile_cutter(swarf_char_profile *pr, const swarf_cutter *c) {
   pr->is_qss = 0;
@@ -64,8 +63,8 @@ static double slice_geometry(const swarf_char_profile *pr, double sigma, swarf_c
   return -pr->a * sl->z + sl->c * sl->sz;
 }
 
-void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3],
-                           const double omega[3], double sigma, swarf_char_slice *sl) {
+void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                           double sigma, swarf_char_slice *sl) {
   double P = slice_geometry(pr, sigma, sl);
   sl->At = v[0] * sl->sz + P * omega[1];
   sl->Bt = v[1] * sl->sz - P * omega[0];
@@ -160,21 +159,16 @@ static int qss_delta_roots(const swarf_char_profile *pr, const double v[3], cons
 
 int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
                            double *roots, int max) {
-  int count = 0, prev;
-  double step = pr->sigma_end / DELTA_SAMPLES, last = 0.0;
   if (pr->is_qss) return qss_delta_roots(pr, v, omega, roots, max);
-  prev = delta_positive(pr, v, omega, 0.0);
-  for (int i = 1; i <= DELTA_SAMPLES; i++) {
-    double sigma = i == DELTA_SAMPLES ? pr->sigma_end : i * step;
-    int cur = delta_positive(pr, v, omega, sigma);
-    if (cur != prev) {
-      if (count < max) roots[count] = delta_bisect(pr, v, omega, last, sigma);
-      count++;
-    }
-    prev = cur;
-    last = sigma;
-  }
-  return count;
+  return swarf_char_cutter_delta_roots(pr, v, omega, roots, max);
+}
+
+int swarf_char_delta_positive(const swarf_char_profile *pr, const double v[3],
+                              const double omega[3], double sigma) {
+  swarf_char_slice sl;
+  if (!pr->is_qss) return swarf_char_cutter_delta_positive(pr, v, omega, sigma);
+  swarf_char_slice_eval(pr, v, omega, sigma, &sl);
+  return sl.delta > 0.0;
 }
 
 /* n_z at parameter sigma (0 on the ruling). */
@@ -188,7 +182,8 @@ static int branch_points(const swarf_char_profile *pr, const double v[3], const 
                          double *z, int max) {
   double roots[64];
   int n = swarf_char_delta_roots(pr, v, omega, roots, 64);
-  for (int i = 0; i < n && i < max && i < 64; i++) z[i] = sigma_to_z(pr, roots[i]);
+  for (int i = 0; i < n && i < max && i < 64; i++)
+    z[i] = sigma_to_z(pr, roots[i]);
   return n;
 }
 

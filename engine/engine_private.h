@@ -5,6 +5,7 @@
  *                   branch points (roots of Delta), for cutters and QSS.
  *   charcurve.c     characteristic curves: components, adaptive sampling.
  *   charpoly.c      real roots of a small polynomial (a QSS's Delta quartic).
+ *   charcutter.c    a cutter's branch points, certified in double-double.
  *   charqss.c       the fast path for eq. 12 with an off-axis linear part.
  *   sweep.c         a move's swept volume: method choice, bounds, dispatch.
  *   sweep_line.c    straight moves: closed forms (slot, plunge, ramp).
@@ -86,11 +87,26 @@ void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3],
 int swarf_char_slice_point(const swarf_char_profile *pr, const swarf_char_slice *sl, double s,
                            double n[3], double x[3]);
 
-/* Roots of Delta(sigma) on [0, sigma_end], sorted, bisected to full double
- * precision: the changes between Delta < 0 and Delta >= 0, each given by its
- * end where Delta >= 0. Returns the count (writes at most max). */
+/* Roots of Delta(sigma) on [0, sigma_end], sorted: the changes between
+ * Delta < 0 and Delta >= 0. A QSS's are bisected to adjacent doubles and
+ * given by the end where Delta >= 0; a cutter's are the zeros of its
+ * per-piece quadratic form (charcutter.c), to a few ulps. Returns the count
+ * (writes at most max). */
 int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
                            double *roots, int max);
+
+/* Whether sigma (inside a run between roots) is on the curve: for a QSS
+ * Delta > 0 in double; for a cutter Delta >= 0, certified unless |Delta| is
+ * within ~1e-30 of its scale. */
+int swarf_char_delta_positive(const swarf_char_profile *pr, const double v[3],
+                              const double omega[3], double sigma);
+
+/* The cutter cases of the two above (charcutter.c: double-double quadratic
+ * forms per smooth piece of the profile). */
+int swarf_char_cutter_delta_roots(const swarf_char_profile *pr, const double v[3],
+                                  const double omega[3], double *roots, int max);
+int swarf_char_cutter_delta_positive(const swarf_char_profile *pr, const double v[3],
+                                     const double omega[3], double sigma);
 
 /* Real roots in (lo, hi) where the polynomial c[0] + c[1] x + ... + c[deg] x^deg
  * changes sign (deg <= 8), ascending, to adjacent doubles. Returns the count

@@ -82,7 +82,7 @@ static int is_whole(double v, double tolerance) {
 }
 
 static int check_values(const swarf_gc_block *b, swarf_gc_fault *f) {
-  static const char nonnegative[] = "FSNTHDL";
+  static const char nonnegative[] = "FSNTHL";
   for (const char *l = nonnegative; *l; l++) {
     const swarf_gc_word *w = swarf_gc_block_word(b, *l);
     if (w->present && w->value < 0)
@@ -164,10 +164,14 @@ static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   for (const char *l = "ABC"; *l; l++)
     if ((w = swarf_gc_block_word(b, *l))->present)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
-                           "Cannot put %s in canned cycle: %s", *l == 'A' ? "an a" : *l == 'B' ? "a b" : "a c", w->text);
-  if (st->modal.cutter_comp != 400)
+                           "Cannot put %s in canned cycle: %s",
+                           *l == 'A'   ? "an a"
+                           : *l == 'B' ? "a b"
+                                       : "a c",
+                           w->text);
+  if (st->comp_side != 0)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, col,
-                         "Cannot use canned cycle with cutter radius compensation");
+                         "Cannot use canned cycles with cutter compensation on");
   if ((w = swarf_gc_block_word(b, 'L'))->present && w->value < 1)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "Cannot do zero repeats: %s",
                          w->text);
@@ -193,8 +197,9 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
                          "R word with no g code that uses it: %s", w->text);
   if ((w = swarf_gc_block_word(b, 'L'))->present && !cycle && !g10)
     return unused(w, "G10 or canned cycle", f);
-  if ((w = swarf_gc_block_word(b, 'D'))->present && !g10)
-    return unused(w, "G41 or G42", f);
+  if ((w = swarf_gc_block_word(b, 'D'))->present && !g10 &&
+      b->g[SWARF_GC_GROUP_CUTTER_COMP].code <= 400)
+    return unused(w, "G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96", f);
   if ((w = swarf_gc_block_word(b, 'P'))->present) {
     if (!arc && !g4 && !g64 && !g10 && !cycle && !user_m)
       return unused(w, "G2, G3, G4, G10, G64, canned cycle or M code", f);

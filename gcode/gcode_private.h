@@ -63,7 +63,7 @@ typedef struct {
   int distance;     /* 900 or 910 */
   int arc_distance; /* 901 or 911 */
   int feed_mode;    /* 930 940 950 */
-  int cutter_comp;  /* 400 */
+  int cutter_comp;  /* 400 410 411 420 421 */
   int tool_length;  /* 430 431 490 */
   int coord_system; /* 540 550 ... 593 */
   int path_control; /* 610 611 640 */
@@ -90,7 +90,19 @@ typedef struct {
   double cycle_r, cycle_q, cycle_p, cycle_k, cycle_z; /* sticky cycle words, mm */
   double cycle_clear;                              /* G98 clearance of the running cycle */
   int cycle_r_set, cycle_q_set;
+  /* Cutter radius compensation (ccomp.c): */
+  int comp_side;           /* 0 off, SWARF_GC_COMP_LEFT or SWARF_GC_COMP_RIGHT */
+  double comp_radius;      /* mm, >= 0 */
+  int comp_first;          /* the next move is the entry move */
+  double comp_pos[3];      /* the compensated tool point, program mm (pos: programmed) */
+  int comp_exit;           /* after G40: the tool is at comp_pos until the next move */
+  int arc_not_allowed;     /* after G40: the next move must be straight */
 } swarf_gc_state;
+
+#define SWARF_GC_COMP_LEFT 1
+#define SWARF_GC_COMP_RIGHT 2
+/* Compensation moves the path (side set and a radius above zero). */
+int swarf_gc_comp_active(const swarf_gc_state *st);
 
 void swarf_gc_state_init(swarf_gc_state *st);
 /* mm per program unit. */
@@ -183,7 +195,7 @@ enum {
   SWARF_GC_GROUP_ARC_DISTANCE = 4,  /* G90.1 G91.1 */
   SWARF_GC_GROUP_FEED_MODE = 5,     /* G93 G94 G95 */
   SWARF_GC_GROUP_UNITS = 6,         /* G20 G21 */
-  SWARF_GC_GROUP_CUTTER_COMP = 7,   /* G40 (G41 G42 G41.1 G42.1: later) */
+  SWARF_GC_GROUP_CUTTER_COMP = 7,   /* G40 G41 G42 G41.1 G42.1 */
   SWARF_GC_GROUP_TOOL_LENGTH = 8,   /* G43 G43.1 G49 */
   SWARF_GC_GROUP_RETURN_MODE = 10,  /* G98 G99 */
   SWARF_GC_GROUP_COORD_SYSTEM = 12, /* G54-G59.3 */
@@ -279,17 +291,25 @@ typedef enum {
 
 typedef struct {
   swarf_gc_call_kind kind;
-  swarf_move move;    /* motions: machine frame, mm */
+  swarf_move move;    /* motions: machine frame, mm (program frame while held) */
   double prog[9];     /* motions: the values rs274 prints (program units) */
   int nprog;
   size_t text_at;     /* TEXT: offset of the text in the out list's buffer */
+  int turns;          /* arcs: rs274's signed rotation */
+  double sweep;       /* held arcs: signed sweep as enqueued (radians, LinuxCNC's find_turn) */
+  double dir[2];      /* held lines: programmed direction in the plane */
 } swarf_gc_call;
 
+/* The calls of one block. calls[0, ready) are final and go out when the
+ * block commits; calls[ready, count) are held (LinuxCNC's queue under
+ * cutter compensation: a move waits for the next one, which may move its
+ * end point) and carry the parser over to the next block. */
 typedef struct {
   swarf_gc_call *calls;
-  size_t count, cap;
+  size_t count, cap, ready;
   char *text;
   size_t text_len, text_cap;
+  long line;     /* source line stamped on the moves pushed */
   int want_text; /* format TEXT calls (a canon callback is set) */
   int overflow;  /* out of memory or over the limit */
 } swarf_gc_out;
@@ -297,12 +317,34 @@ typedef struct {
 void swarf_gc_out_init(swarf_gc_out *o);
 void swarf_gc_out_clear(swarf_gc_out *o);
 void swarf_gc_out_reset(swarf_gc_out *o);
-/* A text call (printf-style), e.g. "SET_FEED_RATE(10.0000)". */
+/* A text call (printf-style), e.g. "SET_FEED_RATE(10.0000)": queued
+ * behind held calls, as LinuxCNC's enqueue_* calls are. */
 void swarf_gc_out_text(swarf_gc_out *o, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* A text call that goes out at once, before held calls (MESSAGE,
+ * SELECT_TOOL, USE_LENGTH_UNITS...: LinuxCNC does not queue them). */
+void swarf_gc_out_text_now(swarf_gc_out *o, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Appends copies of src's calls [from, count) to o, held. */
+void swarf_gc_out_append_held(swarf_gc_out *o, const swarf_gc_out *src, size_t from);
+/* Makes the held calls final with the offsets and unit of `st`. */
+void swarf_gc_out_flush(swarf_gc_out *o, const swarf_gc_state *st);
+/* A held straight motion or arc, in program mm (ccomp.c moves their ends). */
+swarf_gc_call *swarf_gc_out_hold_line(swarf_gc_out *o, const swarf_gc_state *st,
+                                      swarf_gc_call_kind kind, const double start[SWARF_NAXES],
+                                      const double end[SWARF_NAXES], int column);
+swarf_gc_call *swarf_gc_out_hold_arc(swarf_gc_out *o, const swarf_gc_state *st,
+                                     const swarf_move *mv, int turns, int column);
+/* The tool's position (program mm): pos, or the compensated point. */
+void swarf_gc_tool_pos(const swarf_gc_state *st, double p[SWARF_NAXES]);
+/* Plane axes (first, second, normal) of the state's plane, as rs274 prints. */
+void swarf_gc_plane_axes(const swarf_gc_state *st, int ax[3]);
 /* Straight motion from st->pos to `end` (program mm); kind TRAVERSE/FEED. */
 void swarf_gc_out_straight(swarf_gc_out *o, const swarf_gc_state *st, swarf_gc_call_kind kind,
                            const double end[SWARF_NAXES], int column);
@@ -356,6 +398,25 @@ int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
  * *turns gets rs274's signed rotation. */
 int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv, int *turns,
                  swarf_gc_fault *f);
+/* Sweep (radians, in (0, 2 pi]) from start to end about the centre, plane
+ * coordinates in mm, as LinuxCNC's motion planner takes it (one turn). */
+double swarf_gc_arc_sweep(double s1, double s2, double e1, double e2, double c1, double c2,
+                          int ccw);
+
+/* ---- ccomp.c: cutter radius compensation -------------------------------- */
+
+/* G40, G41, G42, G41.1, G42.1 of the block (execution order of group 7). */
+int swarf_gc_comp_set(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                      swarf_gc_fault *f);
+/* Refuses what LinuxCNC refuses while compensation is on (group 0, plane,
+ * tool, offsets, path control codes of the block). */
+int swarf_gc_comp_check(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f);
+/* A compensated G0/G1 to the programmed `end`, or G2/G3 (mv: programmed
+ * start, end, centre and turns from arc.c). */
+int swarf_gc_comp_straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                           const double end[SWARF_NAXES], swarf_gc_fault *f);
+int swarf_gc_comp_arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                      const swarf_move *mv, int turns, swarf_gc_fault *f);
 
 /* ---- oword.c: O-word control flow --------------------------------------- */
 

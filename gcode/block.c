@@ -139,8 +139,8 @@ static int add_assign(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault
   return SWARF_GCODE_OK;
 }
 
-int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
-                        swarf_gc_block *b, swarf_gc_fault *f) {
+int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
+                        swarf_gc_fault *f) {
   swarf_gc_lexer lx;
   swarf_gc_token t;
   init_block(b);

@@ -89,6 +89,7 @@ static int comp_on(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   st->comp_side = side;
   st->comp_radius = radius;
   st->comp_first = 1;
+  st->comp_end_valid = 0; /* an entry arc records no end point: none is known */
   if (!st->comp_exit) memcpy(st->comp_pos, st->pos, sizeof st->comp_pos);
   return SWARF_GCODE_OK;
 }

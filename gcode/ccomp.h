@@ -34,8 +34,16 @@ void swarf_gc_cc_set_current(swarf_gc_state *st, const swarf_gc_cc_plane *pl, do
 
 /* The first held motion, or NULL (LinuxCNC's qc().front()). */
 swarf_gc_call *swarf_gc_cc_front(swarf_gc_out *o);
+/* All held calls go out as they are; the recorded end point (the start
+ * of the held move, LinuxCNC's `endpoint`) is forgotten (dequeue_canons). */
+void swarf_gc_cc_dequeue(swarf_gc_state *st, swarf_gc_exec *ex);
+/* Records where the next held move starts (LinuxCNC's set_endpoint). */
+void swarf_gc_cc_set_endpoint(swarf_gc_state *st, double x, double y);
 /* Every held move ends at (x, y), checked for gouging, then all held calls
- * go out (LinuxCNC's move_endpoint_and_flush). Errors name `column`. */
+ * go out (LinuxCNC's move_endpoint_and_flush); nothing if none is held.
+ * The checks look from the recorded end point, when there is one: LinuxCNC
+ * does not record one for an entry arc, nor after a plain dequeue.
+ * Errors name `column`. */
 int swarf_gc_cc_move_ends(swarf_gc_state *st, swarf_gc_exec *ex, double x, double y, int column,
                           swarf_gc_fault *f);
 /* A held line from `at` to (x, y) in the plane, the other axes from `end`;

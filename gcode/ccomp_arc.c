@@ -153,11 +153,13 @@ static int arc_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
   if (k.beta < -SMALL || k.beta > PI + SMALL || (fabs(k.beta - PI) < SMALL && !k.inside))
     status = arc_concave(st, ex, &pl, &k, c1, c2, arc_r, turns, at, col, f);
   else if (k.beta > SMALL) {
-    swarf_gc_out_flush(ex->out, st);
+    swarf_gc_cc_dequeue(st, ex);
     swarf_gc_cc_corner_convex(st, ex, &pl, SWARF_GC_CALL_FEED, opx + r * cos(k.delta),
                               opy + r * sin(k.delta), mv->end, at, col);
-  } else
-    swarf_gc_out_flush(ex->out, st);
+  } else {
+    swarf_gc_cc_dequeue(st, ex);
+    swarf_gc_cc_set_endpoint(st, st->comp_pos[pl.a1], st->comp_pos[pl.a2]);
+  }
   if (status != SWARF_GCODE_OK) return status;
   ex1 += r * cos(gamma);
   ex2 += r * sin(gamma);

@@ -33,6 +33,7 @@ static int straight_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_
   x = px + r * cos(alpha);
   y = py + r * sin(alpha);
   swarf_gc_tool_pos(st, at);
+  swarf_gc_cc_set_endpoint(st, cx, cy);
   swarf_gc_cc_hold_line(st, ex, &pl, kind, at, x, y, end, cos(alpha), sin(alpha), b->motion_column);
   st->comp_first = 0;
   swarf_gc_cc_set_current(st, &pl, x, y, end[pl.a3]);
@@ -140,8 +141,10 @@ static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
                                 opy + r * sin(k.alpha + k.gamma), end, at, col);
   } else if (concave)
     status = line_concave(st, ex, &pl, &k, px, py, at, col, f);
-  else
-    swarf_gc_out_flush(ex->out, st);
+  else {
+    swarf_gc_cc_dequeue(st, ex);
+    swarf_gc_cc_set_endpoint(st, cx, cy);
+  }
   if (status != SWARF_GCODE_OK) return status;
   swarf_gc_cc_hold_line(st, ex, &pl, kind, at, x, y, end, px - opx, py - opy, col);
   swarf_gc_cc_set_current(st, &pl, x, y, end[pl.a3]);

@@ -74,20 +74,21 @@ swarf_gc_call *swarf_gc_cc_front(swarf_gc_out *o) {
   return NULL;
 }
 
-/* A held arc ends at (x, y): it must keep its radius and not grow past
- * what it was by more than LinuxCNC allows. */
-static int move_arc_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, double x, double y,
-                        int column, swarf_gc_fault *f) {
+/* A held arc ends at (x, y): it must keep its radius and, seen from the
+ * recorded end point `ep` (NULL: none), not grow past what it was by more
+ * than LinuxCNC allows. */
+static int move_arc_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, const double *ep, double x,
+                        double y, int column, swarf_gc_fault *f) {
   swarf_move *mv = &c->move;
   double c1 = mv->center[pl->a1], c2 = mv->center[pl->a2];
   double r1 = hypot(mv->end[pl->a1] - c1, mv->end[pl->a2] - c2), r2 = hypot(x - c1, y - c2);
-  double l2 = swarf_gc_cc_find_turn(mv->start[pl->a1], mv->start[pl->a2], c1, c2, c->turns, x, y);
+  double l2 = ep ? swarf_gc_cc_find_turn(ep[0], ep[1], c1, c2, c->turns, x, y) : 0;
   if (fabs(r1 - r2) / pl->s > .01)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, column,
                          "BUG: cutter compensation has generated an invalid arc with mismatched "
                          "radii r1 %f r2 %f",
                          r1 / pl->s, r2 / pl->s);
-  if (c->sweep != 0 && fabs(l2) > fabs(c->sweep) + (pl->s == 1 ? .0254 : .001))
+  if (c->sweep != 0 && ep != NULL && fabs(l2) > fabs(c->sweep) + (pl->s == 1 ? .0254 : .001))
     return swarf_gc_cc_fail(
         f, column, "Arc move in concave corner cannot be reached by the tool without gouging");
   mv->end[pl->a1] = x;
@@ -96,12 +97,12 @@ static int move_arc_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, double x,
   return SWARF_GCODE_OK;
 }
 
-/* A held line ends at (x, y): it must not turn back. */
-static int move_line_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, double x, double y,
-                         int column, swarf_gc_fault *f) {
+/* A held line ends at (x, y): seen from `ep` (NULL: none), it must not
+ * turn back against its programmed direction. */
+static int move_line_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, const double *ep, double x,
+                         double y, int column, swarf_gc_fault *f) {
   swarf_move *mv = &c->move;
-  double dot = c->dir[0] * (x - mv->start[pl->a1]) + c->dir[1] * (y - mv->start[pl->a2]);
-  if (dot < 0)
+  if (ep != NULL && c->dir[0] * (x - ep[0]) + c->dir[1] * (y - ep[1]) < 0)
     return swarf_gc_cc_fail(
         f, column,
         c->kind == SWARF_GC_CALL_TRAVERSE
@@ -114,28 +115,41 @@ static int move_line_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, double x
   return SWARF_GCODE_OK;
 }
 
+void swarf_gc_cc_dequeue(swarf_gc_state *st, swarf_gc_exec *ex) {
+  swarf_gc_out_flush(ex->out, st);
+  st->comp_end_valid = 0;
+}
+
+void swarf_gc_cc_set_endpoint(swarf_gc_state *st, double x, double y) {
+  st->comp_end[0] = x;
+  st->comp_end[1] = y;
+  st->comp_end_valid = 1;
+}
+
 /* Every held move ends at (x, y), then all held calls go out
  * (LinuxCNC's move_endpoint_and_flush). */
 int swarf_gc_cc_move_ends(swarf_gc_state *st, swarf_gc_exec *ex, double x, double y, int column,
                           swarf_gc_fault *f) {
   swarf_gc_out *o = ex->out;
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
-  const double *prev = NULL;
+  const double *prev = NULL, *ep = st->comp_end_valid ? st->comp_end : NULL;
+  if (o->ready == o->count) return SWARF_GCODE_OK;
   for (size_t i = o->ready; i < o->count; i++) {
     swarf_gc_call *c = &o->calls[i];
     int status = SWARF_GCODE_OK;
     if (c->kind == SWARF_GC_CALL_TEXT) continue;
     if (prev != NULL) memcpy(c->move.start, prev, sizeof c->move.start);
     if (c->kind == SWARF_GC_CALL_ARC)
-      status = move_arc_end(c, &pl, x, y, column, f);
+      status = move_arc_end(c, &pl, ep, x, y, column, f);
     else if (c->kind <= SWARF_GC_CALL_FEED)
-      status = move_line_end(c, &pl, x, y, column, f);
+      status = move_line_end(c, &pl, ep, x, y, column, f);
     else
       memcpy(c->move.end, c->move.start, sizeof c->move.end);
     if (status != SWARF_GCODE_OK) return status;
     prev = c->move.end;
   }
-  swarf_gc_out_flush(o, st);
+  swarf_gc_cc_dequeue(st, ex);
+  swarf_gc_cc_set_endpoint(st, x, y);
   return SWARF_GCODE_OK;
 }
 
@@ -186,7 +200,8 @@ int swarf_gc_cc_corner_convex(swarf_gc_state *st, swarf_gc_exec *ex, const swarf
   else
     swarf_gc_cc_hold_arc(st, ex, pl, at, mx, my, e[pl->a3], st->pos[pl->a1], st->pos[pl->a2],
                          st->comp_side == LEFT ? -1 : 1, 0, e, column);
-  swarf_gc_out_flush(ex->out, st);
+  swarf_gc_cc_dequeue(st, ex);
+  swarf_gc_cc_set_endpoint(st, mx, my);
   memcpy(at, e, sizeof e);
   return SWARF_GCODE_OK;
 }

@@ -73,30 +73,32 @@ typedef struct {
 
 typedef struct {
   swarf_gc_modal modal;
-  double pos[SWARF_NAXES];                         /* program coordinates, mm, degrees */
-  double systems[SWARF_GC_NSYSTEMS][SWARF_NAXES];  /* G54..G59.3 origins, mm */
-  double rotations[SWARF_GC_NSYSTEMS];             /* their XY rotations, degrees */
-  double g92[SWARF_NAXES];                         /* G92/G52 offset in force, mm */
-  double g92_saved[SWARF_NAXES];                   /* #5211-#5216 (kept by G92.2), mm */
-  int g92_on;                                      /* #5210 */
-  double g28[SWARF_NAXES], g30[SWARF_NAXES];       /* stored homes, machine mm */
-  double tlo[SWARF_NAXES];                         /* tool length offset, mm */
-  double feed;                                     /* mm/min, or inverse time (1/min) */
-  double speed;                                    /* rpm, >= 0 */
-  int spindle_dir;                                 /* +1 M3, -1 M4, 0 off */
-  int tool;                                        /* in the spindle */
-  int selected_tool;                               /* last T */
-  int ended;                                       /* M2 or M30 was executed */
+  double pos[SWARF_NAXES];                            /* program coordinates, mm, degrees */
+  double systems[SWARF_GC_NSYSTEMS][SWARF_NAXES];     /* G54..G59.3 origins, mm */
+  double rotations[SWARF_GC_NSYSTEMS];                /* their XY rotations, degrees */
+  double g92[SWARF_NAXES];                            /* G92/G52 offset in force, mm */
+  double g92_saved[SWARF_NAXES];                      /* #5211-#5216 (kept by G92.2), mm */
+  int g92_on;                                         /* #5210 */
+  double g28[SWARF_NAXES], g30[SWARF_NAXES];          /* stored homes, machine mm */
+  double tlo[SWARF_NAXES];                            /* tool length offset, mm */
+  double feed;                                        /* mm/min, or inverse time (1/min) */
+  double speed;                                       /* rpm, >= 0 */
+  int spindle_dir;                                    /* +1 M3, -1 M4, 0 off */
+  int tool;                                           /* in the spindle */
+  int selected_tool;                                  /* last T */
+  int ended;                                          /* M2 or M30 was executed */
   double cycle_r, cycle_q, cycle_p, cycle_k, cycle_z; /* sticky cycle words, mm */
-  double cycle_clear;                              /* G98 clearance of the running cycle */
+  double cycle_clear;                                 /* G98 clearance of the running cycle */
   int cycle_r_set, cycle_q_set;
   /* Cutter radius compensation (ccomp.c): */
-  int comp_side;           /* 0 off, SWARF_GC_COMP_LEFT or SWARF_GC_COMP_RIGHT */
-  double comp_radius;      /* mm, >= 0 */
-  int comp_first;          /* the next move is the entry move */
-  double comp_pos[3];      /* the compensated tool point, program mm (pos: programmed) */
-  int comp_exit;           /* after G40: the tool is at comp_pos until the next move */
-  int arc_not_allowed;     /* after G40: the next move must be straight */
+  int comp_side;       /* 0 off, SWARF_GC_COMP_LEFT or SWARF_GC_COMP_RIGHT */
+  double comp_radius;  /* mm, >= 0 */
+  int comp_first;      /* the next move is the entry move */
+  double comp_pos[3];  /* the compensated tool point, program mm (pos: programmed) */
+  int comp_exit;       /* after G40: the tool is at comp_pos until the next move */
+  int arc_not_allowed; /* after G40: the next move must be straight */
+  double comp_end[2];  /* plane: where the held move starts, as LinuxCNC records it */
+  int comp_end_valid;
 } swarf_gc_state;
 
 #define SWARF_GC_COMP_LEFT 1
@@ -147,9 +149,9 @@ typedef enum {
 
 typedef struct {
   swarf_gc_token_kind kind;
-  char letter;  /* words: upper case */
-  double value; /* words, assignments */
-  int column;   /* 1-based column of the letter, '(' , ';' or '#' */
+  char letter;      /* words: upper case */
+  double value;     /* words, assignments */
+  int column;       /* 1-based column of the letter, '(' , ';' or '#' */
   const char *text; /* comments: the text inside, not owned */
   size_t text_len;
   int index;                     /* assignments: numbered target, 0 if named */
@@ -266,8 +268,8 @@ typedef struct {
 
 /* Reads every token of the line into `b`: repeated words, two codes of one
  * modal group, unknown or not-yet-supported codes and letters are errors. */
-int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
-                        swarf_gc_block *b, swarf_gc_fault *f);
+int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
+                        swarf_gc_fault *f);
 
 /* Shorthands for the words of a block. */
 const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter);
@@ -291,13 +293,13 @@ typedef enum {
 
 typedef struct {
   swarf_gc_call_kind kind;
-  swarf_move move;    /* motions: machine frame, mm (program frame while held) */
-  double prog[9];     /* motions: the values rs274 prints (program units) */
+  swarf_move move; /* motions: machine frame, mm (program frame while held) */
+  double prog[9];  /* motions: the values rs274 prints (program units) */
   int nprog;
-  size_t text_at;     /* TEXT: offset of the text in the out list's buffer */
-  int turns;          /* arcs: rs274's signed rotation */
-  double sweep;       /* held arcs: signed sweep as enqueued (radians, LinuxCNC's find_turn) */
-  double dir[2];      /* held lines: programmed direction in the plane */
+  size_t text_at; /* TEXT: offset of the text in the out list's buffer */
+  int turns;      /* arcs: rs274's signed rotation */
+  double sweep;   /* held arcs: signed sweep as enqueued (radians, LinuxCNC's find_turn) */
+  double dir[2];  /* held lines: programmed direction in the plane */
 } swarf_gc_call;
 
 /* The calls of one block. calls[0, ready) are final and go out when the
@@ -350,8 +352,8 @@ void swarf_gc_out_straight(swarf_gc_out *o, const swarf_gc_state *st, swarf_gc_c
                            const double end[SWARF_NAXES], int column);
 /* An arc: `mv` holds start, end, centre, normal, angle, rise in program mm;
  * `turns` is the signed rotation rs274 prints. */
-void swarf_gc_out_arc(swarf_gc_out *o, const swarf_gc_state *st, const swarf_move *mv,
-                      int turns, int column);
+void swarf_gc_out_arc(swarf_gc_out *o, const swarf_gc_state *st, const swarf_move *mv, int turns,
+                      int column);
 void swarf_gc_out_dwell(swarf_gc_out *o, const swarf_gc_state *st, double seconds, int column);
 void swarf_gc_out_tool(swarf_gc_out *o, const swarf_gc_state *st, int column);
 /* Program mm -> machine mm (G92, rotation, work offset, tool length). */
@@ -429,8 +431,8 @@ swarf_gc_flow *swarf_gc_flow_new(swarf_gc_params *ps, swarf_gc_line_fn run, void
 void swarf_gc_flow_free(swarf_gc_flow *fl);
 /* One line of the program as it streams in. On error, *column and the
  * fault say where (the line is `line` or a stored line: *err_line). */
-int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line,
-                       long *err_line, swarf_gc_fault *f);
+int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line, long *err_line,
+                       swarf_gc_fault *f);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
 

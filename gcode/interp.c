@@ -203,7 +203,10 @@ static void set_modes(const swarf_gc_block *b, swarf_gc_modal *m) {
 
 static void run_stop(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
   int stop = b->m[SWARF_GC_MGROUP_STOP].code;
-  if (stop >= 0) swarf_gc_out_flush(ex->out, st); /* a held move goes out first */
+  if (stop >= 0) { /* a held move goes out first */
+    swarf_gc_out_flush(ex->out, st);
+    st->comp_end_valid = 0;
+  }
   if (stop == 0 || stop == 10 || stop == 600)
     swarf_gc_out_text(ex->out, "%s", stop == 10 ? "OPTIONAL_PROGRAM_STOP()" : "PROGRAM_STOP()");
   if (stop != 20 && stop != 300) return;

@@ -217,8 +217,10 @@ static void raw_text(const swarf_gc_lexer *lx, size_t from, char *out) {
   size_t n = 0;
   for (size_t i = from; i < lx->pos && n + 4 < SWARF_GC_WORD_TEXT; i++)
     if (!is_blank(lx->line[i])) out[n++] = upper(lx->line[i]);
-  if (n + 4 >= SWARF_GC_WORD_TEXT) strcpy(out + n, "...");
-  else out[n] = '\0';
+  if (n + 4 >= SWARF_GC_WORD_TEXT)
+    strcpy(out + n, "...");
+  else
+    out[n] = '\0';
 }
 
 static int is_value_start(int c) {
@@ -257,7 +259,8 @@ static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) 
     lx->pos++;
     after = swarf_gc_lexer_peek(lx);
     lx->pos = save;
-    if (after != -1 && is_value_start(after)) return lex_expr_word(lx, tok, from, letter, column, f);
+    if (after != -1 && is_value_start(after))
+      return lex_expr_word(lx, tok, from, letter, column, f);
   }
   total = gather_number(lx, buf, &len);
   word_text(tok->word, letter, buf, len);

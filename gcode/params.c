@@ -50,8 +50,8 @@ swarf_gc_named *swarf_gc_params_swap_locals(swarf_gc_params *ps, swarf_gc_named 
 
 /* A mirrored slot: where it lives in the state and how it is scaled. */
 typedef struct {
-  double *slot;   /* NULL: not mirrored */
-  double scale;   /* parameter = slot / scale */
+  double *slot; /* NULL: not mirrored */
+  double scale; /* parameter = slot / scale */
   int read_only;
 } mirror;
 

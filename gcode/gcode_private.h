@@ -226,7 +226,8 @@ typedef struct {
   const char *later; /* NULL when supported; else what it is (for the message) */
 } swarf_gc_code;
 
-/* The entry for a G or M code in tenths, or NULL if the code is unknown. */
+/* The entry for a G or M code in tenths, or NULL if the code is unknown
+ * (a binary search: the tables are sorted by code). */
 const swarf_gc_code *swarf_gc_g_code(int tenths);
 const swarf_gc_code *swarf_gc_m_code(int tenths);
 
@@ -251,8 +252,12 @@ typedef struct {
   double value;
 } swarf_gc_assign;
 
+/* The bit of a letter in swarf_gc_block.letters. */
+#define SWARF_GC_LETTER(c) (1u << ((c) - 'A'))
+
 typedef struct {
   swarf_gc_word words[26];                 /* by letter - 'A'; not G or M */
+  unsigned letters;                        /* SWARF_GC_LETTER bits of the words present */
   swarf_gc_code_word g[SWARF_GC_NGROUPS];  /* by G modal group */
   swarf_gc_code_word m[SWARF_GC_NMGROUPS]; /* by M modal group */
   int m_count;
@@ -271,9 +276,13 @@ typedef struct {
 int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
                         swarf_gc_fault *f);
 
-/* Shorthands for the words of a block. */
-const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter);
-int swarf_gc_block_has(const swarf_gc_block *b, char letter);
+/* Shorthands for the words of a block (`letter`: 'A'..'Z'). */
+static inline const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter) {
+  return &b->words[letter - 'A'];
+}
+static inline int swarf_gc_block_has(const swarf_gc_block *b, char letter) {
+  return (b->letters & SWARF_GC_LETTER(letter)) != 0;
+}
 int swarf_gc_block_has_axis(const swarf_gc_block *b);
 
 /* ---- check.c: the block against the state ------------------------------- */

@@ -148,15 +148,16 @@ static int number_value(const char *s, size_t n, double *out) {
 
 /* Gathers the characters of the number after a letter, blanks removed. */
 static size_t gather_number(swarf_gc_lexer *lx, char *buf, size_t *len) {
-  size_t total = 0;
-  *len = 0;
-  for (;;) {
-    skip_blanks(lx);
-    if (lx->pos >= lx->len || !is_number_char(lx->line[lx->pos])) break;
-    if (*len < NUMBER_TEXT_MAX) buf[(*len)++] = lx->line[lx->pos];
+  size_t total = 0, n = 0, pos = lx->pos;
+  for (; pos < lx->len; pos++) {
+    char c = lx->line[pos];
+    if (is_blank(c)) continue;
+    if (!is_number_char(c)) break;
+    if (n < NUMBER_TEXT_MAX) buf[n++] = c;
     total++;
-    lx->pos++;
   }
+  lx->pos = pos;
+  *len = n;
   return total;
 }
 

@@ -28,9 +28,10 @@ struct swarf_gcode_parser {
   void *user;
   swarf_gcode_canon_fn canon;
   void *canon_user;
-  long seq;          /* rs274's call counter */
-  int canon_started; /* the preamble was printed */
-  swarf_gc_state state;
+  long seq;                 /* rs274's call counter */
+  int canon_started;        /* the preamble was printed */
+  swarf_gc_state states[2]; /* the committed state and the next block's copy */
+  swarf_gc_state *state;    /* the committed one */
   swarf_gc_params params;
   swarf_gc_flow *flow;
   swarf_gc_out out;
@@ -161,7 +162,7 @@ static void apply_assigns(swarf_gcode_parser *p, const swarf_gc_block *b) {
   for (int i = 0; i < b->assign_count; i++) {
     const swarf_gc_assign *a = &b->assigns[i];
     if (a->index > 0)
-      swarf_gc_param_set(&p->params, &p->state, a->index, a->value);
+      swarf_gc_param_set(&p->params, p->state, a->index, a->value);
     else
       swarf_gc_param_set_named(&p->params, a->name, a->value);
   }
@@ -189,7 +190,7 @@ static void out_keep(swarf_gcode_parser *p) {
 static int release_held(swarf_gcode_parser *p) {
   if (p->held.count == 0 || p->status != SWARF_GCODE_OK) return p->status;
   out_start(p);
-  swarf_gc_out_flush(&p->out, &p->state);
+  swarf_gc_out_flush(&p->out, p->state);
   swarf_gc_out_reset(&p->held);
   return emit(p, "", 0);
 }
@@ -198,17 +199,19 @@ static int release_held(swarf_gcode_parser *p) {
 static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   swarf_gc_block b;
   swarf_gc_fault f;
-  swarf_gc_state next = p->state;
+  swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
   swarf_gc_exec ex = {&p->params, &p->out, p->tools, NTOOLS};
   int status;
+  *next = *p->state;
   out_start(p);
   status = swarf_gc_block_read(text, n, &p->params, &b, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_block_check(&b, &p->state, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_execute(&b, &next, &ex, &f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_block_check(&b, p->state, &f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_execute(&b, next, &ex, &f);
   if (status != SWARF_GCODE_OK) return fault_error(p, &f);
-  p->state = next;
+  p->state = next; /* commit: the copy becomes the state */
+  p->params.state = next;
   apply_assigns(p, &b);
-  p->ended = next.ended;
+  p->ended = next->ended;
   status = emit(p, text, n);
   out_keep(p);
   if (p->ended && p->canon != NULL) {
@@ -320,9 +323,10 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
   if (p == NULL) return NULL;
   p->fn = fn;
   p->user = user;
-  swarf_gc_state_init(&p->state);
+  p->state = &p->states[0];
+  swarf_gc_state_init(p->state);
   swarf_gc_params_init(&p->params);
-  p->params.state = &p->state;
+  p->params.state = p->state;
   swarf_gc_out_init(&p->out);
   swarf_gc_out_init(&p->held);
   default_tools(p);

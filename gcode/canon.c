@@ -6,6 +6,12 @@
  * machine-frame swarf_move the simulator consumes; other calls are text,
  * formatted only when someone listens (want_text).
  *
+ * Held calls (cutter compensation, see swarf_gc_out): a motion is built in
+ * program mm and made final (printed values, machine frame) when it is let
+ * go, with the unit and offsets in force then, as rs274 prints a queued
+ * move. A call pushed while others are held waits behind them, except the
+ * ones LinuxCNC does not queue (swarf_gc_out_text_now).
+ *
  * Machine frame, as LinuxCNC's motion controller does it (emccanon.cc,
  * rotate_and_offset_pos): p += G92; rotate (x, y) by the system's XY
  * rotation; p += work offset; p += tool length offset. All in mm.

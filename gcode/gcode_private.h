@@ -16,6 +16,9 @@
  *             calls into an out list (canon.c) that the parser hands out
  *             only when the whole block succeeded: a rejected block changes
  *             nothing.
+ *   ccomp*.c  cutter radius compensation: compensated moves are held in
+ *             the out list until the next move (LinuxCNC's queue); the
+ *             parser carries held calls over to the next block.
  *   fault.c   the error record every step fills.
  *
  * Internal units: mm, degrees, mm/min; positions are program coordinates

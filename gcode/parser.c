@@ -10,6 +10,9 @@
  * end the program. Anything after the end is not read. Every other line is
  * read, checked and executed on a copy of the state (see gcode_private.h):
  * the state and the moves are committed only when the whole block is good.
+ * Under cutter compensation the last move (and the calls after it) is held
+ * over to the next block, as LinuxCNC does; the end of the program lets it
+ * go.
  */
 #include <errno.h>
 #include <math.h>

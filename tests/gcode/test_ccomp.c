@@ -4,7 +4,8 @@
  * random_compare.py, which compares thousands of such programs).
  *
  * For each case: swarf's canonical motion calls equal rs274's to 1e-4, in
- * order; and the moves the simulator gets follow that path: one move per
+ * order, and so do the numbers of its MESSAGE calls (positions read from
+ * parameters); and the moves the simulator gets follow that path: one move per
  * motion call, each starting where the last one ended, ending where the
  * call says (machine frame = program frame here: no offsets), and arcs
  * whose sweep and rise land on their end point.
@@ -30,7 +31,7 @@ typedef struct {
 static const ccomp_case cases[] = {
     {"square-left", 1, 0}, {"pocket-right", 1, 0},    {"arcs-mixed", 25.4, 0},
     {"plane-g18", 1, 1},   {"misc-right", 0, 0},      {"hshape", 1, 0},
-    {"gouges", 1, 0},      {"random-sessions", 0, 0},
+    {"gouges", 1, 0},      {"random-sessions", 0, 0}, {"position-params", 1, 0},
 };
 
 typedef struct {
@@ -130,6 +131,15 @@ static void run_case(const char *dir, const ccomp_case *k) {
   canon_extract(out.text, 0, &got);
   canon_extract(expected, 0, &want);
   CHECK(!canon_differ(&got, &want, 1.01e-4, why, sizeof why), "%s: %s", k->name, why);
+  free(got.v);
+  free(want.v);
+  canon_extract(out.text, 1, &got);
+  canon_extract(expected, 1, &want);
+  CHECK(!canon_differ(&got, &want, 1.01e-6, why, sizeof why), "%s: MESSAGE numbers: %s", k->name,
+        why);
+  free(got.v);
+  free(want.v);
+  canon_extract(expected, 0, &want);
   CHECK((status == SWARF_GCODE_OK) == (rs274_error(expected) == NULL), "%s: %s", k->name,
         status ? err.message : "rs274 stopped, swarf did not");
   if (status != SWARF_GCODE_OK && rs274_error(expected) != NULL)
@@ -139,7 +149,6 @@ static void run_case(const char *dir, const ccomp_case *k) {
   check_path(k, &want, &m);
   printf("%-14s %zu motion calls, %d moves%s%s\n", k->name, want.n, m.n,
          status ? ", refused: " : "", status ? err.message : "");
-  free(got.v);
   free(want.v);
   free(out.text);
   free(expected);

@@ -113,17 +113,10 @@ static void tap(cycle_run *c) {
 static void hole(cycle_run *c, int motion) {
   if (c->st->pos[c->g.a3] != c->g.r) traverse(c, c->g.r);
   switch (motion) {
-  case 730:
-    pecks(c, 0);
-    return;
-  case 830:
-    pecks(c, 1);
-    return;
-  case 840:
-    tap(c);
-    return;
-  default:
-    break;
+  case 730: pecks(c, 0); return;
+  case 830: pecks(c, 1); return;
+  case 840: tap(c); return;
+  default: break;
   }
   feed(c, c->g.bottom);
   if (motion == 820 || motion == 860 || motion == 880 || motion == 890) dwell(c, c->g.p);
@@ -154,22 +147,17 @@ static int cycle_words(cycle_run *c, swarf_gc_fault *f) {
   int same = st->modal.motion == b->motion;
   double s = swarf_gc_scale(st);
   const swarf_gc_word *zw = swarf_gc_block_word(b, c->g.drill_letter);
-  if (swarf_gc_block_has(b, 'R'))
-    st->cycle_r = swarf_gc_block_word(b, 'R')->value * s;
+  if (swarf_gc_block_has(b, 'R')) st->cycle_r = swarf_gc_block_word(b, 'R')->value * s;
   else if (!same)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
                          "R clear plane missing with canned cycle");
-  if (zw->present)
-    st->cycle_z = zw->value * s;
+  if (zw->present) st->cycle_z = zw->value * s;
   else if (!same)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
                          "%c word missing with canned cycle", c->g.drill_letter);
-  if (swarf_gc_block_has(b, 'P'))
-    st->cycle_p = swarf_gc_block_word(b, 'P')->value;
-  else if (!same)
-    st->cycle_p = 0;
-  if (swarf_gc_block_has(b, 'Q'))
-    st->cycle_q = fabs(swarf_gc_block_word(b, 'Q')->value) * s;
+  if (swarf_gc_block_has(b, 'P')) st->cycle_p = swarf_gc_block_word(b, 'P')->value;
+  else if (!same) st->cycle_p = 0;
+  if (swarf_gc_block_has(b, 'Q')) st->cycle_q = fabs(swarf_gc_block_word(b, 'Q')->value) * s;
   else if ((b->motion == 730 || b->motion == 830) && !same)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
                          "Q word missing with G73 or G83");

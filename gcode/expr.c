@@ -127,27 +127,12 @@ static int exists(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
   return SWARF_GCODE_OK;
 }
 
-typedef enum {
-  F_ABS,
-  F_ACOS,
-  F_ASIN,
-  F_COS,
-  F_EXP,
-  F_FIX,
-  F_FUP,
-  F_LN,
-  F_ROUND,
-  F_SIN,
-  F_SQRT,
-  F_TAN,
-  F_ATAN,
-  F_EXISTS,
-  F_NONE
-} func_id;
+typedef enum { F_ABS, F_ACOS, F_ASIN, F_COS, F_EXP, F_FIX, F_FUP, F_LN, F_ROUND, F_SIN,
+               F_SQRT, F_TAN, F_ATAN, F_EXISTS, F_NONE } func_id;
 
 static func_id function_name(swarf_gc_lexer *lx) {
-  static const char *names[] = {"ABS", "ACOS",  "ASIN", "COS",  "EXP", "FIX",  "FUP",
-                                "LN",  "ROUND", "SIN",  "SQRT", "TAN", "ATAN", "EXISTS"};
+  static const char *names[] = {"ABS", "ACOS", "ASIN", "COS",   "EXP",  "FIX", "FUP", "LN",
+                                "ROUND", "SIN", "SQRT", "TAN", "ATAN", "EXISTS"};
   /* Longest names first where one is a prefix of another: none are, but
    * ATAN must not be read as A... (axes are not functions). */
   for (int i = F_EXISTS; i >= 0; i--)
@@ -157,9 +142,7 @@ static func_id function_name(swarf_gc_lexer *lx) {
 
 static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
   switch (id) {
-  case F_ABS:
-    *v = fabs(x);
-    break;
+  case F_ABS: *v = fabs(x); break;
   case F_ACOS:
   case F_ASIN:
     if (x < -1 || x > 1)
@@ -167,42 +150,24 @@ static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
                            id == F_ACOS ? "acos" : "asin");
     *v = (id == F_ACOS ? acos(x) : asin(x)) / DEG;
     break;
-  case F_COS:
-    *v = cos(x * DEG);
-    break;
-  case F_EXP:
-    *v = exp(x);
-    break;
-  case F_FIX:
-    *v = floor(x);
-    break;
-  case F_FUP:
-    *v = ceil(x);
-    break;
+  case F_COS: *v = cos(x * DEG); break;
+  case F_EXP: *v = exp(x); break;
+  case F_FIX: *v = floor(x); break;
+  case F_FUP: *v = ceil(x); break;
   case F_LN:
-    if (x <= 0)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Zero or negative argument to ln");
+    if (x <= 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Zero or negative argument to ln");
     *v = log(x);
     break;
-  case F_ROUND:
-    *v = floor(x + 0.5);
-    break;
-  case F_SIN:
-    *v = sin(x * DEG);
-    break;
+  case F_ROUND: *v = floor(x + 0.5); break;
+  case F_SIN: *v = sin(x * DEG); break;
   case F_SQRT:
     if (x < 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Negative argument to sqrt");
     *v = sqrt(x);
     break;
-  case F_TAN:
-    *v = tan(x * DEG);
-    break;
-  default:
-    *v = x;
-    break;
+  case F_TAN: *v = tan(x * DEG); break;
+  default: *v = x; break;
   }
-  if (!isfinite(*v))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
+  if (!isfinite(*v)) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
   return SWARF_GCODE_OK;
 }
 
@@ -222,12 +187,10 @@ static int function(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f)
   if (status != SWARF_GCODE_OK) return status;
   if (id != F_ATAN) return apply(id, x, at, v, f);
   if (peek(lx) != '/')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx),
-                         "Slash missing after first ATAN argument");
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Slash missing after first ATAN argument");
   lx->pos++;
   if (peek(lx) != '[')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx),
-                         "Left bracket missing after slash with ATAN");
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Left bracket missing after slash with ATAN");
   status = expression(lx, &y, depth + 1, f);
   if (status == SWARF_GCODE_OK) *v = atan2(x, y) / DEG;
   return status;
@@ -255,24 +218,8 @@ static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
   return swarf_gc_lexer_number(lx, v, f);
 }
 
-enum {
-  OP_NONE,
-  OP_POW,
-  OP_MUL,
-  OP_DIV,
-  OP_MOD,
-  OP_ADD,
-  OP_SUB,
-  OP_EQ,
-  OP_NE,
-  OP_GT,
-  OP_GE,
-  OP_LT,
-  OP_LE,
-  OP_AND,
-  OP_OR,
-  OP_XOR
-};
+enum { OP_NONE, OP_POW, OP_MUL, OP_DIV, OP_MOD, OP_ADD, OP_SUB, OP_EQ, OP_NE, OP_GT, OP_GE,
+       OP_LT, OP_LE, OP_AND, OP_OR, OP_XOR };
 
 static int precedence(int op) {
   static const int p[] = {0, 6, 5, 5, 5, 4, 4, 3, 3, 3, 3, 3, 3, 2, 2, 2};
@@ -281,11 +228,9 @@ static int precedence(int op) {
 
 /* Reads an operator if one is next (advances), else OP_NONE. */
 static int read_op(swarf_gc_lexer *lx) {
-  static const struct {
-    const char *text;
-    int op;
-  } words[] = {{"MOD", OP_MOD}, {"EQ", OP_EQ}, {"NE", OP_NE},   {"GT", OP_GT}, {"GE", OP_GE},
-               {"LT", OP_LT},   {"LE", OP_LE}, {"AND", OP_AND}, {"OR", OP_OR}, {"XOR", OP_XOR}};
+  static const struct { const char *text; int op; } words[] = {
+      {"MOD", OP_MOD}, {"EQ", OP_EQ}, {"NE", OP_NE}, {"GT", OP_GT}, {"GE", OP_GE}, {"LT", OP_LT},
+      {"LE", OP_LE}, {"AND", OP_AND}, {"OR", OP_OR}, {"XOR", OP_XOR}};
   int c = peek(lx);
   if (c == '*') return lx->pos++, match(lx, "*") ? OP_POW : OP_MUL;
   if (c == '/') return lx->pos++, OP_DIV;
@@ -304,56 +249,29 @@ static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault 
                            "Attempt to raise negative to non-integer power");
     *v = pow(a, b);
     break;
-  case OP_MUL:
-    *v = a * b;
-    break;
+  case OP_MUL: *v = a * b; break;
   case OP_DIV:
   case OP_MOD:
-    if (b == 0.0)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Attempt to divide by zero");
-    if (op == OP_DIV)
-      *v = a / b;
+    if (b == 0.0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Attempt to divide by zero");
+    if (op == OP_DIV) *v = a / b;
     else {
       *v = fmod(a, b);
       if (*v < 0) *v += fabs(b);
     }
     break;
-  case OP_ADD:
-    *v = a + b;
-    break;
-  case OP_SUB:
-    *v = a - b;
-    break;
-  case OP_EQ:
-    *v = a == b;
-    break;
-  case OP_NE:
-    *v = a != b;
-    break;
-  case OP_GT:
-    *v = a > b;
-    break;
-  case OP_GE:
-    *v = a >= b;
-    break;
-  case OP_LT:
-    *v = a < b;
-    break;
-  case OP_LE:
-    *v = a <= b;
-    break;
-  case OP_AND:
-    *v = a != 0 && b != 0;
-    break;
-  case OP_OR:
-    *v = a != 0 || b != 0;
-    break;
-  default:
-    *v = (a != 0) != (b != 0);
-    break;
+  case OP_ADD: *v = a + b; break;
+  case OP_SUB: *v = a - b; break;
+  case OP_EQ: *v = a == b; break;
+  case OP_NE: *v = a != b; break;
+  case OP_GT: *v = a > b; break;
+  case OP_GE: *v = a >= b; break;
+  case OP_LT: *v = a < b; break;
+  case OP_LE: *v = a <= b; break;
+  case OP_AND: *v = a != 0 && b != 0; break;
+  case OP_OR: *v = a != 0 || b != 0; break;
+  default: *v = (a != 0) != (b != 0); break;
   }
-  if (!isfinite(*v))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
+  if (!isfinite(*v)) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
   return SWARF_GCODE_OK;
 }
 
@@ -384,9 +302,9 @@ static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *
   if (status == SWARF_GCODE_OK) status = climb(lx, v, 2, depth, f);
   if (status == SWARF_GCODE_OK && peek(lx) != ']') {
     int c = peek(lx);
-    return swarf_gc_fail(
-        f, SWARF_GCODE_ERR_SYNTAX, col(lx),
-        c == -1 ? "Unclosed expression" : "Unknown operation name starting with %c", (char)c);
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx),
+                         c == -1 ? "Unclosed expression" : "Unknown operation name starting with %c",
+                         (char)c);
   }
   if (status == SWARF_GCODE_OK) lx->pos++;
   return status;

@@ -63,8 +63,8 @@ typedef struct {
 /* Where and why a program was rejected. */
 typedef struct {
   char file[256];
-  long line;  /* 1-based; 0 when not tied to a line */
-  int column; /* 1-based */
+  long line;    /* 1-based; 0 when not tied to a line */
+  int column;   /* 1-based */
   char message[256];
 } swarf_gcode_error;
 
@@ -104,7 +104,8 @@ int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
 /* Loads a LinuxCNC tool table (lines "T1 P1 Z0.511 D0.125 ;comment"; values
  * in inches, as rs274 reads a table without an INI file). Call before the
  * first feed. Returns a status; *err says why it failed. */
-int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path, swarf_gcode_error *err);
+int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                  swarf_gcode_error *err);
 
 /* Empties the tool table (the built-in one of rs274 too: without a table,
  * tools 1-3 have rs274's lengths 0.511, 0.1 and 1.273 in), so that only tools

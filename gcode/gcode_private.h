@@ -101,7 +101,7 @@ typedef struct {
   int comp_exit;       /* after G40: the tool is at comp_pos until the next move */
   int arc_not_allowed; /* after G40: the next move must be straight */
   double comp_end[2];  /* plane: where the held move starts, as LinuxCNC records it */
-  int comp_end_valid;
+  int comp_end_valid;  /* comp_end holds a point (LinuxCNC forgets it on a dequeue) */
 } swarf_gc_state;
 
 #define SWARF_GC_COMP_LEFT 1

@@ -175,10 +175,8 @@ static void run_home(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   int any = swarf_gc_block_has_axis(b);
   int column = b->g[0].column;
   /* rs274 always makes the first move, to where it is when no axis word. */
-  if (any)
-    swarf_gc_find_end(b, st, mid);
-  else
-    memcpy(mid, st->pos, sizeof mid);
+  if (any) swarf_gc_find_end(b, st, mid);
+  else memcpy(mid, st->pos, sizeof mid);
   swarf_gc_out_straight(ex->out, st, SWARF_GC_CALL_TRAVERSE, mid, column);
   memcpy(st->pos, mid, sizeof st->pos);
   swarf_gc_to_machine(st, st->pos, m);

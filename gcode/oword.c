@@ -27,22 +27,8 @@
 #define SWARF_GC_MAX_ITERATIONS 10000000L
 
 typedef enum {
-  O_NONE,
-  O_SUB,
-  O_ENDSUB,
-  O_CALL,
-  O_RETURN,
-  O_DO,
-  O_WHILE,
-  O_ENDWHILE,
-  O_IF,
-  O_ELSEIF,
-  O_ELSE,
-  O_ENDIF,
-  O_REPEAT,
-  O_ENDREPEAT,
-  O_BREAK,
-  O_CONTINUE
+  O_NONE, O_SUB, O_ENDSUB, O_CALL, O_RETURN, O_DO, O_WHILE, O_ENDWHILE, O_IF, O_ELSEIF,
+  O_ELSE, O_ENDIF, O_REPEAT, O_ENDREPEAT, O_BREAK, O_CONTINUE
 } okind;
 
 typedef struct {
@@ -140,17 +126,11 @@ static int read_name(swarf_gc_lexer *lx, char *name, swarf_gc_fault *f) {
 /* The keyword after the name: all letters up to the next non-letter
  * (blanks mean nothing, as everywhere in a line). */
 static okind read_keyword(swarf_gc_lexer *lx) {
-  static const struct {
-    const char *w;
-    okind k;
-  } words[] = {{"endsub", O_ENDSUB},    {"endwhile", O_ENDWHILE},
-               {"endif", O_ENDIF},      {"endrepeat", O_ENDREPEAT},
-               {"elseif", O_ELSEIF},    {"else", O_ELSE},
-               {"sub", O_SUB},          {"call", O_CALL},
-               {"return", O_RETURN},    {"do", O_DO},
-               {"while", O_WHILE},      {"if", O_IF},
-               {"repeat", O_REPEAT},    {"break", O_BREAK},
-               {"continue", O_CONTINUE}};
+  static const struct { const char *w; okind k; } words[] = {
+      {"endsub", O_ENDSUB}, {"endwhile", O_ENDWHILE}, {"endif", O_ENDIF},
+      {"endrepeat", O_ENDREPEAT}, {"elseif", O_ELSEIF}, {"else", O_ELSE}, {"sub", O_SUB},
+      {"call", O_CALL}, {"return", O_RETURN}, {"do", O_DO}, {"while", O_WHILE}, {"if", O_IF},
+      {"repeat", O_REPEAT}, {"break", O_BREAK}, {"continue", O_CONTINUE}};
   char word[16];
   size_t n = 0;
   while (swarf_gc_lexer_peek(lx) != -1 && isalpha((unsigned char)lx->line[lx->pos])) {
@@ -215,8 +195,8 @@ static int eval_arg(swarf_gc_flow *fl, const stored *s, double *v, int required,
   *v = 0;
   status = read_arg(&lx, v, &present, f);
   if (status == SWARF_GCODE_OK && required && !present)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, s->ctl.column, "Expression missing after O%s",
-                         s->ctl.name);
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, s->ctl.column,
+                         "Expression missing after O%s", s->ctl.name);
   return status;
 }
 
@@ -264,23 +244,20 @@ static int track(swarf_gc_flow *fl, stored *s, swarf_gc_fault *f) {
   if (opens(k)) {
     if (k == O_SUB && fl->nopen > 0)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                           "Nested subroutine definition"),
-             -1;
+                           "Nested subroutine definition"), -1;
     if (fl->nopen == MAX_NEST)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                           "Control structures nested too deeply"),
-             -1;
+                           "Control structures nested too deeply"), -1;
     fl->open[fl->nopen].kind = k;
     strcpy(fl->open[fl->nopen++].name, s->ctl.name);
     return 0;
   }
   if (closes(k)) {
-    static const okind opener[] = {
-        [O_ENDSUB] = O_SUB, [O_ENDWHILE] = O_WHILE, [O_ENDIF] = O_IF, [O_ENDREPEAT] = O_REPEAT};
+    static const okind opener[] = {[O_ENDSUB] = O_SUB, [O_ENDWHILE] = O_WHILE,
+                                   [O_ENDIF] = O_IF, [O_ENDREPEAT] = O_REPEAT};
     if (top == NULL || top->kind != opener[k] || strcmp(top->name, s->ctl.name) != 0)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                           "O%s does not close the open construct", s->ctl.name),
-             -1;
+                           "O%s does not close the open construct", s->ctl.name), -1;
     fl->nopen--;
     return fl->nopen == 0;
   }
@@ -408,8 +385,7 @@ static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts
     status = eval_arg(fl, s, &v, 1, f);
     if (status != SWARF_GCODE_OK) return status;
     counts[*pc] = floor(v + 0.5);
-    *pc = counts[*pc] > 0 ? *pc + 1
-                          : find_fwd(l, *pc, name, O_ENDREPEAT, O_ENDREPEAT, O_ENDREPEAT) + 1;
+    *pc = counts[*pc] > 0 ? *pc + 1 : find_fwd(l, *pc, name, O_ENDREPEAT, O_ENDREPEAT, O_ENDREPEAT) + 1;
     return SWARF_GCODE_OK;
   case O_ENDREPEAT:
     j = find_back(l, *pc, name, O_REPEAT);
@@ -460,15 +436,13 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
                                "O%s return or endsub outside a subroutine", s->ctl.name);
       break;
     case O_SUB:
-      status =
-          swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column, "Nested subroutine definition");
+      status = swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
+                             "Nested subroutine definition");
       break;
     case O_IF:
       status = eval_arg(fl, s, &v, 1, f);
-      if (status == SWARF_GCODE_OK && v != 0)
-        pc++;
-      else if (status == SWARF_GCODE_OK)
-        status = next_branch(fl, l, &pc, f);
+      if (status == SWARF_GCODE_OK && v != 0) pc++;
+      else if (status == SWARF_GCODE_OK) status = next_branch(fl, l, &pc, f);
       break;
     case O_ELSEIF:
     case O_ELSE: /* the branch before was taken */
@@ -511,8 +485,8 @@ static int finish_recording(swarf_gc_flow *fl, swarf_gc_fault *f) {
   return status;
 }
 
-int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line, long *err_line,
-                       swarf_gc_fault *f) {
+int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line,
+                       long *err_line, swarf_gc_fault *f) {
   octl c;
   int status = read_ctl(text, len, &c, f), closed;
   fl->err_line = err_line;
@@ -525,7 +499,8 @@ int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long lin
       return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
     status = c.kind == O_CALL ? call(fl, &one.v[0], f)
                               : swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, c.column,
-                                              "O%s: this word needs an open construct", c.name);
+                                              "O%s: this word needs an open construct",
+                                              c.name);
     list_clear(&one);
     return status;
   }

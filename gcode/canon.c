@@ -42,6 +42,15 @@ void swarf_gc_out_reset(swarf_gc_out *o) {
   o->ready = 0;
   o->text_len = 0;
   o->overflow = 0;
+  o->prefix = NULL;
+  o->pending = 0;
+}
+
+void swarf_gc_out_start(swarf_gc_out *o, const swarf_gc_out *held, long line) {
+  swarf_gc_out_reset(o);
+  o->line = line;
+  o->prefix = held;
+  o->pending = held != NULL ? held->count : 0;
 }
 
 static swarf_gc_call *push(swarf_gc_out *o, swarf_gc_call_kind kind) {
@@ -105,14 +114,15 @@ static swarf_gc_call *push_textv(swarf_gc_out *o, const char *fmt, va_list ap) {
 
 /* A call just pushed: final at once if nothing is held before it. */
 static void settle(swarf_gc_out *o, const swarf_gc_state *st) {
-  if (o->ready + 1 == o->count) swarf_gc_out_flush(o, st);
+  if (o->pending == 0 && o->ready + 1 == o->count) swarf_gc_out_flush(o, st);
 }
 
 void swarf_gc_out_text(swarf_gc_out *o, const char *fmt, ...) {
   va_list ap;
   if (!o->want_text || o->overflow) return;
   va_start(ap, fmt);
-  if (push_textv(o, fmt, ap) != NULL && o->ready + 1 == o->count) o->ready = o->count;
+  if (push_textv(o, fmt, ap) != NULL && o->pending == 0 && o->ready + 1 == o->count)
+    o->ready = o->count;
   va_end(ap);
 }
 
@@ -148,6 +158,25 @@ void swarf_gc_out_append_held(swarf_gc_out *o, const swarf_gc_out *src, size_t f
       o->text_len += n;
     }
   }
+}
+
+static void reverse(swarf_gc_call *c, size_t from, size_t to) {
+  for (; from + 1 < to; from++, to--) {
+    swarf_gc_call t = c[from];
+    c[from] = c[to - 1];
+    c[to - 1] = t;
+  }
+}
+
+void swarf_gc_out_take_held(swarf_gc_out *o) {
+  size_t mid = o->count;
+  if (o->pending == 0) return;
+  o->pending = 0;
+  swarf_gc_out_append_held(o, o->prefix, 0);
+  /* [ready, mid) this block's, [mid, count) the earlier ones': swap them. */
+  reverse(o->calls, o->ready, mid);
+  reverse(o->calls, mid, o->count);
+  reverse(o->calls, o->ready, o->count);
 }
 
 static void rotate_xy(double deg, double *x, double *y) {
@@ -248,6 +277,7 @@ static void make_final(swarf_gc_call *c, const swarf_gc_state *st) {
 }
 
 void swarf_gc_out_flush(swarf_gc_out *o, const swarf_gc_state *st) {
+  swarf_gc_out_take_held(o);
   for (size_t i = o->ready; i < o->count; i++)
     make_final(&o->calls[i], st);
   o->ready = o->count;

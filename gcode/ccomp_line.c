@@ -120,7 +120,7 @@ static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
   double cx = st->comp_pos[pl.a1], cy = st->comp_pos[pl.a2];
   double opx = st->pos[pl.a1], opy = st->pos[pl.a2], px = end[pl.a1], py = end[pl.a2];
   int col = b->motion_column, status = SWARF_GCODE_OK, concave;
-  swarf_gc_call *prev = swarf_gc_cc_front(ex->out);
+  swarf_gc_call *prev;
   corner k;
   swarf_gc_tool_pos(st, at);
   if (px == opx && py == opy) { /* no motion in the plane */
@@ -128,6 +128,7 @@ static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
     swarf_gc_cc_set_current(st, &pl, cx, cy, end[pl.a3]);
     return SWARF_GCODE_OK;
   }
+  prev = swarf_gc_cc_front(ex->out);
   k = line_corner(st->comp_side, cx, cy, opx, opy, px, py);
   x = px + r * cos(k.alpha + k.gamma);
   y = py + r * sin(k.alpha + k.gamma);

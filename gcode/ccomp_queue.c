@@ -69,6 +69,7 @@ static void arc_angle(swarf_move *mv, const swarf_gc_cc_plane *pl, int turns) {
 
 /* The first held motion, or NULL (LinuxCNC's qc().front()). */
 swarf_gc_call *swarf_gc_cc_front(swarf_gc_out *o) {
+  swarf_gc_out_take_held(o);
   for (size_t i = o->ready; i < o->count; i++)
     if (o->calls[i].kind <= SWARF_GC_CALL_ARC) return &o->calls[i];
   return NULL;
@@ -133,6 +134,7 @@ int swarf_gc_cc_move_ends(swarf_gc_state *st, swarf_gc_exec *ex, double x, doubl
   swarf_gc_out *o = ex->out;
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
   const double *prev = NULL, *ep = st->comp_end_valid ? st->comp_end : NULL;
+  swarf_gc_out_take_held(o);
   if (o->ready == o->count) return SWARF_GCODE_OK;
   for (size_t i = o->ready; i < o->count; i++) {
     swarf_gc_call *c = &o->calls[i];

@@ -317,16 +317,23 @@ typedef struct {
 /* The calls of one block. calls[0, ready) are final and go out when the
  * block commits; calls[ready, count) are held (LinuxCNC's queue under
  * cutter compensation: a move waits for the next one, which may move its
- * end point) and carry the parser over to the next block. */
-typedef struct {
+ * end point) and carry the parser over to the next block.
+ * The calls held by earlier blocks (`prefix`, owned by the parser, not
+ * changed by the block) come between the two parts; they are copied in
+ * only when the block touches them (swarf_gc_out_take_held), so that a long
+ * run of held calls costs nothing per block. */
+typedef struct swarf_gc_out swarf_gc_out;
+struct swarf_gc_out {
   swarf_gc_call *calls;
   size_t count, cap, ready;
   char *text;
   size_t text_len, text_cap;
-  long line;     /* source line stamped on the moves pushed */
-  int want_text; /* format TEXT calls (a canon callback is set) */
-  int overflow;  /* out of memory or over the limit */
-} swarf_gc_out;
+  const swarf_gc_out *prefix; /* earlier blocks' held calls, or NULL */
+  size_t pending;             /* prefix calls not copied in yet */
+  long line;                  /* source line stamped on the moves pushed */
+  int want_text;              /* format TEXT calls (a canon callback is set) */
+  int overflow;               /* out of memory or over the limit */
+};
 
 void swarf_gc_out_init(swarf_gc_out *o);
 void swarf_gc_out_clear(swarf_gc_out *o);
@@ -345,6 +352,15 @@ void swarf_gc_out_text_now(swarf_gc_out *o, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* Starts a block's list: empty, after the calls `held` by earlier blocks. */
+void swarf_gc_out_start(swarf_gc_out *o, const swarf_gc_out *held, long line);
+/* Copies the earlier blocks' held calls in, to read or change them. */
+void swarf_gc_out_take_held(swarf_gc_out *o);
+/* Calls in the list, the earlier blocks' held ones included: call
+ * swarf_gc_out_size(o) - o->pending is the one that was pushed at that size. */
+static inline size_t swarf_gc_out_size(const swarf_gc_out *o) {
+  return o->count + o->pending;
+}
 /* Appends copies of src's calls [from, count) to o, held. */
 void swarf_gc_out_append_held(swarf_gc_out *o, const swarf_gc_out *src, size_t from);
 /* Makes the held calls final with the offsets and unit of `st`. */

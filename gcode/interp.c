@@ -247,11 +247,11 @@ int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exe
   if (system >= 0) swarf_gc_select_system(system, next, ex);
   run_path_control(b, next, ex);
   set_modes(b, &next->modal);
-  moves = ex->out->count;
+  moves = swarf_gc_out_size(ex->out);
   status = swarf_gc_offsets(b, next, ex, f);
   if (status == SWARF_GCODE_OK) status = swarf_gc_motion(b, next, ex, f);
   if (status != SWARF_GCODE_OK) return status;
-  if (ex->out->count > moves && !swarf_gc_comp_active(next)) next->comp_exit = 0;
+  if (swarf_gc_out_size(ex->out) > moves && !swarf_gc_comp_active(next)) next->comp_exit = 0;
   run_stop(b, next, ex);
   if (ex->out->overflow)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1,

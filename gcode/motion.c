@@ -71,7 +71,8 @@ static int inverse_feed(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_ex
   return SWARF_GCODE_OK;
 }
 
-/* Under G93, the feed (mm/min) of the block's moves from call `first` on:
+/* Under G93, the feed (mm/min) of the block's moves from call `first` on
+ * (a swarf_gc_out_size, which stays right if held calls are taken in):
  * the programmed move's length times F. */
 static void fix_inverse(swarf_gc_exec *ex, const swarf_gc_state *st, const double *end,
                         const swarf_move *arc, size_t first) {
@@ -83,14 +84,14 @@ static void fix_inverse(swarf_gc_exec *ex, const swarf_gc_state *st, const doubl
         (arc != NULL ||
          fabs(end[0] - st->pos[0]) + fabs(end[1] - st->pos[1]) + fabs(end[2] - st->pos[2]) > 0);
   feed = len * st->feed * (xyz ? swarf_gc_scale(st) : 1);
-  for (size_t i = first; i < ex->out->count; i++)
+  for (size_t i = first - ex->out->pending; i < ex->out->count; i++)
     if (ex->out->calls[i].kind != SWARF_GC_CALL_TEXT) ex->out->calls[i].move.feed = feed;
 }
 
 static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                     swarf_gc_fault *f) {
   double end[SWARF_NAXES];
-  size_t first = ex->out->count;
+  size_t first = swarf_gc_out_size(ex->out);
   int status = SWARF_GCODE_OK;
   swarf_gc_find_end(b, st, end);
   if (b->motion == 10) {
@@ -99,7 +100,7 @@ static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
                            "Cannot do G1 with zero feed rate");
     status = inverse_feed(b, st, ex, end, NULL, f);
     if (status != SWARF_GCODE_OK) return status;
-    first = ex->out->count;
+    first = swarf_gc_out_size(ex->out);
   }
   if (swarf_gc_comp_active(st))
     status = swarf_gc_comp_straight(b, st, ex, end, f);
@@ -131,7 +132,7 @@ static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, s
   status = swarf_gc_arc(b, st, &mv, &turns, f);
   if (status == SWARF_GCODE_OK) status = inverse_feed(b, st, ex, mv.end, &mv, f);
   if (status != SWARF_GCODE_OK) return status;
-  first = ex->out->count;
+  first = swarf_gc_out_size(ex->out);
   if (swarf_gc_comp_active(st))
     status = swarf_gc_comp_arc(b, st, ex, &mv, turns, f);
   else

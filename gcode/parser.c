@@ -175,16 +175,15 @@ static int fault_error(swarf_gcode_parser *p, const swarf_gc_fault *f) {
   return set_error(p, f->status, f->column, f->message);
 }
 
-/* Starts a block's out list with the calls held from the last block. */
+/* Starts a block's out list, after the calls held from the last blocks. */
 static void out_start(swarf_gcode_parser *p) {
-  swarf_gc_out_reset(&p->out);
-  p->out.line = p->cur_line;
-  if (p->held.count > 0) swarf_gc_out_append_held(&p->out, &p->held, 0);
+  swarf_gc_out_start(&p->out, &p->held, p->cur_line);
 }
 
-/* Keeps the calls the committed block still holds for the next one. */
+/* Keeps the calls the committed block still holds for the next one: the
+ * earlier held calls stay if the block did not take them. */
 static void out_keep(swarf_gcode_parser *p) {
-  swarf_gc_out_reset(&p->held);
+  if (p->out.pending == 0) swarf_gc_out_reset(&p->held);
   if (p->out.ready < p->out.count) swarf_gc_out_append_held(&p->held, &p->out, p->out.ready);
   if (p->held.overflow) set_error(p, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
 }

@@ -10,11 +10,14 @@
  * call says (machine frame = program frame here: no offsets), and arcs
  * whose sweep and rise land on their end point.
  *
+ * And a long run of held moves takes linear time.
+ *
  * Usage: test_ccomp <folder of the cases>.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "canon_compare.h"
 #include "check.h"
@@ -154,6 +157,34 @@ static void run_case(const char *dir, const ccomp_case *k) {
   free(expected);
 }
 
+/* 100000 moves off the plane after a compensated move are all held (as
+ * LinuxCNC holds them) until the next move in the plane: linear time. */
+static void long_hold(void) {
+  size_t cap = 100000 * 12 + 100, n = 0;
+  char *text = malloc(cap);
+  canon_text out = {0};
+  moves *m = malloc(sizeof *m);
+  swarf_gcode_parser *p = swarf_gcode_parser_new("hold.ngc", keep_move, m);
+  clock_t t0 = clock();
+  int status;
+  m->n = 0;
+  n += (size_t)snprintf(text, cap, "F100\nG41.1 D1\nG1 X10\n");
+  for (int i = 0; i < 100000; i++)
+    n += (size_t)snprintf(text + n, cap - n, "G1 Z-%d\n", i % 5);
+  n += (size_t)snprintf(text + n, cap - n, "G1 Y10\nM2\n");
+  swarf_gcode_parser_set_canon(p, canon_sink, &out);
+  status = swarf_gcode_parser_feed(p, text, n);
+  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
+  CHECK(status == SWARF_GCODE_OK && m->n == MAX_MOVES, "long hold: status %d, %d moves", status,
+        m->n);
+  CHECK((double)(clock() - t0) / CLOCKS_PER_SEC < 10, "long hold took %.1f s of CPU",
+        (double)(clock() - t0) / CLOCKS_PER_SEC);
+  swarf_gcode_parser_free(p);
+  free(out.text);
+  free(text);
+  free(m);
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: %s <tests/gcode/ccomp>\n", argv[0]);
@@ -161,5 +192,6 @@ int main(int argc, char **argv) {
   }
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
     run_case(argv[1], &cases[i]);
+  long_hold();
   return check_done();
 }

@@ -159,15 +159,20 @@ static int centre_r(const swarf_gc_block *b, arc_data *a, swarf_gc_fault *f) {
  * coincide in the plane (within 1e-8), else the angle between them in
  * (0, 2 pi), however small; an exact zero (start and end on one ray, radii
  * differing) stays a tiny positive sweep. */
-static double sweep(const arc_data *a) {
+double swarf_gc_arc_sweep(double s1, double s2, double e1, double e2, double c1, double c2,
+                          int ccw) {
   double ts, te, d;
-  if (hypot(a->e1 - a->s1, a->e2 - a->s2) < FULL_CIRCLE_FUZZ_MM) return TWO_PI;
-  ts = atan2(a->s2 - a->c2, a->s1 - a->c1);
-  te = atan2(a->e2 - a->c2, a->e1 - a->c1);
-  d = a->ccw ? te - ts : ts - te;
+  if (hypot(e1 - s1, e2 - s2) < FULL_CIRCLE_FUZZ_MM) return TWO_PI;
+  ts = atan2(s2 - c2, s1 - c1);
+  te = atan2(e2 - c2, e1 - c1);
+  d = ccw ? te - ts : ts - te;
   if (d < 0) d += TWO_PI;
   if (d >= TWO_PI) d -= TWO_PI;
   return d > 0 ? d : ZERO_SWEEP;
+}
+
+static double sweep(const arc_data *a) {
+  return swarf_gc_arc_sweep(a->s1, a->s2, a->e1, a->e2, a->c1, a->c2, a->ccw);
 }
 
 static int turns_of(const swarf_gc_block *b) {

@@ -37,13 +37,26 @@ static int tenths_of(double value) {
   return (int)r;
 }
 
+/* An empty block: absent words read as 0. Word texts and parameter
+ * settings are not cleared (the block is large; they are read only when
+ * present). */
 static void init_block(swarf_gc_block *b) {
-  memset(b, 0, sizeof *b);
+  for (int i = 0; i < 26; i++) {
+    b->words[i].present = 0;
+    b->words[i].value = 0;
+    b->words[i].column = 0;
+    b->words[i].text[0] = '\0';
+  }
   for (int i = 0; i < SWARF_GC_NGROUPS; i++)
     b->g[i].code = -1;
   for (int i = 0; i < SWARF_GC_NMGROUPS; i++)
     b->m[i].code = -1;
+  b->letters = 0;
+  b->m_count = b->word_count = b->assign_count = 0;
+  b->comment = NULL;
+  b->comment_len = 0;
   b->motion = -1;
+  b->motion_column = 0;
 }
 
 static void set_code_word(swarf_gc_code_word *cw, int code, const swarf_gc_token *t) {
@@ -108,6 +121,7 @@ static int add_other(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault 
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
                          "Multiple %c words on one line: %s and %s", t->letter, w->text, t->word);
   w->present = 1;
+  b->letters |= SWARF_GC_LETTER(t->letter);
   w->value = t->value;
   w->column = t->column;
   memcpy(w->text, t->word, sizeof w->text);
@@ -139,8 +153,8 @@ static int add_assign(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault
   return SWARF_GCODE_OK;
 }
 
-int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
-                        swarf_gc_block *b, swarf_gc_fault *f) {
+int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
+                        swarf_gc_fault *f) {
   swarf_gc_lexer lx;
   swarf_gc_token t;
   init_block(b);
@@ -159,16 +173,7 @@ int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
   }
 }
 
-const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter) {
-  return &b->words[letter - 'A'];
-}
-
-int swarf_gc_block_has(const swarf_gc_block *b, char letter) {
-  return b->words[letter - 'A'].present;
-}
-
 int swarf_gc_block_has_axis(const swarf_gc_block *b) {
-  for (const char *l = "XYZABC"; *l; l++)
-    if (b->words[*l - 'A'].present) return 1;
-  return 0;
+  return (b->letters & (SWARF_GC_LETTER('X') | SWARF_GC_LETTER('Y') | SWARF_GC_LETTER('Z') |
+                        SWARF_GC_LETTER('A') | SWARF_GC_LETTER('B') | SWARF_GC_LETTER('C'))) != 0;
 }

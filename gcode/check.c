@@ -19,13 +19,17 @@
 #define MOTION_G80 800
 #define MAX_ARC_TURNS 10000 /* a bound of ours, not LinuxCNC's: keeps arcs finite */
 
-/* Column of the leftmost present word among `letters`, 0 if none. */
-static int first_column(const swarf_gc_block *b, const char *letters) {
+#define L(c) SWARF_GC_LETTER(c)
+#define AXES (L('X') | L('Y') | L('Z') | L('A') | L('B') | L('C'))
+#define OFFSETS (L('I') | L('J') | L('K'))
+
+/* Column of the leftmost present word among `letters` (SWARF_GC_LETTER
+ * bits), 0 if none. */
+static int first_column(const swarf_gc_block *b, unsigned letters) {
   int column = 0;
-  for (const char *l = letters; *l; l++) {
-    const swarf_gc_word *w = swarf_gc_block_word(b, *l);
-    if (w->present && (column == 0 || w->column < column)) column = w->column;
-  }
+  letters &= b->letters;
+  for (int i = 0; letters != 0; i++, letters >>= 1)
+    if ((letters & 1) && (column == 0 || b->words[i].column < column)) column = b->words[i].column;
   return column;
 }
 
@@ -44,8 +48,8 @@ static int axis_user(int g0) {
 
 static int find_motion(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   const swarf_gc_code_word *g1 = &b->g[SWARF_GC_GROUP_MOTION];
-  int axis_column = first_column(b, "XYZABC");
-  int ijk_column = first_column(b, "IJK");
+  int axis_column = first_column(b, AXES);
+  int ijk_column = first_column(b, OFFSETS);
   if (axis_user(b->g[SWARF_GC_GROUP_NONMODAL].code)) {
     if (g1->code >= 0 && g1->code != MOTION_G80 && axis_column)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g1->column,
@@ -82,7 +86,8 @@ static int is_whole(double v, double tolerance) {
 }
 
 static int check_values(const swarf_gc_block *b, swarf_gc_fault *f) {
-  static const char nonnegative[] = "FSNTHDL";
+  static const char nonnegative[] = "FSNTHL";
+  if (!(b->letters & (L('F') | L('S') | L('N') | L('T') | L('H') | L('L')))) return SWARF_GCODE_OK;
   for (const char *l = nonnegative; *l; l++) {
     const swarf_gc_word *w = swarf_gc_block_word(b, *l);
     if (w->present && w->value < 0)
@@ -164,10 +169,14 @@ static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   for (const char *l = "ABC"; *l; l++)
     if ((w = swarf_gc_block_word(b, *l))->present)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
-                           "Cannot put %s in canned cycle: %s", *l == 'A' ? "an a" : *l == 'B' ? "a b" : "a c", w->text);
-  if (st->modal.cutter_comp != 400)
+                           "Cannot put %s in canned cycle: %s",
+                           *l == 'A'   ? "an a"
+                           : *l == 'B' ? "a b"
+                                       : "a c",
+                           w->text);
+  if (st->comp_side != 0)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, col,
-                         "Cannot use canned cycle with cutter radius compensation");
+                         "Cannot use canned cycles with cutter compensation on");
   if ((w = swarf_gc_block_word(b, 'L'))->present && w->value < 1)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "Cannot do zero repeats: %s",
                          w->text);
@@ -185,16 +194,16 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   if ((w = swarf_gc_block_word(b, 'H'))->present && b->g[SWARF_GC_GROUP_TOOL_LENGTH].code != 430 &&
       !g10)
     return unused(w, "G43", f);
-  for (const char *l = "IJK"; *l; l++)
-    if ((w = swarf_gc_block_word(b, *l))->present && !arc && !(cycle && *l == 'K' && 0))
-      return unused(w, "G2 or G3", f);
+  for (const char *l = "IJK"; (b->letters & OFFSETS) && *l; l++)
+    if ((w = swarf_gc_block_word(b, *l))->present && !arc) return unused(w, "G2 or G3", f);
   if ((w = swarf_gc_block_word(b, 'R'))->present && !arc && !cycle && !g10)
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
                          "R word with no g code that uses it: %s", w->text);
   if ((w = swarf_gc_block_word(b, 'L'))->present && !cycle && !g10)
     return unused(w, "G10 or canned cycle", f);
-  if ((w = swarf_gc_block_word(b, 'D'))->present && !g10)
-    return unused(w, "G41 or G42", f);
+  if ((w = swarf_gc_block_word(b, 'D'))->present && !g10 &&
+      b->g[SWARF_GC_GROUP_CUTTER_COMP].code <= 400)
+    return unused(w, "G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96", f);
   if ((w = swarf_gc_block_word(b, 'P'))->present) {
     if (!arc && !g4 && !g64 && !g10 && !cycle && !user_m)
       return unused(w, "G2, G3, G4, G10, G64, canned cycle or M code", f);

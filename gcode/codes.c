@@ -11,6 +11,7 @@
 
 #include "gcode_private.h"
 
+/* Sorted by code (find() searches them by halves). */
 static const swarf_gc_code g_codes[] = {
     {0, SWARF_GC_GROUP_MOTION, NULL},
     {10, SWARF_GC_GROUP_MOTION, NULL},
@@ -43,10 +44,10 @@ static const swarf_gc_code g_codes[] = {
     {384, SWARF_GC_GROUP_MOTION, "probing"},
     {385, SWARF_GC_GROUP_MOTION, "probing"},
     {400, SWARF_GC_GROUP_CUTTER_COMP, NULL},
-    {410, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
-    {411, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
-    {420, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
-    {421, SWARF_GC_GROUP_CUTTER_COMP, "cutter radius compensation"},
+    {410, SWARF_GC_GROUP_CUTTER_COMP, NULL},
+    {411, SWARF_GC_GROUP_CUTTER_COMP, NULL},
+    {420, SWARF_GC_GROUP_CUTTER_COMP, NULL},
+    {421, SWARF_GC_GROUP_CUTTER_COMP, NULL},
     {430, SWARF_GC_GROUP_TOOL_LENGTH, NULL},
     {431, SWARF_GC_GROUP_TOOL_LENGTH, NULL},
     {432, SWARF_GC_GROUP_TOOL_LENGTH, "additional tool length offset"},
@@ -100,6 +101,7 @@ static const swarf_gc_code g_codes[] = {
     {990, SWARF_GC_GROUP_RETURN_MODE, NULL},
 };
 
+/* Sorted by code, as g_codes. */
 static const swarf_gc_code m_codes[] = {
     {0, SWARF_GC_MGROUP_STOP, NULL},
     {10, SWARF_GC_MGROUP_STOP, NULL},
@@ -134,9 +136,17 @@ static const swarf_gc_code m_codes[] = {
     {730, SWARF_GC_MGROUP_OVERRIDE, NULL},
 };
 
+/* Binary search of a table sorted by code. */
 static const swarf_gc_code *find(const swarf_gc_code *table, size_t n, int tenths) {
-  for (size_t i = 0; i < n; i++)
-    if (table[i].code == tenths) return &table[i];
+  size_t lo = 0, hi = n;
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (table[mid].code == tenths) return &table[mid];
+    if (table[mid].code < tenths)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
   return NULL;
 }
 

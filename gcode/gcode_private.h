@@ -16,6 +16,9 @@
  *             calls into an out list (canon.c) that the parser hands out
  *             only when the whole block succeeded: a rejected block changes
  *             nothing.
+ *   ccomp*.c  cutter radius compensation: compensated moves are held in
+ *             the out list until the next move (LinuxCNC's queue); the
+ *             parser carries held calls over to the next block.
  *   fault.c   the error record every step fills.
  *
  * Internal units: mm, degrees, mm/min; positions are program coordinates
@@ -63,7 +66,7 @@ typedef struct {
   int distance;     /* 900 or 910 */
   int arc_distance; /* 901 or 911 */
   int feed_mode;    /* 930 940 950 */
-  int cutter_comp;  /* 400 */
+  int cutter_comp;  /* 400 410 411 420 421 */
   int tool_length;  /* 430 431 490 */
   int coord_system; /* 540 550 ... 593 */
   int path_control; /* 610 611 640 */
@@ -73,24 +76,38 @@ typedef struct {
 
 typedef struct {
   swarf_gc_modal modal;
-  double pos[SWARF_NAXES];                         /* program coordinates, mm, degrees */
-  double systems[SWARF_GC_NSYSTEMS][SWARF_NAXES];  /* G54..G59.3 origins, mm */
-  double rotations[SWARF_GC_NSYSTEMS];             /* their XY rotations, degrees */
-  double g92[SWARF_NAXES];                         /* G92/G52 offset in force, mm */
-  double g92_saved[SWARF_NAXES];                   /* #5211-#5216 (kept by G92.2), mm */
-  int g92_on;                                      /* #5210 */
-  double g28[SWARF_NAXES], g30[SWARF_NAXES];       /* stored homes, machine mm */
-  double tlo[SWARF_NAXES];                         /* tool length offset, mm */
-  double feed;                                     /* mm/min, or inverse time (1/min) */
-  double speed;                                    /* rpm, >= 0 */
-  int spindle_dir;                                 /* +1 M3, -1 M4, 0 off */
-  int tool;                                        /* in the spindle */
-  int selected_tool;                               /* last T */
-  int ended;                                       /* M2 or M30 was executed */
+  double pos[SWARF_NAXES];                            /* program coordinates, mm, degrees */
+  double systems[SWARF_GC_NSYSTEMS][SWARF_NAXES];     /* G54..G59.3 origins, mm */
+  double rotations[SWARF_GC_NSYSTEMS];                /* their XY rotations, degrees */
+  double g92[SWARF_NAXES];                            /* G92/G52 offset in force, mm */
+  double g92_saved[SWARF_NAXES];                      /* #5211-#5216 (kept by G92.2), mm */
+  int g92_on;                                         /* #5210 */
+  double g28[SWARF_NAXES], g30[SWARF_NAXES];          /* stored homes, machine mm */
+  double tlo[SWARF_NAXES];                            /* tool length offset, mm */
+  double feed;                                        /* mm/min, or inverse time (1/min) */
+  double speed;                                       /* rpm, >= 0 */
+  int spindle_dir;                                    /* +1 M3, -1 M4, 0 off */
+  int tool;                                           /* in the spindle */
+  int selected_tool;                                  /* last T */
+  int ended;                                          /* M2 or M30 was executed */
   double cycle_r, cycle_q, cycle_p, cycle_k, cycle_z; /* sticky cycle words, mm */
-  double cycle_clear;                              /* G98 clearance of the running cycle */
+  double cycle_clear;                                 /* G98 clearance of the running cycle */
   int cycle_r_set, cycle_q_set;
+  /* Cutter radius compensation (ccomp.c): */
+  int comp_side;       /* 0 off, SWARF_GC_COMP_LEFT or SWARF_GC_COMP_RIGHT */
+  double comp_radius;  /* mm, >= 0 */
+  int comp_first;      /* the next move is the entry move */
+  double comp_pos[3];  /* the compensated tool point, program mm (pos: programmed) */
+  int comp_exit;       /* after G40: the tool is at comp_pos until the next move */
+  int arc_not_allowed; /* after G40: the next move must be straight */
+  double comp_end[2];  /* plane: where the held move starts, as LinuxCNC records it */
+  int comp_end_valid;  /* comp_end holds a point (LinuxCNC forgets it on a dequeue) */
 } swarf_gc_state;
+
+#define SWARF_GC_COMP_LEFT 1
+#define SWARF_GC_COMP_RIGHT 2
+/* Compensation moves the path (side set and a radius above zero). */
+int swarf_gc_comp_active(const swarf_gc_state *st);
 
 void swarf_gc_state_init(swarf_gc_state *st);
 /* mm per program unit. */
@@ -135,9 +152,9 @@ typedef enum {
 
 typedef struct {
   swarf_gc_token_kind kind;
-  char letter;  /* words: upper case */
-  double value; /* words, assignments */
-  int column;   /* 1-based column of the letter, '(' , ';' or '#' */
+  char letter;      /* words: upper case */
+  double value;     /* words, assignments */
+  int column;       /* 1-based column of the letter, '(' , ';' or '#' */
   const char *text; /* comments: the text inside, not owned */
   size_t text_len;
   int index;                     /* assignments: numbered target, 0 if named */
@@ -183,7 +200,7 @@ enum {
   SWARF_GC_GROUP_ARC_DISTANCE = 4,  /* G90.1 G91.1 */
   SWARF_GC_GROUP_FEED_MODE = 5,     /* G93 G94 G95 */
   SWARF_GC_GROUP_UNITS = 6,         /* G20 G21 */
-  SWARF_GC_GROUP_CUTTER_COMP = 7,   /* G40 (G41 G42 G41.1 G42.1: later) */
+  SWARF_GC_GROUP_CUTTER_COMP = 7,   /* G40 G41 G42 G41.1 G42.1 */
   SWARF_GC_GROUP_TOOL_LENGTH = 8,   /* G43 G43.1 G49 */
   SWARF_GC_GROUP_RETURN_MODE = 10,  /* G98 G99 */
   SWARF_GC_GROUP_COORD_SYSTEM = 12, /* G54-G59.3 */
@@ -212,7 +229,8 @@ typedef struct {
   const char *later; /* NULL when supported; else what it is (for the message) */
 } swarf_gc_code;
 
-/* The entry for a G or M code in tenths, or NULL if the code is unknown. */
+/* The entry for a G or M code in tenths, or NULL if the code is unknown
+ * (a binary search: the tables are sorted by code). */
 const swarf_gc_code *swarf_gc_g_code(int tenths);
 const swarf_gc_code *swarf_gc_m_code(int tenths);
 
@@ -237,8 +255,12 @@ typedef struct {
   double value;
 } swarf_gc_assign;
 
+/* The bit of a letter in swarf_gc_block.letters. */
+#define SWARF_GC_LETTER(c) (1u << ((c) - 'A'))
+
 typedef struct {
   swarf_gc_word words[26];                 /* by letter - 'A'; not G or M */
+  unsigned letters;                        /* SWARF_GC_LETTER bits of the words present */
   swarf_gc_code_word g[SWARF_GC_NGROUPS];  /* by G modal group */
   swarf_gc_code_word m[SWARF_GC_NMGROUPS]; /* by M modal group */
   int m_count;
@@ -254,12 +276,16 @@ typedef struct {
 
 /* Reads every token of the line into `b`: repeated words, two codes of one
  * modal group, unknown or not-yet-supported codes and letters are errors. */
-int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
-                        swarf_gc_block *b, swarf_gc_fault *f);
+int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
+                        swarf_gc_fault *f);
 
-/* Shorthands for the words of a block. */
-const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter);
-int swarf_gc_block_has(const swarf_gc_block *b, char letter);
+/* Shorthands for the words of a block (`letter`: 'A'..'Z'). */
+static inline const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter) {
+  return &b->words[letter - 'A'];
+}
+static inline int swarf_gc_block_has(const swarf_gc_block *b, char letter) {
+  return (b->letters & SWARF_GC_LETTER(letter)) != 0;
+}
 int swarf_gc_block_has_axis(const swarf_gc_block *b);
 
 /* ---- check.c: the block against the state ------------------------------- */
@@ -279,37 +305,83 @@ typedef enum {
 
 typedef struct {
   swarf_gc_call_kind kind;
-  swarf_move move;    /* motions: machine frame, mm */
-  double prog[9];     /* motions: the values rs274 prints (program units) */
+  swarf_move move; /* motions: machine frame, mm (program frame while held) */
+  double prog[9];  /* motions: the values rs274 prints (program units) */
   int nprog;
-  size_t text_at;     /* TEXT: offset of the text in the out list's buffer */
+  size_t text_at; /* TEXT: offset of the text in the out list's buffer */
+  int turns;      /* arcs: rs274's signed rotation */
+  double sweep;   /* held arcs: signed sweep as enqueued (radians, LinuxCNC's find_turn) */
+  double dir[2];  /* held lines: programmed direction in the plane */
 } swarf_gc_call;
 
-typedef struct {
+/* The calls of one block. calls[0, ready) are final and go out when the
+ * block commits; calls[ready, count) are held (LinuxCNC's queue under
+ * cutter compensation: a move waits for the next one, which may move its
+ * end point) and carry the parser over to the next block.
+ * The calls held by earlier blocks (`prefix`, owned by the parser, not
+ * changed by the block) come between the two parts; they are copied in
+ * only when the block touches them (swarf_gc_out_take_held), so that a long
+ * run of held calls costs nothing per block. */
+typedef struct swarf_gc_out swarf_gc_out;
+struct swarf_gc_out {
   swarf_gc_call *calls;
-  size_t count, cap;
+  size_t count, cap, ready;
   char *text;
   size_t text_len, text_cap;
-  int want_text; /* format TEXT calls (a canon callback is set) */
-  int overflow;  /* out of memory or over the limit */
-} swarf_gc_out;
+  const swarf_gc_out *prefix; /* earlier blocks' held calls, or NULL */
+  size_t pending;             /* prefix calls not copied in yet */
+  long line;                  /* source line stamped on the moves pushed */
+  int want_text;              /* format TEXT calls (a canon callback is set) */
+  int overflow;               /* out of memory or over the limit */
+};
 
 void swarf_gc_out_init(swarf_gc_out *o);
 void swarf_gc_out_clear(swarf_gc_out *o);
 void swarf_gc_out_reset(swarf_gc_out *o);
-/* A text call (printf-style), e.g. "SET_FEED_RATE(10.0000)". */
+/* A text call (printf-style), e.g. "SET_FEED_RATE(10.0000)": queued
+ * behind held calls, as LinuxCNC's enqueue_* calls are. */
 void swarf_gc_out_text(swarf_gc_out *o, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* A text call that goes out at once, before held calls (MESSAGE,
+ * SELECT_TOOL, USE_LENGTH_UNITS...: LinuxCNC does not queue them). */
+void swarf_gc_out_text_now(swarf_gc_out *o, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Starts a block's list: empty, after the calls `held` by earlier blocks. */
+void swarf_gc_out_start(swarf_gc_out *o, const swarf_gc_out *held, long line);
+/* Copies the earlier blocks' held calls in, to read or change them. */
+void swarf_gc_out_take_held(swarf_gc_out *o);
+/* Calls in the list, the earlier blocks' held ones included: call
+ * swarf_gc_out_size(o) - o->pending is the one that was pushed at that size. */
+static inline size_t swarf_gc_out_size(const swarf_gc_out *o) {
+  return o->count + o->pending;
+}
+/* Appends copies of src's calls [from, count) to o, held. */
+void swarf_gc_out_append_held(swarf_gc_out *o, const swarf_gc_out *src, size_t from);
+/* Makes the held calls final with the offsets and unit of `st`. */
+void swarf_gc_out_flush(swarf_gc_out *o, const swarf_gc_state *st);
+/* A held straight motion or arc, in program mm (ccomp.c moves their ends). */
+swarf_gc_call *swarf_gc_out_hold_line(swarf_gc_out *o, const swarf_gc_state *st,
+                                      swarf_gc_call_kind kind, const double start[SWARF_NAXES],
+                                      const double end[SWARF_NAXES], int column);
+swarf_gc_call *swarf_gc_out_hold_arc(swarf_gc_out *o, const swarf_gc_state *st,
+                                     const swarf_move *mv, int turns, int column);
+/* The tool's position (program mm): pos, or the compensated point. */
+void swarf_gc_tool_pos(const swarf_gc_state *st, double p[SWARF_NAXES]);
+/* Plane axes (first, second, normal) of the state's plane, as rs274 prints. */
+void swarf_gc_plane_axes(const swarf_gc_state *st, int ax[3]);
 /* Straight motion from st->pos to `end` (program mm); kind TRAVERSE/FEED. */
 void swarf_gc_out_straight(swarf_gc_out *o, const swarf_gc_state *st, swarf_gc_call_kind kind,
                            const double end[SWARF_NAXES], int column);
 /* An arc: `mv` holds start, end, centre, normal, angle, rise in program mm;
  * `turns` is the signed rotation rs274 prints. */
-void swarf_gc_out_arc(swarf_gc_out *o, const swarf_gc_state *st, const swarf_move *mv,
-                      int turns, int column);
+void swarf_gc_out_arc(swarf_gc_out *o, const swarf_gc_state *st, const swarf_move *mv, int turns,
+                      int column);
 void swarf_gc_out_dwell(swarf_gc_out *o, const swarf_gc_state *st, double seconds, int column);
 void swarf_gc_out_tool(swarf_gc_out *o, const swarf_gc_state *st, int column);
 /* Program mm -> machine mm (G92, rotation, work offset, tool length). */
@@ -356,6 +428,25 @@ int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
  * *turns gets rs274's signed rotation. */
 int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv, int *turns,
                  swarf_gc_fault *f);
+/* Sweep (radians, in (0, 2 pi]) from start to end about the centre, plane
+ * coordinates in mm, as LinuxCNC's motion planner takes it (one turn). */
+double swarf_gc_arc_sweep(double s1, double s2, double e1, double e2, double c1, double c2,
+                          int ccw);
+
+/* ---- ccomp.c: cutter radius compensation -------------------------------- */
+
+/* G40, G41, G42, G41.1, G42.1 of the block (execution order of group 7). */
+int swarf_gc_comp_set(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                      swarf_gc_fault *f);
+/* Refuses what LinuxCNC refuses while compensation is on (group 0, plane,
+ * tool, offsets, path control codes of the block). */
+int swarf_gc_comp_check(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f);
+/* A compensated G0/G1 to the programmed `end`, or G2/G3 (mv: programmed
+ * start, end, centre and turns from arc.c). */
+int swarf_gc_comp_straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                           const double end[SWARF_NAXES], swarf_gc_fault *f);
+int swarf_gc_comp_arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                      const swarf_move *mv, int turns, swarf_gc_fault *f);
 
 /* ---- oword.c: O-word control flow --------------------------------------- */
 
@@ -368,8 +459,8 @@ swarf_gc_flow *swarf_gc_flow_new(swarf_gc_params *ps, swarf_gc_line_fn run, void
 void swarf_gc_flow_free(swarf_gc_flow *fl);
 /* One line of the program as it streams in. On error, *column and the
  * fault say where (the line is `line` or a stored line: *err_line). */
-int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line,
-                       long *err_line, swarf_gc_fault *f);
+int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line, long *err_line,
+                       swarf_gc_fault *f);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
 

@@ -2,8 +2,9 @@
  *
  * swarf_gc_execute runs a block on a copy of the state that the caller
  * made, in LinuxCNC's order (execute_block):
+ *   the checks of cutter compensation (ccomp.c);
  *   comment/message; feed mode, F, S, T; M6 M61, M3/M4/M5, M7/M8/M9 (and
- *   the M codes that make no motion); G4; plane, units, cutter comp, tool
+ *   the M codes that make no motion); G4; plane, units, cutter comp (G40-G42.1), tool
  *   length, coordinate system, path control, distance modes, retract mode;
  *   group 0 (G10 G28 G30 G52 G92); motion (with G53); then M0/M1/M2/M30/M60.
  * The calls it makes go to the out list; the caller commits the copy and
@@ -84,7 +85,7 @@ static void run_comment(const swarf_gc_block *b, swarf_gc_exec *ex) {
     if (k == len) {
       char msg[1024];
       substitute(t + len, n - len, i > 0 ? ex->params : NULL, msg, sizeof msg);
-      swarf_gc_out_text(ex->out, "MESSAGE(\"%s\")", msg);
+      swarf_gc_out_text_now(ex->out, "MESSAGE(\"%s\")", msg);
       return;
     }
   }
@@ -99,8 +100,12 @@ static void run_feed_mode(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_
   if (mode == 930 && st->modal.feed_mode != 930) st->feed = 0;
   if (mode != 930 && st->modal.feed_mode == 930) st->feed = 0;
   st->modal.feed_mode = mode;
+  if (mode != 950)
+    swarf_gc_out_text(ex->out, "COMMENT(\"interpreter: feed mode set to %s\")",
+                      mode == 930 ? "inverse time" : "units per minute");
   swarf_gc_out_text(ex->out, "SET_FEED_MODE(0, %d)", mode == 950);
-  if (mode != 930 && !swarf_gc_block_has(b, 'F')) swarf_gc_out_text(ex->out, "SET_FEED_RATE(0.0000)");
+  if (mode != 930 && !swarf_gc_block_has(b, 'F'))
+    swarf_gc_out_text(ex->out, "SET_FEED_RATE(0.0000)");
 }
 
 /* F, S and T: the words that set values before any code runs. */
@@ -116,7 +121,7 @@ static void set_values(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exe
   }
   if (swarf_gc_block_has(b, 'T')) {
     st->selected_tool = (int)(swarf_gc_block_word(b, 'T')->value + 0.5);
-    swarf_gc_out_text(ex->out, "SELECT_TOOL(%d)", st->selected_tool);
+    swarf_gc_out_text_now(ex->out, "SELECT_TOOL(%d)", st->selected_tool);
   }
 }
 
@@ -135,40 +140,36 @@ static void run_m_codes(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_ex
   if (spindle == 40) st->spindle_dir = -1;
   if (spindle == 50) st->spindle_dir = 0;
   if (spindle >= 0)
-    swarf_gc_out_text(ex->out, "%s", spindle == 30   ? "START_SPINDLE_CLOCKWISE(0)"
-                                     : spindle == 40 ? "START_SPINDLE_COUNTERCLOCKWISE(0)"
-                                                     : "STOP_SPINDLE_TURNING(0)");
+    swarf_gc_out_text(ex->out, "%s",
+                      spindle == 30   ? "START_SPINDLE_CLOCKWISE(0)"
+                      : spindle == 40 ? "START_SPINDLE_COUNTERCLOCKWISE(0)"
+                                      : "STOP_SPINDLE_TURNING(0)");
   if (coolant == 70) swarf_gc_out_text(ex->out, "MIST_ON()");
   if (coolant == 80) swarf_gc_out_text(ex->out, "FLOOD_ON()");
-  if (coolant == 90) swarf_gc_out_text(ex->out, "MIST_OFF()"), swarf_gc_out_text(ex->out, "FLOOD_OFF()");
+  if (coolant == 90)
+    swarf_gc_out_text(ex->out, "MIST_OFF()"), swarf_gc_out_text(ex->out, "FLOOD_OFF()");
 }
 
 static void run_dwell(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
   const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
-  if (g0->code == 40) swarf_gc_out_dwell(ex->out, st, swarf_gc_block_word(b, 'P')->value, g0->column);
+  if (g0->code == 40)
+    swarf_gc_out_dwell(ex->out, st, swarf_gc_block_word(b, 'P')->value, g0->column);
 }
 
 static void run_plane_units(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
   int plane = code_of(b, SWARF_GC_GROUP_PLANE), units = code_of(b, SWARF_GC_GROUP_UNITS);
   if (plane >= 0) {
     st->modal.plane = plane;
-    swarf_gc_out_text(ex->out, "SELECT_PLANE(CANON_PLANE_%s)",
-                      plane == 170 ? "XY" : plane == 180 ? "XZ" : "YZ");
+    swarf_gc_out_text_now(ex->out, "SELECT_PLANE(CANON_PLANE_%s)",
+                          plane == 170   ? "XY"
+                          : plane == 180 ? "XZ"
+                                         : "YZ");
   }
   if (units >= 0) {
     st->modal.units = units;
-    swarf_gc_out_text(ex->out, "USE_LENGTH_UNITS(CANON_UNITS_%s)", units == 200 ? "INCHES" : "MM");
+    swarf_gc_out_text_now(ex->out, "USE_LENGTH_UNITS(CANON_UNITS_%s)",
+                          units == 200 ? "INCHES" : "MM");
   }
-}
-
-static int run_cutter_comp(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_fault *f) {
-  const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_CUTTER_COMP];
-  if (cw->code < 0) return SWARF_GCODE_OK;
-  if (cw->code != 400)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, cw->column,
-                         "%s (cutter radius compensation) is not supported yet", cw->text);
-  st->modal.cutter_comp = 400;
-  return SWARF_GCODE_OK;
 }
 
 static void run_path_control(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
@@ -202,6 +203,10 @@ static void set_modes(const swarf_gc_block *b, swarf_gc_modal *m) {
 
 static void run_stop(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
   int stop = b->m[SWARF_GC_MGROUP_STOP].code;
+  if (stop >= 0) { /* a held move goes out first */
+    swarf_gc_out_flush(ex->out, st);
+    st->comp_end_valid = 0;
+  }
   if (stop == 0 || stop == 10 || stop == 600)
     swarf_gc_out_text(ex->out, "%s", stop == 10 ? "OPTIONAL_PROGRAM_STOP()" : "PROGRAM_STOP()");
   if (stop != 20 && stop != 300) return;
@@ -214,6 +219,8 @@ static void run_stop(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   st->modal.feed_mode = 940;
   st->modal.motion = 10;
   st->modal.cutter_comp = 400;
+  st->comp_side = 0;
+  st->comp_first = 1;
   st->spindle_dir = 0;
   swarf_gc_out_text(ex->out, "SET_FEED_MODE(0, 0)");
   swarf_gc_out_text(ex->out, "SET_FEED_RATE(0.0000)");
@@ -225,23 +232,29 @@ static void run_stop(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
 int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
                      swarf_gc_fault *f) {
   int status, system = code_of(b, SWARF_GC_GROUP_COORD_SYSTEM);
+  size_t moves;
+  status = swarf_gc_comp_check(b, next, f);
+  if (status != SWARF_GCODE_OK) return status;
   run_comment(b, ex);
   run_feed_mode(b, next, ex);
   set_values(b, next, ex);
   run_m_codes(b, next, ex);
   run_dwell(b, next, ex);
   run_plane_units(b, next, ex);
-  status = run_cutter_comp(b, next, f);
+  status = swarf_gc_comp_set(b, next, ex, f);
   if (status == SWARF_GCODE_OK) status = swarf_gc_tool_length(b, next, ex, f);
   if (status != SWARF_GCODE_OK) return status;
   if (system >= 0) swarf_gc_select_system(system, next, ex);
   run_path_control(b, next, ex);
   set_modes(b, &next->modal);
+  moves = swarf_gc_out_size(ex->out);
   status = swarf_gc_offsets(b, next, ex, f);
   if (status == SWARF_GCODE_OK) status = swarf_gc_motion(b, next, ex, f);
   if (status != SWARF_GCODE_OK) return status;
+  if (swarf_gc_out_size(ex->out) > moves && !swarf_gc_comp_active(next)) next->comp_exit = 0;
   run_stop(b, next, ex);
   if (ex->out->overflow)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1, "out of memory (too many moves on one line)");
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1,
+                         "out of memory (too many moves on one line)");
   return SWARF_GCODE_OK;
 }

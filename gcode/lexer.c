@@ -148,15 +148,16 @@ static int number_value(const char *s, size_t n, double *out) {
 
 /* Gathers the characters of the number after a letter, blanks removed. */
 static size_t gather_number(swarf_gc_lexer *lx, char *buf, size_t *len) {
-  size_t total = 0;
-  *len = 0;
-  for (;;) {
-    skip_blanks(lx);
-    if (lx->pos >= lx->len || !is_number_char(lx->line[lx->pos])) break;
-    if (*len < NUMBER_TEXT_MAX) buf[(*len)++] = lx->line[lx->pos];
+  size_t total = 0, n = 0, pos = lx->pos;
+  for (; pos < lx->len; pos++) {
+    char c = lx->line[pos];
+    if (is_blank(c)) continue;
+    if (!is_number_char(c)) break;
+    if (n < NUMBER_TEXT_MAX) buf[n++] = c;
     total++;
-    lx->pos++;
   }
+  lx->pos = pos;
+  *len = n;
   return total;
 }
 
@@ -217,8 +218,10 @@ static void raw_text(const swarf_gc_lexer *lx, size_t from, char *out) {
   size_t n = 0;
   for (size_t i = from; i < lx->pos && n + 4 < SWARF_GC_WORD_TEXT; i++)
     if (!is_blank(lx->line[i])) out[n++] = upper(lx->line[i]);
-  if (n + 4 >= SWARF_GC_WORD_TEXT) strcpy(out + n, "...");
-  else out[n] = '\0';
+  if (n + 4 >= SWARF_GC_WORD_TEXT)
+    strcpy(out + n, "...");
+  else
+    out[n] = '\0';
 }
 
 static int is_value_start(int c) {
@@ -257,7 +260,8 @@ static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) 
     lx->pos++;
     after = swarf_gc_lexer_peek(lx);
     lx->pos = save;
-    if (after != -1 && is_value_start(after)) return lex_expr_word(lx, tok, from, letter, column, f);
+    if (after != -1 && is_value_start(after))
+      return lex_expr_word(lx, tok, from, letter, column, f);
   }
   total = gather_number(lx, buf, &len);
   word_text(tok->word, letter, buf, len);

@@ -63,46 +63,66 @@ static int inverse_feed(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_ex
   if (st->modal.feed_mode != 930) return SWARF_GCODE_OK;
   if (!swarf_gc_block_has(b, 'F'))
     return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "F word missing with inverse time %s move", b->motion == 10 ? "G1" : "arc");
+                         "F word missing with inverse time %s move",
+                         b->motion == 10 ? "G1" : "arc");
   len = inverse_length(st, end, arc);
   rate = len * st->feed;
   swarf_gc_out_text(ex->out, "SET_FEED_RATE(%.4f)", rate);
   return SWARF_GCODE_OK;
 }
 
-/* The last call's move feed under G93: units per minute, in mm. */
+/* Under G93, the feed (mm/min) of the block's moves from call `first` on
+ * (a swarf_gc_out_size, which stays right if held calls are taken in):
+ * the programmed move's length times F. */
 static void fix_inverse(swarf_gc_exec *ex, const swarf_gc_state *st, const double *end,
-                        const swarf_move *arc) {
-  if (st->modal.feed_mode == 930 && ex->out->count > 0) {
-    double len = inverse_length(st, end, arc);
-    int xyz = len > 0 && (arc != NULL || fabs(end[0] - st->pos[0]) + fabs(end[1] - st->pos[1]) +
-                                                 fabs(end[2] - st->pos[2]) > 0);
-    ex->out->calls[ex->out->count - 1].move.feed = len * st->feed * (xyz ? swarf_gc_scale(st) : 1);
-  }
+                        const swarf_move *arc, size_t first) {
+  double len, feed;
+  int xyz;
+  if (st->modal.feed_mode != 930) return;
+  len = inverse_length(st, end, arc);
+  xyz = len > 0 &&
+        (arc != NULL ||
+         fabs(end[0] - st->pos[0]) + fabs(end[1] - st->pos[1]) + fabs(end[2] - st->pos[2]) > 0);
+  feed = len * st->feed * (xyz ? swarf_gc_scale(st) : 1);
+  for (size_t i = first - ex->out->pending; i < ex->out->count; i++)
+    if (ex->out->calls[i].kind != SWARF_GC_CALL_TEXT) ex->out->calls[i].move.feed = feed;
 }
 
 static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                     swarf_gc_fault *f) {
   double end[SWARF_NAXES];
+  size_t first = swarf_gc_out_size(ex->out);
+  int status = SWARF_GCODE_OK;
   swarf_gc_find_end(b, st, end);
   if (b->motion == 10) {
-    int status;
     if (st->feed <= 0 && st->modal.feed_mode != 930)
       return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
                            "Cannot do G1 with zero feed rate");
     status = inverse_feed(b, st, ex, end, NULL, f);
     if (status != SWARF_GCODE_OK) return status;
+    first = swarf_gc_out_size(ex->out);
   }
-  swarf_gc_out_straight(ex->out, st, b->motion == 0 ? SWARF_GC_CALL_TRAVERSE : SWARF_GC_CALL_FEED,
-                        end, b->motion_column);
-  if (b->motion == 10) fix_inverse(ex, st, end, NULL);
+  if (swarf_gc_comp_active(st))
+    status = swarf_gc_comp_straight(b, st, ex, end, f);
+  else
+    swarf_gc_out_straight(ex->out, st, b->motion == 0 ? SWARF_GC_CALL_TRAVERSE : SWARF_GC_CALL_FEED,
+                          end, b->motion_column);
+  if (status != SWARF_GCODE_OK) return status;
+  if (b->motion == 10) fix_inverse(ex, st, end, NULL, first);
   memcpy(st->pos, end, sizeof st->pos);
+  st->comp_exit = 0;
+  st->arc_not_allowed = 0;
   return SWARF_GCODE_OK;
 }
 
 static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_gc_fault *f) {
   swarf_move mv;
+  size_t first;
   int turns, status;
+  if (st->arc_not_allowed)
+    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
+                         "The move just after exiting cutter compensation mode must be straight, "
+                         "not an arc");
   memset(&mv, 0, sizeof mv);
   memcpy(mv.start, st->pos, sizeof mv.start);
   swarf_gc_find_end(b, st, mv.end);
@@ -112,8 +132,13 @@ static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, s
   status = swarf_gc_arc(b, st, &mv, &turns, f);
   if (status == SWARF_GCODE_OK) status = inverse_feed(b, st, ex, mv.end, &mv, f);
   if (status != SWARF_GCODE_OK) return status;
-  swarf_gc_out_arc(ex->out, st, &mv, turns, b->motion_column);
-  fix_inverse(ex, st, mv.end, &mv);
+  first = swarf_gc_out_size(ex->out);
+  if (swarf_gc_comp_active(st))
+    status = swarf_gc_comp_arc(b, st, ex, &mv, turns, f);
+  else
+    swarf_gc_out_arc(ex->out, st, &mv, turns, b->motion_column);
+  if (status != SWARF_GCODE_OK) return status;
+  fix_inverse(ex, st, mv.end, &mv, first);
   memcpy(st->pos, mv.end, sizeof st->pos);
   return SWARF_GCODE_OK;
 }

@@ -50,8 +50,8 @@ swarf_gc_named *swarf_gc_params_swap_locals(swarf_gc_params *ps, swarf_gc_named 
 
 /* A mirrored slot: where it lives in the state and how it is scaled. */
 typedef struct {
-  double *slot;   /* NULL: not mirrored */
-  double scale;   /* parameter = slot / scale */
+  double *slot; /* NULL: not mirrored */
+  double scale; /* parameter = slot / scale */
   int read_only;
 } mirror;
 
@@ -86,9 +86,23 @@ static mirror mirror_of(swarf_gc_state *st, int i) {
 }
 
 /* Machine position of axis `a` in the active unit (degrees for A B C). */
+/* The current point (program mm), as LinuxCNC's current_x...: the
+ * compensated tool point while cutter compensation moves the path. */
+static void current(const swarf_gc_state *st, double p[SWARF_NAXES]) {
+  memcpy(p, st->pos, SWARF_NAXES * sizeof *p);
+  if (swarf_gc_comp_active(st)) memcpy(p, st->comp_pos, 3 * sizeof *p);
+}
+
+static double current_axis(const swarf_gc_state *st, int a) {
+  double p[SWARF_NAXES];
+  current(st, p);
+  return a < 3 ? p[a] / swarf_gc_scale(st) : p[a];
+}
+
 static double machine_axis(const swarf_gc_state *st, int a) {
   double m[SWARF_NAXES];
-  swarf_gc_to_machine(st, st->pos, m);
+  current(st, m);
+  swarf_gc_to_machine(st, m, m);
   return a < 3 ? m[a] / swarf_gc_scale(st) : m[a];
 }
 
@@ -99,10 +113,7 @@ static double computed(const swarf_gc_state *st, int i, int *found) {
   if (i == 5210) return st->g92_on;
   if (i == 5220) return swarf_gc_system_index(st) + 1;
   if (i == 5400) return st->tool;
-  if (i >= 5420 && i <= 5425) {
-    int a = i - 5420;
-    return a < 3 ? st->pos[a] / swarf_gc_scale(st) : st->pos[a];
-  }
+  if (i >= 5420 && i <= 5425) return current_axis(st, i - 5420);
   if (i >= 5426 && i <= 5428) return 0;
   *found = 0;
   return 0;
@@ -156,8 +167,7 @@ static int predefined(const swarf_gc_params *ps, const char *name, double *v) {
   if (name[0] == '_' && name[1] != '\0' && name[2] == '\0') {
     const char *axes = "xyzabc", *at = strchr(axes, name[1]);
     if (at != NULL) {
-      int a = (int)(at - axes);
-      *v = a < 3 ? st->pos[a] / swarf_gc_scale(st) : st->pos[a];
+      *v = current_axis(st, (int)(at - axes));
       return 0;
     }
   }

@@ -10,6 +10,9 @@
  * end the program. Anything after the end is not read. Every other line is
  * read, checked and executed on a copy of the state (see gcode_private.h):
  * the state and the moves are committed only when the whole block is good.
+ * Under cutter compensation the last move (and the calls after it) is held
+ * over to the next block, as LinuxCNC does; the end of the program lets it
+ * go.
  */
 #include <errno.h>
 #include <math.h>
@@ -28,14 +31,16 @@ struct swarf_gcode_parser {
   void *user;
   swarf_gcode_canon_fn canon;
   void *canon_user;
-  long seq;           /* rs274's call counter */
-  int canon_started;  /* the preamble was printed */
-  swarf_gc_state state;
+  long seq;                 /* rs274's call counter */
+  int canon_started;        /* the preamble was printed */
+  swarf_gc_state states[2]; /* the committed state and the next block's copy */
+  swarf_gc_state *state;    /* the committed one */
   swarf_gc_params params;
   swarf_gc_flow *flow;
   swarf_gc_out out;
+  swarf_gc_out held; /* calls held back at the end of the last block (ccomp.c) */
   double tools[NTOOLS][2];
-  long cur_line;      /* line of the block being run (stored lines too) */
+  long cur_line;           /* line of the block being run (stored lines too) */
   swarf_gcode_error error; /* .file holds the program's name from the start */
   int status;              /* first error, sticky */
   long lines;              /* lines read so far */
@@ -87,7 +92,8 @@ static void canon_start(swarf_gcode_parser *p) {
   static const char *pre[] = {"USE_LENGTH_UNITS(CANON_UNITS_MM)",
                               "SET_G5X_OFFSET(1, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
                               "SET_G92_OFFSET(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
-                              "SET_XY_ROTATION(0.0000)", "SET_FEED_REFERENCE(CANON_XYZ)",
+                              "SET_XY_ROTATION(0.0000)",
+                              "SET_FEED_REFERENCE(CANON_XYZ)",
                               "ON_RESET()"};
   if (p->canon_started || p->canon == NULL) return;
   p->canon_started = 1;
@@ -128,8 +134,8 @@ static void print_call(swarf_gcode_parser *p, const swarf_gc_call *c, const char
              v[2], v[3], v[4], v[5]);
     break;
   case SWARF_GC_CALL_ARC:
-    snprintf(buf, sizeof buf, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, %.4f, %.4f)",
-             v[0], v[1], v[2], v[3], (int)v[4], v[5], v[6], v[7], v[8]);
+    snprintf(buf, sizeof buf, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, %.4f, %.4f)", v[0],
+             v[1], v[2], v[3], (int)v[4], v[5], v[6], v[7], v[8]);
     break;
   case SWARF_GC_CALL_DWELL:
     snprintf(buf, sizeof buf, "DWELL(%.4f)", v[0]);
@@ -145,11 +151,10 @@ static void print_call(swarf_gcode_parser *p, const swarf_gc_call *c, const char
 static int emit(swarf_gcode_parser *p, const char *text, size_t n) {
   char nf[24];
   if (p->canon != NULL) n_field(text, n, nf);
-  for (size_t i = 0; i < p->out.count; i++) {
+  for (size_t i = 0; i < p->out.ready; i++) {
     swarf_gc_call *c = &p->out.calls[i];
     if (p->canon != NULL) print_call(p, c, nf);
     if (c->kind == SWARF_GC_CALL_TEXT) continue;
-    c->move.line = p->cur_line;
     if (p->fn != NULL && p->fn(&c->move, p->user) != 0)
       return set_error(p, SWARF_GCODE_ERR_STOPPED, c->move.column, "stopped by the move callback");
   }
@@ -159,8 +164,10 @@ static int emit(swarf_gcode_parser *p, const char *text, size_t n) {
 static void apply_assigns(swarf_gcode_parser *p, const swarf_gc_block *b) {
   for (int i = 0; i < b->assign_count; i++) {
     const swarf_gc_assign *a = &b->assigns[i];
-    if (a->index > 0) swarf_gc_param_set(&p->params, &p->state, a->index, a->value);
-    else swarf_gc_param_set_named(&p->params, a->name, a->value);
+    if (a->index > 0)
+      swarf_gc_param_set(&p->params, p->state, a->index, a->value);
+    else
+      swarf_gc_param_set_named(&p->params, a->name, a->value);
   }
 }
 
@@ -168,22 +175,47 @@ static int fault_error(swarf_gcode_parser *p, const swarf_gc_fault *f) {
   return set_error(p, f->status, f->column, f->message);
 }
 
+/* Starts a block's out list, after the calls held from the last blocks. */
+static void out_start(swarf_gcode_parser *p) {
+  swarf_gc_out_start(&p->out, &p->held, p->cur_line);
+}
+
+/* Keeps the calls the committed block still holds for the next one: the
+ * earlier held calls stay if the block did not take them. */
+static void out_keep(swarf_gcode_parser *p) {
+  if (p->out.pending == 0) swarf_gc_out_reset(&p->held);
+  if (p->out.ready < p->out.count) swarf_gc_out_append_held(&p->held, &p->out, p->out.ready);
+  if (p->held.overflow) set_error(p, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
+}
+
+/* The end of the program without M2: held calls go out as they are. */
+static int release_held(swarf_gcode_parser *p) {
+  if (p->held.count == 0 || p->status != SWARF_GCODE_OK) return p->status;
+  out_start(p);
+  swarf_gc_out_flush(&p->out, p->state);
+  swarf_gc_out_reset(&p->held);
+  return emit(p, "", 0);
+}
+
 /* Read, check, execute on a copy; commit only if all of it succeeded. */
 static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   swarf_gc_block b;
   swarf_gc_fault f;
-  swarf_gc_state next = p->state;
+  swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
   swarf_gc_exec ex = {&p->params, &p->out, p->tools, NTOOLS};
   int status;
-  swarf_gc_out_reset(&p->out);
+  *next = *p->state;
+  out_start(p);
   status = swarf_gc_block_read(text, n, &p->params, &b, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_block_check(&b, &p->state, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_execute(&b, &next, &ex, &f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_block_check(&b, p->state, &f);
+  if (status == SWARF_GCODE_OK) status = swarf_gc_execute(&b, next, &ex, &f);
   if (status != SWARF_GCODE_OK) return fault_error(p, &f);
-  p->state = next;
+  p->state = next; /* commit: the copy becomes the state */
+  p->params.state = next;
   apply_assigns(p, &b);
-  p->ended = next.ended;
+  p->ended = next->ended;
   status = emit(p, text, n);
+  out_keep(p);
   if (p->ended && p->canon != NULL) {
     canon_line(p, "N.....", "ON_RESET()");
     canon_line(p, "N.....", "ON_RESET()");
@@ -209,6 +241,7 @@ static int percent_line(swarf_gcode_parser *p, size_t at) {
     return SWARF_GCODE_OK;
   }
   if (p->percent_open) {
+    release_held(p);
     p->ended = 1;
     if (p->canon != NULL) {
       canon_line(p, "N.....", "FINISH()");
@@ -292,10 +325,12 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
   if (p == NULL) return NULL;
   p->fn = fn;
   p->user = user;
-  swarf_gc_state_init(&p->state);
+  p->state = &p->states[0];
+  swarf_gc_state_init(p->state);
   swarf_gc_params_init(&p->params);
-  p->params.state = &p->state;
+  p->params.state = p->state;
   swarf_gc_out_init(&p->out);
+  swarf_gc_out_init(&p->held);
   default_tools(p);
   p->flow = swarf_gc_flow_new(&p->params, run_line, p);
   if (p->flow == NULL) {
@@ -332,6 +367,7 @@ int swarf_gcode_parser_finish(swarf_gcode_parser *p) {
     set_error(p, SWARF_GCODE_ERR_SEMANTIC, 1,
               "The program ended inside an O-word construct opened here");
   }
+  release_held(p);
   p->finished = 1;
   return p->status;
 }
@@ -341,6 +377,7 @@ int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
   p->canon = fn;
   p->canon_user = user;
   p->out.want_text = fn != NULL;
+  p->held.want_text = fn != NULL;
   return SWARF_GCODE_OK;
 }
 
@@ -360,8 +397,7 @@ static void tool_line(swarf_gcode_parser *p, const char *line) {
   }
 }
 
-int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                  swarf_gcode_error *err) {
+int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path, swarf_gcode_error *err) {
   char line[512];
   FILE *in;
   if (p == NULL || path == NULL) return SWARF_GCODE_ERR_ARG;
@@ -414,6 +450,7 @@ void swarf_gcode_parser_free(swarf_gcode_parser *p) {
   swarf_gc_flow_free(p->flow);
   swarf_gc_params_clear(&p->params);
   swarf_gc_out_clear(&p->out);
+  swarf_gc_out_clear(&p->held);
   free(p->partial);
   free(p);
 }

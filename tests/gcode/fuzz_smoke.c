@@ -74,7 +74,8 @@ static const char *fragments[] = {
     "R",    "I",          "J",     "K",   "P3",  "X",   "Y",   "Z",    "A",     "F0",
     "F100", "#",          "[",     "(",   ")",   ";",   "\n",  "\r\n", "%",     "/",
     "N",    "M2",         "M6",    "T",   "G53", "G4",  "G80", "G0",   "G1",    ".",
-    "-",    "9999999999", "1e308", "nan", "\0",  " ",   "O",   "$",    "G43H",  "G64P"};
+    "-",    "9999999999", "1e308", "nan", "\0",  " ",   "O",   "$",    "G43H",  "G64P",
+    "G40",  "G41",        "G42",   "G41.1D", "G42.1D", "D", "D-1", "M0", "G93", "G94"};
 
 /* One mutation of `buf` (length *len, capacity WINDOW_MAX * 2). */
 static void mutate(unsigned char *buf, size_t *len) {

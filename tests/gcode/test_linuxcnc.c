@@ -5,8 +5,6 @@
  * program runs with the case's tool table, and swarf's canonical motion
  * calls (or, for the cases whose expected output keeps only MESSAGE lines,
  * the numbers of those messages) must equal rs274's, to 1e-4, in order.
- * Cases that need cutter radius compensation, which swarf refuses for now,
- * must be refused at the line of the G41/G42 word, with a message saying so.
  * Every program of bad-rejected/ must be rejected with a located error.
  *
  * Usage: test_linuxcnc <conformance-dir>. A missing folder fails.
@@ -22,60 +20,74 @@ typedef struct {
   const char *dir, *program, *expected;
   int tools;    /* the case has test.tbl */
   int messages; /* expected output keeps only MESSAGE lines */
-  long comp_line; /* > 0: needs cutter comp, refused at this line */
 } lcnc_case;
 
 static const lcnc_case cases[] = {
-    {"good-arc-small-metric", "good-arc.small.metric.center-format.ngc", NULL, 0, 0, 0},
-    {"good-arc-small-imperial", "good-arc.small.imperial.center-format.ngc", NULL, 0, 0, 0},
-    {"good-arc-medium-metric", "good-arc.medium.metric.center-format.ngc", NULL, 0, 0, 0},
-    {"good-arc-medium-imperial", "good-arc.medium.imperial.center-format.ngc", NULL, 0, 0, 0},
-    {"good-arc-big-metric", "good-arc.big.metric.center-format.ngc", NULL, 0, 0, 0},
-    {"good-arc-big-imperial", "good-arc.big.imperial.center-format.ngc", NULL, 0, 0, 0},
-    {"unit-conversion", "test.ngc", "expected", 0, 0, 0},
-    {"g81-g17-g98", "g17-g98-g81.ngc", "expected", 0, 0, 0},
-    {"g81-g17-g99", "g17-g99-g81.ngc", "expected", 0, 0, 0},
-    {"g81-g18-g98", "g18-g98-g81.ngc", "expected", 0, 0, 0},
-    {"g81-g18-g99", "g18-g99-g81.ngc", "expected", 0, 0, 0},
-    {"g81-g19-g98", "g19-g98-g81.ngc", "expected", 0, 0, 0},
-    {"g81-g19-g99", "g19-g99-g81.ngc", "expected", 0, 0, 0},
-    {"g84-g17-g98", "g17-g98-g84.ngc", "expected", 0, 0, 0},
-    {"g84-g18-g99", "g18-g99-g84.ngc", "expected", 0, 0, 0},
-    {"g10-l1-l10", "test.ngc", "expected", 1, 0, 0},
-    {"g10-l11", "test.ngc", "expected", 1, 0, 0},
-    {"g10-l2-while-active", "test.ngc", "expected", 0, 0, 0},
-    {"g10-l20-while-active", "test.ngc", "expected", 0, 0, 0},
-    {"g10-with-g92", "test.ngc", "expected", 1, 0, 0},
-    {"g52-g92-interaction", "g52-g92-interaction.ngc", "expected", 0, 0, 0},
-    {"rotation-g53", "g53.ngc", "expected", 0, 0, 0},
-    {"rotation-g28", "g28.ngc", "expected", 0, 0, 0},
-    {"rotation-abs-pts", "test.ngc", "expected", 1, 1, 0},
-    {"machine-coord-params", "test.ngc", "expected", 1, 1, 0},
-    {"ccomp-mill-g90g91g92", "test.ngc", "expected", 1, 0, 19},
-    {"ccomp-mill-line-arc-entry", "test.ngc", "expected", 1, 0, 22},
-    {"ccomp-mill-zchanges", "test.ngc", "expected", 1, 0, 7},
-    {"crazy-paths", "test.ngc", "expected", 0, 0, 5},
-    {"inside-corners", "test.ngc", "expected", 0, 0, 13},
-    {"inverse-time-with-comp", "inverse.ngc", "expected", 0, 0, 4},
-    {"cam-nisley", "cam.ngc", "expected", 1, 0, 74},
-    {"flowsnake", "flowsnake.ngc", "expected", 0, 0, 0},
-    {"fractional-linenumbers", "test.ngc", "expected", 0, 0, 0},
-    {"g6164", "test.ngc", "expected", 0, 0, 0},
-    {"namedparam-bug424", "test.ngc", "expected", 0, 0, 0},
-    {"oword-sub0", "test.ngc", "expected", 0, 0, 0},
-    {"oword-while0", "test.ngc", "expected", 0, 0, 0},
+    {"good-arc-small-metric", "good-arc.small.metric.center-format.ngc", NULL, 0, 0},
+    {"good-arc-small-imperial", "good-arc.small.imperial.center-format.ngc", NULL, 0, 0},
+    {"good-arc-medium-metric", "good-arc.medium.metric.center-format.ngc", NULL, 0, 0},
+    {"good-arc-medium-imperial", "good-arc.medium.imperial.center-format.ngc", NULL, 0, 0},
+    {"good-arc-big-metric", "good-arc.big.metric.center-format.ngc", NULL, 0, 0},
+    {"good-arc-big-imperial", "good-arc.big.imperial.center-format.ngc", NULL, 0, 0},
+    {"unit-conversion", "test.ngc", "expected", 0, 0},
+    {"g81-g17-g98", "g17-g98-g81.ngc", "expected", 0, 0},
+    {"g81-g17-g99", "g17-g99-g81.ngc", "expected", 0, 0},
+    {"g81-g18-g98", "g18-g98-g81.ngc", "expected", 0, 0},
+    {"g81-g18-g99", "g18-g99-g81.ngc", "expected", 0, 0},
+    {"g81-g19-g98", "g19-g98-g81.ngc", "expected", 0, 0},
+    {"g81-g19-g99", "g19-g99-g81.ngc", "expected", 0, 0},
+    {"g84-g17-g98", "g17-g98-g84.ngc", "expected", 0, 0},
+    {"g84-g18-g99", "g18-g99-g84.ngc", "expected", 0, 0},
+    {"g10-l1-l10", "test.ngc", "expected", 1, 0},
+    {"g10-l11", "test.ngc", "expected", 1, 0},
+    {"g10-l2-while-active", "test.ngc", "expected", 0, 0},
+    {"g10-l20-while-active", "test.ngc", "expected", 0, 0},
+    {"g10-with-g92", "test.ngc", "expected", 1, 0},
+    {"g52-g92-interaction", "g52-g92-interaction.ngc", "expected", 0, 0},
+    {"rotation-g53", "g53.ngc", "expected", 0, 0},
+    {"rotation-g28", "g28.ngc", "expected", 0, 0},
+    {"rotation-abs-pts", "test.ngc", "expected", 1, 1},
+    {"machine-coord-params", "test.ngc", "expected", 1, 1},
+    {"ccomp-mill-g90g91g92", "test.ngc", "expected", 1, 0},
+    {"ccomp-mill-line-arc-entry", "test.ngc", "expected", 1, 0},
+    {"ccomp-mill-zchanges", "test.ngc", "expected", 1, 0},
+    {"crazy-paths", "test.ngc", "expected", 0, 0},
+    {"inside-corners", "test.ngc", "expected", 0, 0},
+    {"inverse-time-with-comp", "inverse.ngc", "expected", 0, 0},
+    {"cam-nisley", "cam.ngc", "expected", 1, 0},
+    {"flowsnake", "flowsnake.ngc", "expected", 0, 0},
+    {"fractional-linenumbers", "test.ngc", "expected", 0, 0},
+    {"g6164", "test.ngc", "expected", 0, 0},
+    {"namedparam-bug424", "test.ngc", "expected", 0, 0},
+    {"oword-sub0", "test.ngc", "expected", 0, 0},
+    {"oword-while0", "test.ngc", "expected", 0, 0},
 };
 
-static const char *bad_programs[] = {
-    "a-in-canned-cycle.ngc", "a-in-canned-cycle2.ngc", "bad-arc.big.imperial.center-format.ngc",
-    "bad-arc.big.metric.center-format.ngc", "bad-arc.medium.imperial.center-format.ngc",
-    "bad-arc.medium.metric.center-format.ngc", "bad-arc.small.imperial.center-format.ngc",
-    "bad-arc.small.metric.center-format.ngc", "ccomp-arcexit.ngc", "ccomp-gouging.ngc",
-    "exists-1.ngc", "exists-2.ngc", "exists-3.ngc", "exists-4.ngc", "exists-5.ngc", "exists-6.ngc",
-    "exists-7.ngc", "g64-m19-r-ambiguous.ngc", "g64-r-on-g61.ngc", "nested.ngc", "no-feed-rate.ngc",
-    "no-ijr.ngc", "probe-no-axes.ngc"};
+static const char *bad_programs[] = {"a-in-canned-cycle.ngc",
+                                     "a-in-canned-cycle2.ngc",
+                                     "bad-arc.big.imperial.center-format.ngc",
+                                     "bad-arc.big.metric.center-format.ngc",
+                                     "bad-arc.medium.imperial.center-format.ngc",
+                                     "bad-arc.medium.metric.center-format.ngc",
+                                     "bad-arc.small.imperial.center-format.ngc",
+                                     "bad-arc.small.metric.center-format.ngc",
+                                     "ccomp-arcexit.ngc",
+                                     "ccomp-gouging.ngc",
+                                     "exists-1.ngc",
+                                     "exists-2.ngc",
+                                     "exists-3.ngc",
+                                     "exists-4.ngc",
+                                     "exists-5.ngc",
+                                     "exists-6.ngc",
+                                     "exists-7.ngc",
+                                     "g64-m19-r-ambiguous.ngc",
+                                     "g64-r-on-g61.ngc",
+                                     "nested.ngc",
+                                     "no-feed-rate.ngc",
+                                     "no-ijr.ngc",
+                                     "probe-no-axes.ngc"};
 
-static int passed, comp_refused;
+static int passed;
 
 static void run_case(const char *root, const lcnc_case *k) {
   char path[1024], tools[1024], exp_path[1100], why[200];
@@ -87,20 +99,16 @@ static void run_case(const char *root, const lcnc_case *k) {
   int status;
   snprintf(path, sizeof path, "%s/linuxcnc/%s/%s", root, k->dir, k->program);
   snprintf(tools, sizeof tools, "%s/linuxcnc/%s/test.tbl", root, k->dir);
-  if (k->expected) snprintf(exp_path, sizeof exp_path, "%s/linuxcnc/%s/%s", root, k->dir, k->expected);
-  else snprintf(exp_path, sizeof exp_path, "%s.expected", path);
+  if (k->expected)
+    snprintf(exp_path, sizeof exp_path, "%s/linuxcnc/%s/%s", root, k->dir, k->expected);
+  else
+    snprintf(exp_path, sizeof exp_path, "%s.expected", path);
   text = canon_slurp(path, &len);
   expected = canon_slurp(exp_path, &elen);
   CHECK(text != NULL && expected != NULL, "%s: cannot read %s or %s", k->dir, path, exp_path);
   if (text == NULL || expected == NULL) return free(text), free(expected);
   status = canon_run(k->program, text, len, k->tools ? tools : NULL, &out, &err);
-  if (k->comp_line > 0) {
-    CHECK(status == SWARF_GCODE_ERR_SEMANTIC && err.line == k->comp_line &&
-              strstr(err.message, "cutter radius compensation") != NULL,
-          "%s: expected the cutter comp refusal at line %ld, got %d at %ld: %s", k->dir,
-          k->comp_line, status, err.line, err.message);
-    comp_refused++;
-  } else {
+  {
     canon_extract(out.text, k->messages, &got);
     canon_extract(expected, k->messages, &want);
     CHECK(status == SWARF_GCODE_OK, "%s: rejected at %ld:%d: %s", k->dir, err.line, err.column,
@@ -150,8 +158,7 @@ int main(int argc, char **argv) {
     run_case(argv[1], &cases[i]);
   for (size_t i = 0; i < sizeof bad_programs / sizeof bad_programs[0]; i++)
     run_bad(argv[1], bad_programs[i]);
-  printf("%d of %zu upstream cases match rs274; %d refused (cutter comp); %zu bad programs\n",
-         passed, sizeof cases / sizeof cases[0], comp_refused,
-         sizeof bad_programs / sizeof bad_programs[0]);
+  printf("%d of %zu upstream cases match rs274; %zu bad programs\n", passed,
+         sizeof cases / sizeof cases[0], sizeof bad_programs / sizeof bad_programs[0]);
   return check_done();
 }

@@ -33,6 +33,25 @@ static inline double swarf_box2(double x, double y) {
   return sqrt(xp * xp + yp * yp) + (in < 0.0 ? in : 0.0);
 }
 
+/* Lower bound over [0, w] of a function g with g'' >= -K (semiconvex) from
+ * its values and slopes at both ends (ga, dga at 0; gb, dgb at w): g is at
+ * least max(T_A, T_B), T_A and T_B the concave parabolas of curvature -K
+ * through the end data, whose minimum is at an end or where T_A = T_B
+ * (T_A - T_B is linear). Shared by the certified time searches of
+ * sweep_sampled.c and sweep_rigid.c. */
+static inline double swarf_semiconvex_bound(double ga, double dga, double gb, double dgb, double w,
+                                            double K) {
+  double k2 = 0.5 * K, ta_b = ga + dga * w - k2 * w * w, tb_a = gb - dgb * w - k2 * w * w;
+  double m_a = ga > tb_a ? ga : tb_a, m_b = gb > ta_b ? gb : ta_b, lb = m_a < m_b ? m_a : m_b;
+  double c0 = ga - tb_a, c1 = dga - dgb - K * w; /* T_A - T_B = c0 + c1 x */
+  if (c1 != 0.0) {
+    double x = -c0 / c1;
+    double tx = ga + dga * x - k2 * x * x;
+    if (x > 0.0 && x < w && tx < lb) lb = tx;
+  }
+  return lb;
+}
+
 /* Core radius a = D/2 - R of the cutter (the cylinder the ball of radius R is
  * swept over). */
 static inline double swarf_cutter_core(const swarf_cutter *c) {

@@ -118,15 +118,7 @@ static double rbound(const rctx *h, const rsample *A, const rsample *B) {
   const double *x = h->s->aux;
   double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x[RG_V] * w;
   double K = (x[RG_WD] + x[RG_W] * x[RG_W]) * Q + x[RG_W] * x[RG_V] + x[RG_VD];
-  double k2 = 0.5 * K, lb_lip = rbound_lip(h, A, B);
-  double ta_b = A->g + A->dg * w - k2 * w * w, tb_a = B->g - B->dg * w - k2 * w * w;
-  double lb = min2(max2(A->g, tb_a), max2(B->g, ta_b));
-  double c0 = A->g - tb_a, c1 = A->dg - B->dg - K * w; /* T_A - T_B = c0 + c1 x */
-  if (c1 != 0.0) {
-    double xs = -c0 / c1;
-    if (xs > 0.0 && xs < w) lb = min2(lb, A->g + A->dg * xs - k2 * xs * xs);
-  }
-  return max2(lb, lb_lip);
+  return max2(swarf_semiconvex_bound(A->g, A->dg, B->g, B->dg, w, K), rbound_lip(h, A, B));
 }
 
 static void rpush(rctx *h, rsample lo, rsample hi) {

@@ -115,21 +115,12 @@ static sample refine(hctx *h, sample lo, sample hi) {
 }
 
 static double max2(double a, double b) { return a > b ? a : b; }
-static double min2(double a, double b) { return a < b ? a : b; }
 
-/* Lower bound of g over [A.a, B.a]. With T_A, T_B the concave parabolas of
- * curvature -K through the end data, g >= max(T_A, T_B), whose minimum is at
- * an end or where T_A = T_B (T_A - T_B is linear). */
+/* Lower bound of g over [A.a, B.a]: the semiconvex bound (engine_private.h)
+ * or the Lipschitz one, whichever is higher. */
 static double bound(const hctx *h, const sample *A, const sample *B) {
-  double w = B->a - A->a, lip = 0.5 * (A->g + B->g - h->len * w), k2 = 0.5 * h->K;
-  double ta_b = A->g + A->dg * w - k2 * w * w, tb_a = B->g - B->dg * w - k2 * w * w;
-  double lb = min2(max2(A->g, tb_a), max2(B->g, ta_b));
-  double c0 = A->g - tb_a, c1 = A->dg - B->dg - h->K * w; /* T_A - T_B = c0 + c1 x */
-  if (c1 != 0.0) {
-    double x = -c0 / c1;
-    if (x > 0.0 && x < w) lb = min2(lb, A->g + A->dg * x - k2 * x * x);
-  }
-  return max2(lb, lip);
+  double w = B->a - A->a, lip = 0.5 * (A->g + B->g - h->len * w);
+  return max2(swarf_semiconvex_bound(A->g, A->dg, B->g, B->dg, w, h->K), lip);
 }
 
 static void push(hctx *h, sample lo, sample hi, int depth) {

@@ -64,4 +64,13 @@ int swarf_gc_cc_corner_convex(swarf_gc_state *st, swarf_gc_exec *ex, const swarf
                               swarf_gc_call_kind kind, double mx, double my,
                               const double end[SWARF_NAXES], double at[SWARF_NAXES], int column);
 
+/* Short names used throughout the ccomp*.c files (only they include this header). */
+#define PI SWARF_GC_CC_PI
+#define HALF_PI (PI / 2)
+#define TWO_PI (2 * PI)
+#define SMALL SWARF_GC_CC_SMALL
+#define EQUAL SWARF_GC_CC_EQUAL
+#define LEFT SWARF_GC_COMP_LEFT
+#define RIGHT SWARF_GC_COMP_RIGHT
+
 #endif

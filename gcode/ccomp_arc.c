@@ -7,13 +7,6 @@
 
 #include "ccomp.h"
 
-#define PI SWARF_GC_CC_PI
-#define HALF_PI (PI / 2)
-#define TWO_PI (2 * PI)
-#define SMALL SWARF_GC_CC_SMALL
-#define LEFT SWARF_GC_COMP_LEFT
-#define RIGHT SWARF_GC_COMP_RIGHT
-#define EQUAL SWARF_GC_CC_EQUAL
 
 /* ---- arcs ---------------------------------------------------------------- */
 

@@ -8,12 +8,6 @@
 
 #include "ccomp.h"
 
-#define PI SWARF_GC_CC_PI
-#define HALF_PI (PI / 2)
-#define TWO_PI (2 * PI)
-#define SMALL SWARF_GC_CC_SMALL
-#define LEFT SWARF_GC_COMP_LEFT
-#define RIGHT SWARF_GC_COMP_RIGHT
 
 /* ---- straight moves ------------------------------------------------------ */
 

@@ -7,12 +7,6 @@
 
 #include "ccomp.h"
 
-#define PI SWARF_GC_CC_PI
-#define HALF_PI (PI / 2)
-#define TWO_PI (2 * PI)
-#define SMALL SWARF_GC_CC_SMALL
-#define LEFT SWARF_GC_COMP_LEFT
-#define RIGHT SWARF_GC_COMP_RIGHT
 
 int swarf_gc_cc_fail(swarf_gc_fault *f, int column, const char *message) {
   return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, column, "%s", message);

@@ -18,7 +18,8 @@
 #include "engine_private.h"
 
 #define PI 3.14159265358979323846
-#define SAMPLES 96
+#define SAMPLES 32
+#define MIN_WIDTH 1e-7 /* narrowest phi interval searched for a hidden pair */
 #define CUT_GAP 1e-9 /* half width of the bracket around a cut crossing */
 
 /* Roots in [-pi, pi) of c0 + c1 cos + s1 sin + c2 cos 2t + s2 sin 2t, c = {c0, c1, s1, c2, s2}. */
@@ -42,19 +43,44 @@ static int trig2_roots(const double c[5], double *th) {
   return n;
 }
 
-int swarf_gen_slice_roots(const swarf_gen_sweep *s, double phi, double *theta) {
+static void slice_coef(const swarf_gen_sweep *s, double phi, double c[5]) {
   const double *m = s->m, *l = s->l;
-  double r = sin(phi), z = cos(phi), c[5], th[8];
-  int n;
+  double r = sin(phi), z = cos(phi);
   c[0] = 0.5 * r * r * (m[0] + m[4]) + m[8] * z * z + l[2] * z;
   c[1] = r * (2.0 * z * m[2] + l[0]);
   c[2] = r * (2.0 * z * m[5] + l[1]);
   c[3] = 0.5 * r * r * (m[0] - m[4]);
   c[4] = r * r * m[1];
+}
+
+int swarf_gen_slice_roots(const swarf_gen_sweep *s, double phi, double *theta) {
+  double c[5], th[8];
+  int n;
+  slice_coef(s, phi, c);
   n = trig2_roots(c, th);
   if (n > 4) n = 4; /* a quartic on the sphere: more is rounding */
   memcpy(theta, th, (size_t)n * sizeof *th);
   return n;
+}
+
+/* G(phi) = min over theta of |(f, f_theta)|, zero exactly at a double root.
+ * Its critical points in theta are the roots of f_theta or of f + f_thetatheta. */
+static double min_critical(const swarf_gen_sweep *s, double phi) {
+  double c[5], d[2][5], th[8], best = INFINITY;
+  slice_coef(s, phi, c);
+  d[0][0] = 0.0, d[0][1] = c[2], d[0][2] = -c[1], d[0][3] = 2.0 * c[4], d[0][4] = -2.0 * c[3];
+  d[1][0] = c[0], d[1][1] = d[1][2] = 0.0, d[1][3] = -3.0 * c[3], d[1][4] = -3.0 * c[4];
+  for (int k = 0; k < 2; k++) {
+    int n = trig2_roots(d[k], th);
+    if (n == 0) th[n++] = 0.0;
+    for (int i = 0; i < n; i++) {
+      double cs = cos(th[i]), sn = sin(th[i]), c2 = cos(2 * th[i]), s2 = sin(2 * th[i]);
+      double f = c[0] + c[1] * cs + c[2] * sn + c[3] * c2 + c[4] * s2;
+      double ft = -c[1] * sn + c[2] * cs - 2.0 * c[3] * s2 + 2.0 * c[4] * c2;
+      best = fmin(best, sqrt(f * f + ft * ft));
+    }
+  }
+  return best;
 }
 
 void swarf_gen_normal(const swarf_gen_sweep *s, double phi, double theta, double n[3]) {
@@ -121,24 +147,21 @@ static int count(const swarf_gen_sweep *s, double phi) {
   return swarf_gen_slice_roots(s, phi, th);
 }
 
-/* Branch points in (lo, hi), where the root count goes from nlo to nhi. */
-static int find_branches(swarf_gen_sweep *s, double lo, int nlo, double hi, int nhi, int depth) {
-  while (nlo != nhi) {
-    double mid = 0.5 * (lo + hi);
-    int nm;
-    if (mid <= lo || mid >= hi || depth > 200) return add_event(s, lo, hi, 1);
-    nm = count(s, mid);
-    depth++;
-    if (nm == nlo) {
-      lo = mid;
-    } else if (nm == nhi) {
-      hi = mid;
-    } else {
-      if (find_branches(s, lo, nlo, mid, nm, depth) != 0) return -1;
-      lo = mid, nlo = nm;
-    }
-  }
-  return 0;
+/* Branch points in [lo, hi], where the root count goes from nlo to nhi and
+ * G (min_critical) is mlo, mhi. G is lip-Lipschitz in phi (lip bounds
+ * |d(f, f_theta)/dphi|), so an interval with equal counts and
+ * mlo + mhi > lip (hi - lo) holds no double root; others are split, down to MIN_WIDTH when the
+ * counts agree and to adjacent doubles when they differ. */
+static int scan(swarf_gen_sweep *s, double lo, int nlo, double mlo, double hi, int nhi,
+                double mhi) {
+  double mid = 0.5 * (lo + hi), mm;
+  int nm;
+  if (nlo == nhi && (mlo + mhi > s->lip * (hi - lo) || hi - lo < MIN_WIDTH)) return 0;
+  if (mid <= lo || mid >= hi) return add_event(s, lo, hi, 1);
+  nm = count(s, mid);
+  mm = min_critical(s, mid);
+  if (scan(s, lo, nlo, mlo, mid, nm, mm) != 0) return -1;
+  return scan(s, mid, nm, mm, hi, nhi, mhi);
 }
 
 /* Crossings of the cut: f on n = -sin(phi) e1 + cos(phi) e3, phi in (0, pi). */
@@ -244,15 +267,22 @@ static int build_intervals(swarf_gen_sweep *s) {
 }
 
 int swarf_gen_sweep_init(swarf_gen_sweep *s, const double M[9], const double L[3]) {
+  double mm = 0.0, ll, mprev;
   int prev;
   memset(s, 0, sizeof *s);
   choose_frame(s, M, L);
+  for (int i = 0; i < 9; i++)
+    mm += s->m[i] * s->m[i];
+  ll = sqrt(s->l[0] * s->l[0] + s->l[1] * s->l[1] + s->l[2] * s->l[2]);
+  mm = sqrt(mm);
+  s->lip = hypot(2.0 * mm + ll, 4.0 * mm + ll);
   prev = count(s, 0.0);
+  mprev = min_critical(s, 0.0);
   for (int i = 1; i <= SAMPLES; i++) {
-    double p0 = PI * (i - 1) / SAMPLES, p1 = PI * i / SAMPLES;
+    double p0 = PI * (i - 1) / SAMPLES, p1 = PI * i / SAMPLES, m1 = min_critical(s, p1);
     int n1 = count(s, p1);
-    if (find_branches(s, p0, prev, p1, n1, 0) != 0) return -1;
-    prev = n1;
+    if (scan(s, p0, prev, mprev, p1, n1, m1) != 0) return -1;
+    prev = n1, mprev = m1;
   }
   if (find_cuts(s) != 0) return -1;
   sort_events(s);

@@ -129,6 +129,7 @@ int swarf_char_poly_roots(const double *c, int deg, double lo, double hi, double
  * interval k + 1 back to k. */
 typedef struct {
   double E[9], m[9], l[3]; /* frame, and M, L in it */
+  double lip;              /* bound on |d(f, f_theta)/dphi| */
   int nev, nint;
   double a[SWARF_GEN_MAX_EVENTS + 1], b[SWARF_GEN_MAX_EVENTS + 1];
   int branch[SWARF_GEN_MAX_EVENTS]; /* 1: the event is a branch point */

@@ -154,6 +154,11 @@ static void test_general(void) {
       if (e > TOL) {
         bad_chord++;
         fprintf(stderr, "case %d: %d components, dense point %.3g mm off\n", it, n, e);
+        if (getenv("GDBG")) {
+          for (int k = 0; k < 9; k++) fprintf(stderr, "%.17g,", q.Q[k]);
+          for (int k = 0; k < 3; k++) fprintf(stderr, "%.17g,", q.b[k]);
+          fprintf(stderr, "%.17g | %g %g %g | %g %g %g\n", q.c, v[0], v[1], v[2], w[0], w[1], w[2]);
+        }
       }
     }
   }

@@ -200,8 +200,8 @@ static int trace(gbuilder *b) {
 }
 
 /* M = [omega]x Q - Q [omega]x (Q symmetrized), L = v + omega x b. */
-static void char_form(const double Qs[9], const double bv[3], const double v[3],
-                      const double w[3], double M[9], double L[3]) {
+static void char_form(const double Qs[9], const double bv[3], const double v[3], const double w[3],
+                      double M[9], double L[3]) {
   double W[9] = {0, -w[2], w[1], w[2], 0, -w[0], -w[1], w[0], 0};
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {

@@ -20,7 +20,7 @@
 #define PI 3.14159265358979323846
 #define SAMPLES 32
 #define MIN_WIDTH 1e-7 /* narrowest phi interval searched for a hidden pair */
-#define CUT_GAP 1e-9 /* half width of the bracket around a cut crossing */
+#define CUT_GAP 1e-9   /* half width of the bracket around a cut crossing */
 
 /* Roots in [-pi, pi) of c0 + c1 cos + s1 sin + c2 cos 2t + s2 sin 2t, c = {c0, c1, s1, c2, s2}. */
 static int trig2_roots(const double c[5], double *th) {
@@ -98,12 +98,10 @@ static double fval(const double M[9], const double L[3], const double n[3]) {
 
 /* The frame: e3 the candidate axis with the largest min(|f(e3)|, |f(-e3)|). */
 static void choose_frame(swarf_gen_sweep *s, const double M[9], const double L[3]) {
-  static const double cand[6][3] = {{1, 1.4142135623730951, 1.7320508075688772},
-                                    {-1.7320508075688772, 1, 1.4142135623730951},
-                                    {1.4142135623730951, -1.7320508075688772, 1},
-                                    {1, 1.7320508075688772, -2.2360679774997897},
-                                    {2.2360679774997897, -1, -1.4142135623730951},
-                                    {-1.4142135623730951, -2.2360679774997897, 1}};
+  static const double cand[6][3] = {
+      {1, 1.4142135623730951, 1.7320508075688772},   {-1.7320508075688772, 1, 1.4142135623730951},
+      {1.4142135623730951, -1.7320508075688772, 1},  {1, 1.7320508075688772, -2.2360679774997897},
+      {2.2360679774997897, -1, -1.4142135623730951}, {-1.4142135623730951, -2.2360679774997897, 1}};
   double best = -1.0, *e1 = s->E, *e2 = s->E + 3, *e3 = s->E + 6, nn;
   for (int c = 0; c < 6; c++) {
     double e[3], fe, le, mn;
@@ -181,8 +179,8 @@ static double circ(double a, double b) {
 }
 
 /* Match the n angles A[ia[t]] to B[ib[t]] by the best cyclic shift. */
-static void match(const double *A, const int *ia, const double *B, const int *ib, int n,
-                  int *a2b, int *b2a) {
+static void match(const double *A, const int *ia, const double *B, const int *ib, int n, int *a2b,
+                  int *b2a) {
   int best = 0;
   double bd = INFINITY;
   for (int sh = 0; sh < n; sh++) {

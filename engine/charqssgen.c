@@ -88,14 +88,26 @@ static void surface_point(const gbuilder *b, const double n[3], double x[3]) {
     x[i] = (h - gn) * n[i] + g[i];
 }
 
+/* phi(tau), exactly s0 at tau = 0 and s1 at tau = 1 and never outside
+ * [s0, s1]: an event is bracketed to adjacent doubles, so s0 + (s1 - s0)
+ * rounded one ulp past s1 is already on the event's other side. */
 static double strand_phi(const strand *p, double tau) {
-  double d = p->s1 - p->s0;
-  if (p->root0 && p->root1) return p->s0 + d * tau * tau * (3.0 - 2.0 * tau);
-  if (p->root0) return p->s0 + d * tau * tau;
-  if (p->root1) return p->s1 - d * (1.0 - tau) * (1.0 - tau);
-  return p->s0 + d * tau;
+  double d = p->s1 - p->s0, phi;
+  if (tau <= 0.0) return p->s0;
+  if (tau >= 1.0) return p->s1;
+  if (p->root0 && p->root1)
+    phi = p->s0 + d * tau * tau * (3.0 - 2.0 * tau);
+  else if (p->root0)
+    phi = p->s0 + d * tau * tau;
+  else if (p->root1)
+    phi = p->s1 - d * (1.0 - tau) * (1.0 - tau);
+  else
+    phi = p->s0 + d * tau;
+  return fmin(fmax(phi, p->s0), p->s1);
 }
 
+/* The strand's point at tau; -1 if the slice there has the wrong root count
+ * (the caller fails: a point it cannot evaluate is never skipped). */
 static int eval_point(const gbuilder *b, const strand *p, double tau, double n[3], double x[3]) {
   double phi = strand_phi(p, tau), th[4];
   if (swarf_gen_slice_roots(b->s, phi, th) != b->s->nroot[p->k]) return -1;
@@ -117,14 +129,15 @@ static double seg_dist(const double p[3], const double a[3], const double c[3]) 
   return sqrt(r);
 }
 
-/* Points after (tau0, x0) up to (tau1, n1, x1): charcurve.c's rule. */
+/* Points after (tau0, x0) up to (tau1, n1, x1): charcurve.c's rule. A
+ * segment is emitted only once its midpoint is within the tolerance; a
+ * midpoint that cannot be evaluated, or no convergence by MAX_DEPTH, fails. */
 static int refine(gbuilder *b, const strand *p, double tau0, const double x0[3], double tau1,
                   const double n1[3], const double x1[3], int depth) {
   double tm = 0.5 * (tau0 + tau1), nm[3], xm[3], d, prev = tau0, xp[3];
   int k;
-  if (depth >= MAX_DEPTH || eval_point(b, p, tm, nm, xm) != 0 ||
-      (d = seg_dist(xm, x0, x1)) <= MARGIN * b->tol)
-    return push(b, n1, x1);
+  if (depth >= MAX_DEPTH || eval_point(b, p, tm, nm, xm) != 0) return -1;
+  if ((d = seg_dist(xm, x0, x1)) <= MARGIN * b->tol) return push(b, n1, x1);
   k = (int)ceil(sqrt(d / (AIM * b->tol)));
   k = k < 2 ? 2 : k > MAX_SPLIT ? MAX_SPLIT : k;
   memcpy(xp, x0, sizeof xp);
@@ -133,7 +146,7 @@ static int refine(gbuilder *b, const strand *p, double tau0, const double x0[3],
     if (j == k)
       memcpy(n, n1, sizeof n), memcpy(x, x1, sizeof x), tau = tau1;
     else if (eval_point(b, p, tau, n, x) != 0)
-      continue;
+      return -1;
     if (refine(b, p, prev, xp, tau, n, x, depth + 1) != 0) return -1;
     memcpy(xp, x, sizeof xp);
     prev = tau;
@@ -141,20 +154,17 @@ static int refine(gbuilder *b, const strand *p, double tau0, const double x0[3],
   return 0;
 }
 
-/* The whole strand, forward (dir > 0) or backward. */
+/* The whole strand, forward (dir > 0) or backward, from its end at tau = 0
+ * (dir > 0) or 1 through every span: no span is skipped. */
 static int strand_points(gbuilder *b, const strand *p, int dir) {
-  int m = (int)ceil(SPAN_STEPS * (p->s1 - p->s0) / PI), first = 1;
-  double x0[3], prev = 0.0;
+  int m = (int)ceil(SPAN_STEPS * (p->s1 - p->s0) / PI);
+  double x0[3], n0[3], prev = dir > 0 ? 0.0 : 1.0;
   if (m < 2) m = 2;
-  for (int j = 0; j <= m; j++) {
+  if (eval_point(b, p, prev, n0, x0) != 0 || push(b, n0, x0) != 0) return -1;
+  for (int j = 1; j <= m; j++) {
     double tau = dir > 0 ? (double)j / m : (double)(m - j) / m, n1[3], x1[3];
-    if (eval_point(b, p, tau, n1, x1) != 0) continue;
-    if (first) {
-      if (push(b, n1, x1) != 0) return -1;
-      first = 0;
-    } else if (refine(b, p, prev, x0, tau, n1, x1, 0) != 0) {
+    if (eval_point(b, p, tau, n1, x1) != 0 || refine(b, p, prev, x0, tau, n1, x1, 0) != 0)
       return -1;
-    }
     memcpy(x0, x1, sizeof x0);
     prev = tau;
   }

@@ -117,6 +117,23 @@ int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q, const
                                  const double U[9], const double v[3], const double omega[3],
                                  double tol);
 
+/* A general trivariate QSS: h(n) = n^T Q n + b . n + c on the unit sphere
+ * (Q row-major; only its symmetric part counts). Its surface point is
+ * x_h(n) = h n + grad h - (grad h . n) n with grad h = 2 Q n + b. */
+typedef struct {
+  double Q[9], b[3], c;
+} swarf_qss_general;
+
+/* swarf_char_curve_compute for a general QSS (engine/charqssgen.c): the
+ * spherical quartic f = g = 0 traced by a sweep along a generic axis. Same
+ * layout (closed polylines, chord error of x under tol). Returns the number of
+ * components; 0 when f vanishes identically (still, or the whole sphere is
+ * characteristic), when the curve is empty or only isolated points; -1 when
+ * out of memory or when the sweep finds an inconsistent topology. */
+int swarf_char_curve_compute_qss_general(swarf_char_curve *cc, const swarf_qss_general *q,
+                                         const double t[3], const double U[9], const double v[3],
+                                         const double omega[3], double tol);
+
 /* The same for the full revolution form of eq. 12, coef = a, b, c, d, e, f:
  * h = a (n_x^2 + n_y^2) + b n_z^2 + c n_x + d n_y + e n_z + f (its axis passes
  * through (c, d, 0)). Same contract; the exact counterpart is envelope_exact.h. */

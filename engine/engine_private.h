@@ -7,6 +7,8 @@
  *   charpoly.c      real roots of a small polynomial (a QSS's Delta quartic).
  *   charcutter.c    a cutter's branch points, certified in double-double.
  *   charqss.c       the fast path for eq. 12 with an off-axis linear part.
+ *   charqssgen_sweep.c  general QSS: slice roots, events, strand maps.
+ *   charqssgen.c    general QSS: components walked and sampled.
  *   sweep.c         a move's swept volume: method choice, bounds, dispatch.
  *   sweep_line.c    straight moves: closed forms (slot, plunge, ramp).
  *   sweep_helix.c   arcs and helices: the closed form for planar arcs about
@@ -131,6 +133,40 @@ int swarf_char_cutter_delta_positive(const swarf_char_profile *pr, const double 
  * changes sign (deg <= 8), ascending, to adjacent doubles. Returns the count
  * (writes at most max). */
 int swarf_char_poly_roots(const double *c, int deg, double lo, double hi, double *roots, int max);
+
+/* ---- Characteristic curves of a general QSS (charqssgen*.c) ------------ */
+
+#define SWARF_GEN_MAX_EVENTS 48
+
+/* f(n) = n^T M n + L . n in a frame E (rows e1, e2, e3) whose e3 is the sweep
+ * axis: n = sin(phi) (cos(theta) e1 + sin(theta) e2) + cos(phi) e3. An
+ * event is a branch point (the number of roots in theta changes; [lo, hi]
+ * are adjacent doubles around it) or a crossing of the cut theta = pi
+ * ([lo, hi] a small bracket). Interval k runs from a[k] to b[k] with nroot[k]
+ * roots; map_r[k][i] is the index in interval k + 1 of root i of interval k,
+ * or -1 - p when it turns with root p at the event; map_l[k][j] the same from
+ * interval k + 1 back to k. */
+typedef struct {
+  double E[9], m[9], l[3]; /* frame, and M, L in it */
+  double lip;              /* bound on |d(f, f_theta)/dphi| */
+  int nev, nint;
+  double a[SWARF_GEN_MAX_EVENTS + 1], b[SWARF_GEN_MAX_EVENTS + 1];
+  int branch[SWARF_GEN_MAX_EVENTS]; /* 1: the event is a branch point */
+  int nroot[SWARF_GEN_MAX_EVENTS + 1];
+  int map_r[SWARF_GEN_MAX_EVENTS][4], map_l[SWARF_GEN_MAX_EVENTS][4];
+} swarf_gen_sweep;
+
+/* Set up the sweep of f = n^T M n + L . n (M symmetric, row-major) along the
+ * axis among a fixed generic set where |f| at the poles is largest. Returns
+ * 0, or -1 when the topology is inconsistent (too many events, a strand at a
+ * pole, an event whose two sides do not match). */
+int swarf_gen_sweep_init(swarf_gen_sweep *s, const double M[9], const double L[3]);
+
+/* The roots theta in [-pi, pi) of f on the slice phi, ascending (at most 4). */
+int swarf_gen_slice_roots(const swarf_gen_sweep *s, double phi, double *theta);
+
+/* The unit normal at (phi, theta). */
+void swarf_gen_normal(const swarf_gen_sweep *s, double phi, double theta, double n[3]);
 
 /* ---- Sweeps: per-method evaluators -------------------------------------- */
 

@@ -35,6 +35,44 @@ static inline double swarf_box2(double x, double y) {
   return sqrt(xp * xp + yp * yp) + (in < 0.0 ? in : 0.0);
 }
 
+/* ---- Certified time searches (sweep_sampled.c, sweep_rigid.c) ----------- */
+
+/* A sample of g(alpha) = cutter distance at time alpha, and an interval of
+ * times waiting for refinement with its lower bound. */
+typedef struct {
+  double a, g, dg, dist; /* time, g, g', |p - t| (the rigid search only) */
+} swarf_tsample;
+
+typedef struct {
+  swarf_tsample lo, hi;
+  double lb;  /* lower bound of g over [lo.a, hi.a] */
+  int depth;  /* splits so far (the helix search only) */
+} swarf_tspan;
+
+/* A binary min-heap of spans by lb: heap[0 .. *n) (the caller checks room). */
+static inline void swarf_tspan_push(swarf_tspan *heap, int *n, swarf_tspan sp) {
+  int i;
+  for (i = (*n)++; i > 0 && heap[(i - 1) / 2].lb > sp.lb; i = (i - 1) / 2)
+    heap[i] = heap[(i - 1) / 2];
+  heap[i] = sp;
+}
+
+/* Remove and return the span of least lb (the heap is not empty). */
+static inline swarf_tspan swarf_tspan_pop(swarf_tspan *heap, int *n) {
+  swarf_tspan top = heap[0], last = heap[--*n];
+  int i = 0;
+  for (;;) {
+    int c = 2 * i + 1;
+    if (c >= *n) break;
+    if (c + 1 < *n && heap[c + 1].lb < heap[c].lb) c++;
+    if (heap[c].lb >= last.lb) break;
+    heap[i] = heap[c];
+    i = c;
+  }
+  if (*n > 0) heap[i] = last;
+  return top;
+}
+
 /* Lower bound over [0, w] of a function g with g'' >= -K (semiconvex) from
  * its values and slopes at both ends (ga, dga at 0; gb, dgb at w): g is at
  * least max(T_A, T_B), T_A and T_B the concave parabolas of curvature -K

@@ -43,14 +43,8 @@
 #define MAX_EVALS 400 /* evaluations of g per call beyond the steps */
 #define PROBE 64      /* poses probed at init for the bounds */
 
-typedef struct {
-  double a, g, dg, dist; /* time, g, g', |p - t| */
-} rsample;
-
-typedef struct {
-  rsample lo, hi;
-  double lb;
-} rspan;
+typedef swarf_tsample rsample; /* time, g, g', |p - t| */
+typedef swarf_tspan rspan;
 
 typedef struct {
   const swarf_sweep *s;
@@ -122,30 +116,14 @@ static double rbound(const rctx *h, const rsample *A, const rsample *B) {
 }
 
 static void rpush(rctx *h, rsample lo, rsample hi) {
-  rspan sp;
-  int i;
+  rspan sp = {lo, hi, 0.0, 0};
   if (rbound_lip(h, &lo, &hi) >= h->best.g - EPS) return; /* cheap test first */
-  sp.lo = lo, sp.hi = hi, sp.lb = rbound(h, &lo, &hi);
+  sp.lb = rbound(h, &lo, &hi);
   if (sp.lb >= h->best.g - EPS || h->nheap == HEAP || hi.a - lo.a < 1e-12) return;
-  for (i = h->nheap++; i > 0 && h->heap[(i - 1) / 2].lb > sp.lb; i = (i - 1) / 2)
-    h->heap[i] = h->heap[(i - 1) / 2];
-  h->heap[i] = sp;
+  swarf_tspan_push(h->heap, &h->nheap, sp);
 }
 
-static rspan rpop(rctx *h) {
-  rspan top = h->heap[0], last = h->heap[--h->nheap];
-  int i = 0;
-  for (;;) {
-    int c = 2 * i + 1;
-    if (c >= h->nheap) break;
-    if (c + 1 < h->nheap && h->heap[c + 1].lb < h->heap[c].lb) c++;
-    if (h->heap[c].lb >= last.lb) break;
-    h->heap[i] = h->heap[c];
-    i = c;
-  }
-  if (h->nheap > 0) h->heap[i] = last;
-  return top;
-}
+static rspan rpop(rctx *h) { return swarf_tspan_pop(h->heap, &h->nheap); }
 
 /* lo.dg < 0 < hi.dg: Illinois regula falsi to g' = 0 (the characteristic). */
 static rsample rrefine(rctx *h, rsample lo, rsample hi) {

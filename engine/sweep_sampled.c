@@ -32,15 +32,8 @@
 #define MAX_DEPTH 40   /* splits of one sample interval */
 #define MAX_EVALS 600  /* evaluations of g per call */
 
-typedef struct {
-  double a, g, dg; /* time, g(a), g'(a) */
-} sample;
-
-typedef struct {
-  sample lo, hi;
-  double lb;
-  int depth;
-} span;
+typedef swarf_tsample sample; /* time, g(a), g'(a) */
+typedef swarf_tspan span;
 
 typedef struct {
   const swarf_sweep *s;
@@ -60,7 +53,7 @@ typedef struct {
 static sample eval(hctx *h, double a) {
   const double *x = h->s->aux, *ax = h->s->motion->axis;
   double th = a * x[SWARF_H_ANG], c = cos(th), sn = sin(th), q[3], td[3], gr[3];
-  sample r = {a, 0.0, 0.0};
+  sample r = {a, 0.0, 0.0, 0.0};
   for (int k = 0; k < 3; k++) {
     double u = c * x[SWARF_H_E1 + k] + sn * x[SWARF_H_E2 + k];
     double du = c * x[SWARF_H_E2 + k] - sn * x[SWARF_H_E1 + k];
@@ -125,27 +118,24 @@ static double bound(const hctx *h, const sample *A, const sample *B) {
 
 static void push(hctx *h, sample lo, sample hi, int depth) {
   span sp = {lo, hi, 0.0, depth};
-  int i;
   sp.lb = bound(h, &lo, &hi);
   if (sp.lb >= h->best.g - EPS || h->nheap == HEAP) return;
-  for (i = h->nheap++; i > 0 && h->heap[(i - 1) / 2].lb > sp.lb; i = (i - 1) / 2)
-    h->heap[i] = h->heap[(i - 1) / 2];
-  h->heap[i] = sp;
+  swarf_tspan_push(h->heap, &h->nheap, sp);
 }
 
-static span pop(hctx *h) {
-  span top = h->heap[0], last = h->heap[--h->nheap];
-  int i = 0;
+static span pop(hctx *h) { return swarf_tspan_pop(h->heap, &h->nheap); }
+
+/* From sample i (value *si), skip the samples that the Lipschitz bound of
+ * an earlier one puts above best - margin: returns the first index whose
+ * interval [i, i + 1] could hold a lower value (*si its sample), or n. */
+static int next_candidate(hctx *h, int i, double margin, sample *si) {
   for (;;) {
-    int c = 2 * i + 1;
-    if (c >= h->nheap) break;
-    if (c + 1 < h->nheap && h->heap[c + 1].lb < h->heap[c].lb) c++;
-    if (h->heap[c].lb >= last.lb) break;
-    h->heap[i] = h->heap[c];
-    i = c;
+    int skip = (int)ceil((si->g - h->best.g + margin) / h->step) - 1;
+    if (skip <= 0) return i;
+    if (skip >= h->n - i) return h->n;
+    i += skip;
+    *si = at(h, i);
   }
-  if (h->nheap > 0) h->heap[i] = last;
-  return top;
 }
 
 /* Step 1: samples, skipping, and the stationary points of the brackets. */
@@ -153,16 +143,8 @@ static void find(hctx *h) {
   int i = 0, n = h->n;
   sample si = at(h, 0);
   at(h, n);
-  while (i < n) {
-    int skip = (int)ceil((si.g - h->best.g) / h->step) - 1;
-    sample s1;
-    if (skip > 0) {
-      if (skip >= n - i) break;
-      i += skip;
-      si = at(h, i);
-      continue;
-    }
-    s1 = at(h, i + 1);
+  while ((i = next_candidate(h, i, 0.0, &si)) < n) {
+    sample s1 = at(h, i + 1);
     if (si.dg < 0.0 && s1.dg > 0.0 && 0.5 * (si.g + s1.g - h->step) < h->best.g) {
       sample m = refine(h, si, s1);
       if (n <= CACHE && m.a > si.a && m.a < s1.a) {
@@ -180,16 +162,8 @@ static void find(hctx *h) {
 static void queue_intervals(hctx *h) {
   int i = 0, n = h->n;
   sample si = at(h, 0);
-  while (i < n) {
-    int skip = (int)ceil((si.g - h->best.g + EPS) / h->step) - 1;
-    sample s1;
-    if (skip > 0) {
-      if (skip >= n - i) break;
-      i += skip;
-      si = at(h, i);
-      continue;
-    }
-    s1 = at(h, i + 1);
+  while ((i = next_candidate(h, i, EPS, &si)) < n) {
+    sample s1 = at(h, i + 1);
     if (n <= CACHE && (h->has_split >> i & 1u)) {
       push(h, si, h->split[i], 1);
       push(h, h->split[i], s1, 1);

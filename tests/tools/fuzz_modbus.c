@@ -20,7 +20,7 @@
 
 #include "modbus_private.h"
 
-static swarf_status *status;
+static swarf_job *status;
 static modbus_t *tcp, *rtu;
 static swarf_mb_responder rtcp, rrtu;
 static int fds[2];
@@ -37,8 +37,8 @@ static void fail(const char *why, const uint8_t *req, int len, const uint8_t *rs
 }
 
 static void setup(void) {
-  status = swarf_status_new("fuzz.ngc");
-  swarf_status_set_commands(status, 1);
+  status = swarf_job_new("fuzz.ngc");
+  swarf_job_set_commands(status, 1);
   tcp = modbus_new_tcp("127.0.0.1", 502);
   rtu = modbus_new_rtu("/dev/null", 19200, 'N', 8, 1);
   if (!status || !tcp || !rtu || socketpair(AF_UNIX, SOCK_STREAM, 0, fds) ||
@@ -96,7 +96,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if ((data[0] & 1) == 1 && len < 4) continue; /* libmodbus RTU: unit, function, CRC */
     one_frame((data[0] & 1) == 0, frame, (int)len);
   }
-  if (swarf_status_abort_requested(status) || swarf_status_pause_requested(status))
-    swarf_status_command_post(status, SWARF_STATUS_CMD_RESUME);
+  if (swarf_job_abort_requested(status) || swarf_job_pause_requested(status))
+    swarf_job_command_post(status, SWARF_JOB_CMD_RESUME);
   return 0;
 }

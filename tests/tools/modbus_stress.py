@@ -4,9 +4,9 @@ each time it is dropped), one connects and never sends nor reads, one floods
 requests and never reads the replies, one sends a frame one byte a second.
 The job must complete with the right final registers, every poller must be
 served to the end, and the abusers must be dropped. Timing is not asserted
-here (tools/bench_modbus measures it); run it on an ASan build too.
+here (tools/bench/bench_modbus measures it); run it on an ASan build too.
 
-The Load class is also what tools/bench_modbus uses to load the server.
+The Load class is also what tools/bench/bench_modbus uses to load the server.
 """
 import os
 import socket

@@ -39,7 +39,7 @@ static void *loop(void *arg) {
   return NULL;
 }
 
-swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
                                size_t msglen) {
   struct swarf_mb_rtu *t;
   if (e == NULL || status == NULL || e->kind != SWARF_MB_RTU) return NULL;

@@ -19,29 +19,29 @@ static unsigned long nonneg(double v) {
 }
 
 /* Per-mille: moves done over moves known, 999 at most until finished. */
-static uint16_t per_mille(const swarf_status_snapshot *s) {
+static uint16_t per_mille(const swarf_job_snapshot *s) {
   long pm;
-  if (s->state == SWARF_STATUS_FINISHED) return 1000;
+  if (s->state == SWARF_JOB_FINISHED) return 1000;
   if (s->moves_total <= 0) return 0;
   pm = (long)((double)s->moves_done * 1000.0 / (double)s->moves_total);
   return (uint16_t)(pm < 0 ? 0 : pm > 999 ? 999 : pm);
 }
 
-static double elapsed(const swarf_status_snapshot *s, double now) {
-  if (s->state == SWARF_STATUS_IDLE) return 0.0;
+static double elapsed(const swarf_job_snapshot *s, double now) {
+  if (s->state == SWARF_JOB_IDLE) return 0.0;
   return (s->end > 0 ? s->end : now) - s->start;
 }
 
 /* Seconds left by the mean rate so far; 0xFFFFFFFF while unknown. */
-static unsigned long remaining(const swarf_status_snapshot *s, double now) {
-  if (s->state == SWARF_STATUS_FINISHED) return 0;
-  if (s->state != SWARF_STATUS_RUNNING || s->moves_total <= 0 || s->moves_done <= 0)
+static unsigned long remaining(const swarf_job_snapshot *s, double now) {
+  if (s->state == SWARF_JOB_FINISHED) return 0;
+  if (s->state != SWARF_JOB_RUNNING || s->moves_total <= 0 || s->moves_done <= 0)
     return 0xFFFFFFFFul;
   if (s->moves_done >= s->moves_total) return 0;
   return nonneg(elapsed(s, now) * (double)(s->moves_total - s->moves_done) / s->moves_done);
 }
 
-static uint16_t flags(const swarf_status_snapshot *s) {
+static uint16_t flags(const swarf_job_snapshot *s) {
   uint8_t b[SWARF_MB_NBITS];
   uint16_t f = 0;
   swarf_mb_map_bits(s, b);
@@ -50,7 +50,7 @@ static uint16_t flags(const swarf_status_snapshot *s) {
   return f;
 }
 
-void swarf_mb_map_registers(const swarf_status_snapshot *s, double now,
+void swarf_mb_map_registers(const swarf_job_snapshot *s, double now,
                             uint16_t regs[SWARF_MB_NREGS]) {
   memset(regs, 0, sizeof(uint16_t) * SWARF_MB_NREGS);
   regs[SWARF_MB_REG_STATE] = (uint16_t)s->state;
@@ -67,16 +67,16 @@ void swarf_mb_map_registers(const swarf_status_snapshot *s, double now,
   regs[SWARF_MB_REG_HEARTBEAT] = (uint16_t)(s->heartbeat & 0xFFFF);
   regs[SWARF_MB_REG_FLAGS] = flags(s);
   regs[SWARF_MB_REG_VERSION] = SWARF_MB_MAP_VERSION;
-  for (int i = 0; i < SWARF_STATUS_NAME_LEN; i += 2) {
+  for (int i = 0; i < SWARF_JOB_NAME_LEN; i += 2) {
     unsigned char hi = (unsigned char)s->program[i], lo = (unsigned char)s->program[i + 1];
     regs[SWARF_MB_NAME_REG + i / 2] = (uint16_t)(hi << 8 | (hi ? lo : 0));
   }
 }
 
-void swarf_mb_map_bits(const swarf_status_snapshot *s, uint8_t bits[SWARF_MB_NBITS]) {
-  bits[0] = s->state == SWARF_STATUS_RUNNING;
-  bits[1] = s->state == SWARF_STATUS_FINISHED;
-  bits[2] = s->state == SWARF_STATUS_FAILED;
+void swarf_mb_map_bits(const swarf_job_snapshot *s, uint8_t bits[SWARF_MB_NBITS]) {
+  bits[0] = s->state == SWARF_JOB_RUNNING;
+  bits[1] = s->state == SWARF_JOB_FINISHED;
+  bits[2] = s->state == SWARF_JOB_FAILED;
   bits[3] = s->alarms > 0;
   bits[4] = s->paused != 0;
   bits[5] = s->moves_total > 0;

@@ -31,9 +31,9 @@ const char swarf_modbus_help[] =
     "                   with exception 01\n";
 
 struct swarf_modbus_service {
-  swarf_status *status;
-  swarf_status_observer observer;
-  swarf_status_count *count;
+  swarf_job *status;
+  swarf_job_observer observer;
+  swarf_job_count *count;
   swarf_mb_tcp *tcp[SWARF_MODBUS_MAX_ENDPOINTS];
   swarf_mb_rtu *rtu[SWARF_MODBUS_MAX_ENDPOINTS];
   swarf_mb_push *push[SWARF_MODBUS_MAX_ENDPOINTS];
@@ -103,13 +103,13 @@ static int open_endpoint(swarf_modbus_service *svc, const char *spec, int push, 
 }
 
 static void stop_all(swarf_modbus_service *svc) {
-  swarf_status_count_free(svc->count);
+  swarf_job_count_free(svc->count);
   for (int i = 0; i < SWARF_MODBUS_MAX_ENDPOINTS; i++) {
     swarf_mb_push_free(svc->push[i]);
     swarf_mb_tcp_free(svc->tcp[i]);
     swarf_mb_rtu_free(svc->rtu[i]);
   }
-  swarf_status_free(svc->status);
+  swarf_job_free(svc->status);
   free(svc);
 }
 
@@ -123,17 +123,17 @@ int swarf_modbus_start(const swarf_modbus_options *o, const char *program, swarf
     return option_error("--modbus-linger/--modbus-commands", "give --modbus or --modbus-push too");
   if (o->commands && o->nserve == 0)
     return option_error("--modbus-commands", "commands are written to a --modbus server");
-  if ((svc = calloc(1, sizeof *svc)) == NULL || (svc->status = swarf_status_new(program)) == NULL)
+  if ((svc = calloc(1, sizeof *svc)) == NULL || (svc->status = swarf_job_new(program)) == NULL)
     goto err;
   svc->linger = o->linger;
-  swarf_status_set_commands(svc->status, o->commands);
+  swarf_job_set_commands(svc->status, o->commands);
   for (int i = 0; i < o->nserve; i++)
     if (open_endpoint(svc, o->serve[i], 0, i, msg, sizeof msg)) goto err;
   for (int i = 0; i < o->npush; i++)
     if (open_endpoint(svc, o->push[i], 1, i, msg, sizeof msg)) goto err;
-  swarf_status_observer_init(&svc->observer, svc->status);
-  svc->count = swarf_status_count_new(program, svc->status);
-  cfg->observe = swarf_status_observe;
+  swarf_job_observer_init(&svc->observer, svc->status);
+  svc->count = swarf_job_count_new(program, svc->status);
+  cfg->observe = swarf_job_observe;
   cfg->observe_ctx = &svc->observer;
   *out = svc;
   return 0;
@@ -146,10 +146,10 @@ err:
 void swarf_modbus_finish(swarf_modbus_service *svc, int rc, const swarf_sim_report *rep) {
   struct timespec left;
   if (svc == NULL) return;
-  swarf_status_count_free(svc->count);
+  swarf_job_count_free(svc->count);
   svc->count = NULL;
-  if (rc == 0 && rep != NULL) swarf_status_set_total(svc->status, rep->moves);
-  swarf_status_observer_final(&svc->observer, rc, rep);
+  if (rc == 0 && rep != NULL) swarf_job_set_total(svc->status, rep->moves);
+  swarf_job_observer_final(&svc->observer, rc, rep);
   fflush(stdout);
   left.tv_sec = (time_t)svc->linger;
   left.tv_nsec = (long)((svc->linger - floor(svc->linger)) * 1e9);

@@ -7,10 +7,10 @@
  *   modbus_tcp.c      the TCP server thread (select, bounded clients)
  *   modbus_rtu.c      the RTU server thread (serial line)
  *   modbus_push.c     the push client thread (writes the block into a controller)
- *   status_observe.c  the simulation side: publishes the snapshot, obeys commands
- *   status_count.c    the pre-count of the program's moves (registers 6-7)
+ *   job_observe.c  the simulation side: publishes the snapshot, obeys commands
+ *   job_count.c    the pre-count of the program's moves (registers 6-7)
  *
- * Every thread only reads the status snapshot (status.h) and posts commands;
+ * Every thread only reads the status snapshot (job.h) and posts commands;
  * none of them is ever waited on by the simulation.
  */
 #ifndef SWARF_MODBUS_PRIVATE_H
@@ -22,7 +22,7 @@
 #include <modbus.h>
 
 #include "sim.h"
-#include "status.h"
+#include "job.h"
 
 /* The register map (README.md, "Status over Modbus"). */
 #define SWARF_MB_NREGS 64    /* input registers 0..63; holding registers 0..63 the same */
@@ -49,10 +49,10 @@ enum {
 };
 
 /* Fill the 64 status registers for the snapshot at monotonic time `now`. */
-void swarf_mb_map_registers(const swarf_status_snapshot *s, double now,
+void swarf_mb_map_registers(const swarf_job_snapshot *s, double now,
                             uint16_t regs[SWARF_MB_NREGS]);
 /* Fill the discrete inputs (0 or 1 each). */
-void swarf_mb_map_bits(const swarf_status_snapshot *s, uint8_t bits[SWARF_MB_NBITS]);
+void swarf_mb_map_bits(const swarf_job_snapshot *s, uint8_t bits[SWARF_MB_NBITS]);
 
 /* An endpoint given on the command line. */
 typedef enum { SWARF_MB_TCP, SWARF_MB_RTU } swarf_mb_kind;
@@ -76,13 +76,13 @@ int swarf_mb_endpoint_parse(const char *spec, int push, swarf_mb_endpoint *e, ch
 /* Answers requests from the snapshot; one per server thread (it owns its
  * libmodbus mapping). */
 typedef struct {
-  swarf_status *status;
+  swarf_job *status;
   modbus_mapping_t *map;
   int unit;
   int tcp; /* 1: TCP (unit 0 and 255 also accepted), 0: RTU */
 } swarf_mb_responder;
 
-int swarf_mb_responder_init(swarf_mb_responder *r, swarf_status *status, int unit, int tcp);
+int swarf_mb_responder_init(swarf_mb_responder *r, swarf_job *status, int unit, int tcp);
 void swarf_mb_responder_clear(swarf_mb_responder *r);
 /* Answer the complete request `req` (`len` bytes, as framed for ctx's
  * backend) on ctx's socket. Returns the bytes sent, 0 when no answer is due,
@@ -93,18 +93,18 @@ int swarf_mb_respond(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, i
  * that a busy port or a missing device is reported before the job starts)
  * and starts its thread; _free stops the thread and closes everything. */
 typedef struct swarf_mb_tcp swarf_mb_tcp;
-swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
                                size_t msglen);
 int swarf_mb_tcp_port(const swarf_mb_tcp *t); /* the port bound (for port 0) */
 void swarf_mb_tcp_free(swarf_mb_tcp *t);
 
 typedef struct swarf_mb_rtu swarf_mb_rtu;
-swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
                                size_t msglen);
 void swarf_mb_rtu_free(swarf_mb_rtu *t);
 
 typedef struct swarf_mb_push swarf_mb_push;
-swarf_mb_push *swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+swarf_mb_push *swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
                                  size_t msglen);
 /* Push once more now (the final state), then stop and free. */
 void swarf_mb_push_free(swarf_mb_push *p);
@@ -113,22 +113,22 @@ void swarf_mb_push_free(swarf_mb_push *p);
  * it publishes; computes the removed volume at most every half second and
  * never for more than ~2 % of the time. */
 typedef struct {
-  swarf_status *status;
-  swarf_status_snapshot snap;
+  swarf_job *status;
+  swarf_job_snapshot snap;
   double next_volume;
-} swarf_status_observer;
+} swarf_job_observer;
 
-void swarf_status_observer_init(swarf_status_observer *ob, swarf_status *status);
-int swarf_status_observe(void *ob, const swarf_sim_report *sofar, long line, int tool,
+void swarf_job_observer_init(swarf_job_observer *ob, swarf_job *status);
+int swarf_job_observe(void *ob, const swarf_sim_report *sofar, long line, int tool,
                          const swarf_stock *stock);
 /* Publish the end of the run: rc 0 finished, else failed with error rc. */
-void swarf_status_observer_final(swarf_status_observer *ob, int rc, const swarf_sim_report *rep);
+void swarf_job_observer_final(swarf_job_observer *ob, int rc, const swarf_sim_report *rep);
 
 /* Count the motion moves of the program at `path` in a thread of its own and
  * publish the count (registers 6-7) when done; a program that does not parse
  * leaves it 0. _free stops the count if still running. */
-typedef struct swarf_status_count swarf_status_count;
-swarf_status_count *swarf_status_count_new(const char *path, swarf_status *status);
-void swarf_status_count_free(swarf_status_count *c);
+typedef struct swarf_job_count swarf_job_count;
+swarf_job_count *swarf_job_count_new(const char *path, swarf_job *status);
+void swarf_job_count_free(swarf_job_count *c);
 
 #endif

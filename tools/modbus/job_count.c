@@ -1,4 +1,4 @@
-/* status_count.c -- the pre-count of a program's motion moves, so that a
+/* job_count.c -- the pre-count of a program's motion moves, so that a
  * controller knows the total (registers 6-7) and the progress in per-mille
  * while the program streams through the simulation. It parses the file once
  * more in a thread of its own (the parser alone runs ~500,000 moves/s, far
@@ -13,29 +13,29 @@
 #include "gcode.h"
 #include "modbus_private.h"
 
-struct swarf_status_count {
+struct swarf_job_count {
   pthread_t thread;
   char *path;
-  swarf_status *status;
+  swarf_job *status;
   long moves;
   atomic_int stop;
 };
 
 static int count_move(const swarf_move *mv, void *user) {
-  struct swarf_status_count *c = user;
+  struct swarf_job_count *c = user;
   if (mv->kind != SWARF_MOVE_DWELL && mv->kind != SWARF_MOVE_TOOL_CHANGE) c->moves++;
   return atomic_load(&c->stop);
 }
 
 static void *run(void *arg) {
-  struct swarf_status_count *c = arg;
+  struct swarf_job_count *c = arg;
   if (swarf_gcode_parse_file(c->path, count_move, c, NULL) == SWARF_GCODE_OK)
-    swarf_status_set_total(c->status, c->moves);
+    swarf_job_set_total(c->status, c->moves);
   return NULL;
 }
 
-swarf_status_count *swarf_status_count_new(const char *path, swarf_status *status) {
-  struct swarf_status_count *c;
+swarf_job_count *swarf_job_count_new(const char *path, swarf_job *status) {
+  struct swarf_job_count *c;
   if (path == NULL || status == NULL || (c = calloc(1, sizeof *c)) == NULL) return NULL;
   c->status = status;
   c->path = strdup(path);
@@ -48,7 +48,7 @@ swarf_status_count *swarf_status_count_new(const char *path, swarf_status *statu
   return c;
 }
 
-void swarf_status_count_free(swarf_status_count *c) {
+void swarf_job_count_free(swarf_job_count *c) {
   if (c == NULL) return;
   atomic_store(&c->stop, 1);
   pthread_join(c->thread, NULL);

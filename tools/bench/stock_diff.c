@@ -1,5 +1,5 @@
 /* stock_diff.c -- `stock_diff REFERENCE.vdb OTHER.vdb`: how far a stock grid
- * is from a reference one of the same voxel (tools/bench_rotary compares
+ * is from a reference one of the same voxel (tools/bench/bench_rotary compares
  * stamped runs with the swept one).
  *
  * Prints one line, key=value:

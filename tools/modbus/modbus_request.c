@@ -13,7 +13,7 @@
  */
 #include "modbus_private.h"
 
-int swarf_mb_responder_init(swarf_mb_responder *r, swarf_status *status, int unit, int tcp) {
+int swarf_mb_responder_init(swarf_mb_responder *r, swarf_job *status, int unit, int tcp) {
   if (r == NULL || status == NULL) return -1;
   r->status = status;
   r->unit = unit;
@@ -103,13 +103,13 @@ static int command_write(swarf_mb_responder *r, const uint8_t *pdu) {
                : MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS;
   }
   if (addr != SWARF_MB_CMD_REG) return MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS;
-  return swarf_status_command_post(r->status, value) ? MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE : 0;
+  return swarf_job_command_post(r->status, value) ? MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE : 0;
 }
 
 static void refresh(swarf_mb_responder *r) {
-  swarf_status_snapshot s;
-  swarf_status_read(r->status, &s);
-  swarf_mb_map_registers(&s, swarf_status_now(), r->map->tab_input_registers);
+  swarf_job_snapshot s;
+  swarf_job_read(r->status, &s);
+  swarf_mb_map_registers(&s, swarf_job_now(), r->map->tab_input_registers);
   for (int i = 0; i < SWARF_MB_NREGS; i++)
     r->map->tab_registers[i] = r->map->tab_input_registers[i];
   r->map->tab_registers[SWARF_MB_CMD_REG] = (uint16_t)s.last_command;
@@ -118,7 +118,7 @@ static void refresh(swarf_mb_responder *r) {
 
 int swarf_mb_respond(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, int len) {
   int h = modbus_get_header_length(ctx), n, unit, ex = 0;
-  swarf_status_snapshot s;
+  swarf_job_snapshot s;
   if (r == NULL || ctx == NULL || req == NULL || h < 1) return -1;
   n = len - h - (r->tcp ? 0 : 2); /* RTU frames end with a CRC */
   if (n < 1) return 0;
@@ -131,7 +131,7 @@ int swarf_mb_respond(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, i
   if (!pdu_ok(req + h, n) || !counts_ok(req + h))
     return modbus_reply_exception(ctx, req, MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE);
   if (is_write(req[h])) {
-    swarf_status_read(r->status, &s);
+    swarf_job_read(r->status, &s);
     ex = s.commands ? command_write(r, req + h) : MODBUS_EXCEPTION_ILLEGAL_FUNCTION;
   }
   if (ex) return modbus_reply_exception(ctx, req, (unsigned)ex);

@@ -148,7 +148,7 @@ static void *loop(void *arg) {
     struct timeval tv = {0, 250000};
     int top = fill_set(t, &rd);
     int n = select(top + 1, &rd, NULL, NULL, &tv);
-    double now = swarf_status_now();
+    double now = swarf_job_now();
     if (n < 0 && errno != EINTR) break;
     if (n > 0) {
       for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++)
@@ -190,7 +190,7 @@ static int listen_on(struct swarf_mb_tcp *t, const swarf_mb_endpoint *e, char *m
   return 0;
 }
 
-swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
                                size_t msglen) {
   struct swarf_mb_tcp *t;
   if (e == NULL || status == NULL || e->kind != SWARF_MB_TCP) return NULL;

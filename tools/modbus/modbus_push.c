@@ -22,7 +22,7 @@ struct swarf_mb_push {
   pthread_mutex_t lock; /* guards stop */
   pthread_cond_t wake;
   int stop;
-  swarf_status *status;
+  swarf_job *status;
   swarf_mb_endpoint e;
   modbus_t *ctx;
   int connected, warned;
@@ -36,15 +36,15 @@ static void warn(struct swarf_mb_push *p, const char *what) {
 }
 
 static void push_once(struct swarf_mb_push *p) {
-  swarf_status_snapshot s;
+  swarf_job_snapshot s;
   uint16_t regs[SWARF_MB_NREGS];
   if (!p->connected && modbus_connect(p->ctx) != 0) {
     warn(p, modbus_strerror(errno));
     return;
   }
   p->connected = 1;
-  swarf_status_read(p->status, &s);
-  swarf_mb_map_registers(&s, swarf_status_now(), regs);
+  swarf_job_read(p->status, &s);
+  swarf_mb_map_registers(&s, swarf_job_now(), regs);
   if (modbus_write_registers(p->ctx, p->e.address, SWARF_MB_NREGS, regs) != SWARF_MB_NREGS) {
     warn(p, modbus_strerror(errno));
     modbus_close(p->ctx);
@@ -72,7 +72,7 @@ static void *loop(void *arg) {
   return NULL;
 }
 
-swarf_mb_push *swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_status *status, char *msg,
+swarf_mb_push *swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
                                  size_t msglen) {
   struct swarf_mb_push *p;
   if (e == NULL || status == NULL || e->kind != SWARF_MB_TCP) return NULL;

@@ -71,7 +71,7 @@ typedef struct {
   /* Called after every motion move with the report so far, the move's
    * source line, the tool in the spindle (0: none) and the stock as of the
    * last pass. A non-zero return stops the run (status 3, "aborted"). It
-   * runs in the simulation's thread: it must not block (tools/status.h). */
+   * runs in the simulation's thread: it must not block (tools/modbus/job.h). */
   int (*observe)(void *ctx, const swarf_sim_report *sofar, long line, int tool,
                  const swarf_stock *stock);
   void *observe_ctx;

@@ -1,7 +1,7 @@
 /* modbus_service.h -- the Modbus status service of `swarf simulate`, as the
  * command line sees it: its options, and start/finish around the run.
  *
- * Role: while the simulation runs, it publishes a status snapshot (status.h)
+ * Role: while the simulation runs, it publishes a status snapshot (job.h)
  * through the observer that swarf_modbus_start installs in the simulation's
  * config; TCP and RTU servers and push clients, each in its own thread,
  * serve that snapshot. The simulation never waits on the network.

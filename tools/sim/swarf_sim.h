@@ -1,0 +1,232 @@
+/* swarf_sim.h -- libswarf's simulation: a streaming handle from program text
+ * (or rigid motions) to the remaining stock.
+ *
+ * Role: wires the stages. Program text streams through the G-code
+ * interpreter, each move becomes a rigid motion of the cutter on the
+ * configured machine, its exact swept volume is built and removed from the
+ * stock in batches. The handle knows nothing of command-line flags, exit
+ * codes, terminals or Modbus: those are its clients' (tools/cli, tools/modbus).
+ *
+ * Shape (cmark's streaming parser, libmodbus's opaque handle):
+ *
+ *   swarf_sim_config cfg;
+ *   swarf_sim_config_init(&cfg);              defaults: xyz, 0.2 mm voxel, band 3
+ *   ... stock, tools, callbacks ...
+ *   swarf_sim *sim;
+ *   swarf_error err;
+ *   if (swarf_sim_new(&cfg, "part.ngc", &sim, &err) != SWARF_OK) ...
+ *   swarf_sim_feed(sim, text, len);           any number of times, any split
+ *   swarf_sim_finish(sim);                    last line, last batch, final report
+ *   swarf_stock *stock = swarf_sim_take_stock(sim);   now the caller's
+ *   swarf_sim_free(sim);
+ *
+ * Every call returns a swarf_status. After a failure the handle refuses
+ * further input (SWARF_ERR_STATE) and swarf_sim_error says what and where
+ * (file:line:column for G-code). Memory is bounded by the batch, not by the
+ * program. Callbacks run in the caller's thread, inside feed/finish/
+ * add_motion; they must not call back into the same handle.
+ *
+ * Units: mm, radians, seconds (G-code's inches and degrees are converted by
+ * the interpreter). Thread safety: one thread at a time per handle; distinct
+ * handles are independent; removal runs on TBB's threads inside.
+ */
+#ifndef SWARF_SIM_H
+#define SWARF_SIM_H
+
+#include <stddef.h>
+
+#include "engine.h"
+#include "stock.h"
+#include "swarf_status.h"
+#include "toolpath.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SWARF_SIM_MAX_TOOLS 64
+#define SWARF_SIM_MAX_ALARMS 16 /* alarms kept in the report; all go to the callback */
+
+/* ---- Configuration -------------------------------------------------------- */
+
+/* A tool in the tool table. */
+typedef struct {
+  int number;          /* T number, >= 1 */
+  swarf_cutter cutter; /* the cutting body (engine.h) */
+  double length;       /* G43 length offset, mm; 0: the controlled point is the tip */
+} swarf_sim_tool;
+
+typedef enum {
+  SWARF_SIM_STOCK_BOX = 0,  /* lo..hi */
+  SWARF_SIM_STOCK_CYLINDER  /* about axis (0 x, 1 y, 2 z) through the origin, radius,
+                             * from lo[axis] to hi[axis] along it */
+} swarf_sim_stock_kind;
+
+typedef struct {
+  swarf_sim_stock_kind kind;
+  double lo[3], hi[3]; /* the box, or the cylinder's bounding box, mm */
+  int axis;
+  double radius;
+} swarf_sim_stock;
+
+typedef struct swarf_sim swarf_sim;
+typedef struct swarf_sim_report swarf_sim_report;
+
+/* What happens on a tool's way that a machinist must hear about. The cut is
+ * still made as the machine would make it. */
+typedef enum {
+  SWARF_ALARM_RAPID = 0, /* a rapid (G0) cuts into material still there */
+  SWARF_ALARM_SHANK,     /* the shank enters material (non-cutting part) */
+  SWARF_ALARM_HOLDER,    /* the holder enters material */
+  SWARF_ALARM_FIXTURE,   /* any part of the tool enters a fixture */
+  SWARF_ALARM_GOUGE      /* material removed inside the design */
+} swarf_alarm_kind;
+
+typedef struct {
+  swarf_alarm_kind kind;
+  long line;     /* source line of the move, 1-based */
+  int column;    /* source column of its motion word */
+  int tool;      /* T number in the spindle */
+  double depth;  /* mm, deepest penetration found (NaN when not measured) */
+  double at[3];  /* mm, workpiece frame: where (NaN when not measured) */
+  int index;     /* FIXTURE: which fixture (1-based); 0 otherwise */
+} swarf_alarm;
+
+/* Progress, after every motion move (and after each chunk of a file). */
+typedef struct {
+  double fraction;                 /* of the program read, 0..1; < 0 while unknown */
+  long line;                       /* source line of the move */
+  int tool;                        /* T number in the spindle, 0 none */
+  const swarf_sim_report *report;  /* counts so far */
+  const swarf_stock *stock;        /* the stock as of the last removal pass (read only) */
+} swarf_sim_progress;
+
+/* Per source line that moved the tool, in program order, once its moves have
+ * been removed from the stock (so it may lag the feed by a batch). */
+typedef struct {
+  long line;
+  int tool;
+  long moves;
+  double time_s;  /* at programmed feeds */
+  double path_mm; /* tip path */
+  double removed; /* mm^3 this line removed from the stock as it stood; NaN unless
+                   * cfg.line_volumes */
+} swarf_line_result;
+
+typedef struct {
+  /* Non-zero return stops the run: the call returns SWARF_ERR_ABORTED. Must
+   * not block for long (the Modbus pause is the one wait, on its own flag). */
+  int (*progress)(void *user, const swarf_sim_progress *p);
+  void (*alarm)(void *user, const swarf_alarm *a);
+  void (*line)(void *user, const swarf_line_result *r);
+  void *user;
+} swarf_sim_callbacks;
+
+typedef struct {
+  swarf_machine machine; /* kinematics (toolpath.h); zero: xyz */
+  swarf_sim_stock stock; /* the initial stock, unless swarf_sim_new_with_stock */
+  double voxel;          /* voxel edge, mm */
+  int half_width;        /* narrow band, voxels each side (>= 3) */
+  int batch;             /* moves removed per stock pass (default 128) */
+  swarf_sim_tool tools[SWARF_SIM_MAX_TOOLS];
+  int ntools;            /* one tool: loaded at the start; more: T<n> M6 selects */
+  int line_volumes;      /* 1: measure each line's removed volume (swarf_line_result) */
+  /* Benchmark baseline only: when > 0 each move is not swept exactly but
+   * stamped at poses stamp_step mm apart, as stamping simulators do. */
+  double stamp_step;
+  swarf_sim_callbacks cb;
+} swarf_sim_config;
+
+/* Defaults: xyz machine, 0.2 mm voxel, band 3, batch 128, no tools, no stock
+ * (a stock or an existing stock handle must be given). */
+SWARF_API void swarf_sim_config_init(swarf_sim_config *cfg);
+
+/* Adds a tool; SWARF_ERR_ARG when the table is full or the number is taken. */
+SWARF_API swarf_status swarf_sim_config_add_tool(swarf_sim_config *cfg, const swarf_sim_tool *t,
+                                                 swarf_error *err);
+
+/* ---- The run -------------------------------------------------------------- */
+
+/* A new simulation of a program called `name` (used in messages; not
+ * opened). It builds the stock from cfg->stock. The config is copied: the
+ * caller may free it. On failure *out is NULL and err (may be NULL) says why. */
+SWARF_API swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name,
+                                     swarf_sim **out, swarf_error *err);
+
+/* The same on an existing stock (a .vdb read back, an earlier run's result):
+ * the handle takes ownership of `stock` in every case (freed on failure). Its
+ * voxel size wins over cfg->voxel. */
+SWARF_API swarf_status swarf_sim_new_with_stock(const swarf_sim_config *cfg, const char *name,
+                                                swarf_stock *stock, swarf_sim **out,
+                                                swarf_error *err);
+
+/* Feed `len` bytes of program text. Complete lines run at once. */
+SWARF_API swarf_status swarf_sim_feed(swarf_sim *sim, const char *text, size_t len);
+
+/* Feed the whole file at `path` in chunks (progress has a fraction then).
+ * Does not finish. */
+SWARF_API swarf_status swarf_sim_feed_file(swarf_sim *sim, const char *path);
+
+/* Add a rigid motion directly (toolpath.h, workpiece frame), without G-code:
+ * cut with tool m->tool (which must be in the table) and with the same
+ * alarms and accounting as a program's moves. */
+SWARF_API swarf_status swarf_sim_add_motion(swarf_sim *sim, const swarf_motion *m);
+
+/* End the program: the last unterminated line, the last batch, the final
+ * report (volume after). Further feeds get SWARF_ERR_STATE. */
+SWARF_API swarf_status swarf_sim_finish(swarf_sim *sim);
+
+/* What and where the last failure was (status SWARF_OK if none). Owned by
+ * the handle. */
+SWARF_API const swarf_error *swarf_sim_error(const swarf_sim *sim);
+
+/* Counts so far (final after finish). Owned by the handle. */
+struct swarf_sim_report {
+  long lines;                 /* program lines read */
+  long moves;                 /* motion moves (rapid, line, arc) */
+  long cutting_moves;         /* moves whose sweep touched the stock's bounds */
+  long rapids, arcs;          /* counts among moves */
+  long tool_changes;
+  double path_mm;             /* tip path length */
+  double machining_s;         /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
+  double volume_before;       /* stock volume at the start, mm^3 */
+  double volume_after;        /* at finish, mm^3 (NaN before) */
+  double seconds;             /* wall time from new to finish */
+  long alarms;                /* all alarms */
+  long alarm_count[5];        /* per swarf_alarm_kind */
+  swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */
+};
+SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);
+
+/* The stock: borrowed (valid until the next call on the handle) or taken
+ * (the caller owns it and frees it with swarf_stock_free; the handle then has
+ * none and refuses further input). Take it after finish for the result. */
+SWARF_API const swarf_stock *swarf_sim_stock(const swarf_sim *sim);
+SWARF_API swarf_stock *swarf_sim_take_stock(swarf_sim *sim);
+
+SWARF_API void swarf_sim_free(swarf_sim *sim);
+
+/* ---- One-shot conveniences ------------------------------------------------ */
+
+/* new + feed_file (or feed of `len` bytes of `text`) + finish + take_stock.
+ * On success *out is the caller's stock and *rep the final report; on failure
+ * *out is NULL, *rep the report so far and err (may be NULL) says why. */
+SWARF_API swarf_status swarf_sim_run(const swarf_sim_config *cfg, const char *path,
+                                     swarf_stock **out, swarf_sim_report *rep, swarf_error *err);
+SWARF_API swarf_status swarf_sim_run_text(const swarf_sim_config *cfg, const char *name,
+                                          const char *text, size_t len, swarf_stock **out,
+                                          swarf_sim_report *rep, swarf_error *err);
+
+/* ---- Specs as the command line and the Python module write them ----------- */
+
+/* "T<n>=<shape>,D<diameter>[,R<corner>][,L<length>]" (shape ball, flat, bull). */
+SWARF_API swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out,
+                                            swarf_error *err);
+/* "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" or "cylinder:AXIS,RADIUS,START,END". */
+SWARF_API swarf_status swarf_sim_parse_stock(const char *spec, swarf_sim_stock *out,
+                                             swarf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

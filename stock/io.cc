@@ -11,6 +11,7 @@
 /// the grid re-serialized by OpenVDB's own writer.
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <sys/stat.h>
@@ -25,6 +26,8 @@
 
 #include "atomic_file.h"
 #include "isolate.h"
+#include "legend.h"
+#include "mesh_file.h"
 #include "stock_private.h"
 
 namespace swarf {
@@ -38,15 +41,6 @@ public:
     openvdb::io::Archive::write(os, grids, /*seekable=*/true, openvdb::MetaMap());
   }
 };
-
-/// Throw Error(IO) unless `path` names an existing regular file.
-void check_readable(const char *path) {
-  struct stat st;
-  if (::stat(path, &st) != 0)
-    throw Error(SWARF_STOCK_ERR_IO, std::string("cannot open ") + path + ": " + std::strerror(errno));
-  if (!S_ISREG(st.st_mode))
-    throw Error(SWARF_STOCK_ERR_IO, std::string("cannot read ") + path + ": not a regular file");
-}
 
 bool is_float_level_set(const openvdb::GridBase &g) {
   return g.isType<openvdb::FloatGrid>() && g.getGridClass() == openvdb::GRID_LEVEL_SET;
@@ -118,6 +112,17 @@ size_t reader_address_space(const std::string &path) {
   return pages * size_t(::sysconf(_SC_PAGESIZE)) + (size_t(2) << 30) + 64 * file;
 }
 
+}  // namespace
+
+/// Throw Error(kErrOpen) unless `path` names an existing regular file.
+void check_readable(const char *path) {
+  struct stat st;
+  if (::stat(path, &st) != 0)
+    throw Error(kErrOpen, std::string("cannot open ") + path + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw Error(kErrOpen, std::string("cannot read ") + path + ": not a regular file");
+}
+
 /// Read the stock grid of `path` in a child process (see the file comment).
 openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   const IsolateLimits limits = {120, reader_address_space(path)};
@@ -135,6 +140,8 @@ openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   return grid;
 }
 
+namespace {
+
 /// A shallow copy of the stock's grid (sharing its tree) with swarf's metadata.
 openvdb::FloatGrid::Ptr grid_for_output(const swarf_stock &s) {
   openvdb::FloatGrid::Ptr g = s.grid->copy();
@@ -146,30 +153,6 @@ openvdb::FloatGrid::Ptr grid_for_output(const swarf_stock &s) {
   g->insertMeta("swarf_half_width_voxels", openvdb::Int32Metadata(s.half_width));
   g->insertMeta("swarf_units", openvdb::StringMetadata("mm"));
   return g;
-}
-
-void put_u32_le(unsigned char *p, uint32_t v) {
-  for (int i = 0; i < 4; i++) p[i] = (unsigned char)(v >> (8 * i));
-}
-
-void put_f32_le(unsigned char *p, float f) {
-  uint32_t v;
-  std::memcpy(&v, &f, 4);
-  put_u32_le(p, v);
-}
-
-/// One binary STL record (50 bytes): unit normal from the vertex order (right-
-/// hand rule), the three vertices, a zero attribute count.
-void put_triangle(unsigned char *p, const openvdb::Vec3s &a, const openvdb::Vec3s &b,
-                  const openvdb::Vec3s &c) {
-  openvdb::Vec3d n = (openvdb::Vec3d(b) - openvdb::Vec3d(a)).cross(openvdb::Vec3d(c) - openvdb::Vec3d(a));
-  const double len = n.length();
-  n = len > 0.0 ? n / len : openvdb::Vec3d(0.0);
-  const openvdb::Vec3s *v[3] = {&a, &b, &c};
-  for (int k = 0; k < 3; k++) put_f32_le(p + 4 * k, float(n[k]));
-  for (int i = 0; i < 3; i++)
-    for (int k = 0; k < 3; k++) put_f32_le(p + 12 + 12 * i + 4 * k, (*v[i])[k]);
-  p[48] = p[49] = 0;
 }
 
 /// The zero isosurface as triangles (quads split along their 0-2 diagonal),
@@ -200,19 +183,35 @@ struct Mesh {
   size_t count() const { return out.size(); }
 };
 
-void write_stl_body(std::ostream &os, const Mesh &m) {
-  unsigned char head[84] = {0};
-  std::snprintf(reinterpret_cast<char *>(head), 80, "swarf stock: zero isosurface, mm");
-  put_u32_le(head + 80, uint32_t(m.count()));
-  os.write(reinterpret_cast<const char *>(head), 84);
-  std::vector<unsigned char> buf;
-  buf.reserve(50 * 4096);
-  for (const openvdb::Vec3I &t : m.out) {
-    buf.resize(buf.size() + 50);
-    put_triangle(buf.data() + buf.size() - 50, m.points[t[0]], m.points[t[1]], m.points[t[2]]);
-    if (buf.size() >= 50 * 4096) os.write(reinterpret_cast<const char *>(buf.data()), buf.size()), buf.clear();
+/// Write the zero isosurface in `format`, with deviation colours when opt has
+/// a design and the format holds them (see stock.h).
+size_t write_mesh_file(const swarf_stock &s, const char *path, const swarf_stock_output &opt,
+                       MeshFormat format) {
+  double tol = 0.0, range = 0.0;
+  output_scale(s, opt, tol, range);
+  Mesh m;
+  openvdb::tools::volumeToMesh(*s.grid, m.points, m.triangles, m.quads, 0.0, 0.0);
+  m.triangulate();
+  std::vector<unsigned char> rgb;
+  std::vector<float> dev;
+  if (opt.design && format == MeshFormat::kPly) {
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*opt.design->grid);
+    rgb.resize(3 * m.points.size());
+    dev.resize(m.points.size());
+    for (size_t i = 0; i < m.points.size(); i++) {
+      dev[i] = float(sampler.wsSample(openvdb::Vec3d(m.points[i])));
+      float c[3];
+      deviation_colour(dev[i], tol, range, c);
+      for (int k = 0; k < 3; k++) rgb[3 * i + k] = (unsigned char)std::lround(255.0f * c[k]);
+    }
   }
-  os.write(reinterpret_cast<const char *>(buf.data()), buf.size());
+  static_assert(sizeof(openvdb::Vec3s) == 3 * sizeof(float) && sizeof(openvdb::Vec3I) == 3 * sizeof(uint32_t),
+                "packed vectors");
+  const MeshView view{reinterpret_cast<const float *>(m.points.data()), m.points.size(),
+                      reinterpret_cast<const uint32_t *>(m.out.data()), m.out.size(),
+                      rgb.empty() ? nullptr : rgb.data(), dev.empty() ? nullptr : dev.data()};
+  write_atomic(path, [&](std::ostream &os) { write_mesh(os, view, format); });
+  return m.count();
 }
 
 }  // namespace
@@ -246,12 +245,18 @@ extern "C" int swarf_stock_write_stl(const swarf_stock *s, const char *path, siz
   if (ntri) *ntri = 0;
   return swarf::guard(msg, msglen, [&] {
     if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
-    swarf::check_path(path);
-    swarf::Mesh m;
-    openvdb::tools::volumeToMesh(*s->grid, m.points, m.triangles, m.quads, 0.0, 0.0);
-    m.triangulate();
-    if (m.count() > UINT32_MAX) throw Error(SWARF_STOCK_ERR_ARG, "mesh has too many triangles for STL");
-    swarf::write_atomic(path, [&](std::ostream &os) { swarf::write_stl_body(os, m); });
-    if (ntri) *ntri = m.count();
+    const size_t n = swarf::write_mesh_file(*s, path, swarf_stock_output{}, swarf::MeshFormat::kStl);
+    if (ntri) *ntri = n;
+  });
+}
+
+extern "C" swarf_status swarf_stock_write_mesh(const swarf_stock *s, const char *path,
+                                               const swarf_stock_output *opt, size_t *ntri,
+                                               swarf_error *err) {
+  if (ntri) *ntri = 0;
+  return swarf::guard_status(err, nullptr, [&] {
+    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+    const size_t n = swarf::write_mesh_file(*s, path, opt ? *opt : swarf_stock_output{}, swarf::mesh_format(path));
+    if (ntri) *ntri = n;
   });
 }

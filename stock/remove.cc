@@ -33,6 +33,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 
 #include "stock_private.h"
 
@@ -57,6 +59,7 @@ struct Pass {
   double reach;   ///< half diagonal of a block plus the band, mm
   double eps;     ///< margin (mm) of the per-voxel Lipschitz test
   float radius[Leaf::SIZE];  ///< distance (mm) from each voxel centre to the block centre
+  const Measure *measure = nullptr;  ///< measured removal (per-cut volumes, gouges)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -117,6 +120,11 @@ void list_pairs(Pass &p, size_t ncuts) {
   }
   if (ncuts > 1) tbb::parallel_sort(w.pairs.begin(), w.pairs.end(), pair_less);
   w.centre_sdf.resize(w.pairs.size());
+  if (p.measure) {
+    w.removed.assign(w.pairs.size(), 0.0);
+    w.gouge.assign(w.pairs.size(), 0.0);
+    w.gouge_at.assign(w.pairs.size(), Vec3d(0.0));
+  }
   for (size_t i = 0; i < w.pairs.size(); i++) {
     const BlockCut &q = w.pairs[i];
     if (i == 0 || q.x != w.pairs[i - 1].x || q.y != w.pairs[i - 1].y || q.z != w.pairs[i - 1].z)
@@ -136,6 +144,15 @@ bool block_outside(const Pass &p, ConstAcc &acc, const Coord &o, const Leaf **le
   return true;
 }
 
+/// Sum of the inside fractions of the block's voxels (leaf, or the tile at o).
+double block_material(const Pass &p, ConstAcc &acc, const Coord &o, const Leaf *leaf) {
+  if (leaf == nullptr) return Leaf::SIZE * inside_fraction(acc.getValue(o), p.voxel);
+  double sum = 0.0;
+  const float *v = leaf->buffer().data();
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) sum += inside_fraction(v[n], p.voxel);
+  return sum;
+}
+
 /// Pass 2 for one block: keep the cuts that reach into it (compacted to the
 /// front of its pair range, with their centre values) and choose its action.
 void classify(const Pass &p, ConstAcc &acc, Block &b) {
@@ -149,13 +166,22 @@ void classify(const Pass &p, ConstAcc &acc, Block &b) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
     const double d = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
     if (d > p.reach) continue;  // untouched (a NaN is kept: its voxels decide)
-    if (-d > p.reach) {
+    if (-d > p.reach && p.measure == nullptr) {
+      b.action = kClear;
+      return;
+    }
+    if (-d > p.reach && kept == 0 && p.measure->design == nullptr) {
+      // Measured: the first cut reaching the block clears it and removes all of it.
+      w.pairs[b.begin] = w.pairs[i];
+      w.removed[b.begin] = block_material(p, acc, b.origin, leaf);
+      b.count = 1;
       b.action = kClear;
       return;
     }
     w.pairs[b.begin + kept] = w.pairs[i];
     w.centre_sdf[b.begin + kept] = d;
     kept++;
+    if (-d > p.reach) break;  // measured: it clears every voxel; later cuts find nothing
   }
   b.count = kept;
   if (kept > 0) b.action = leaf ? kVisitLeaf : kVisitTile;
@@ -215,6 +241,77 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
     if (data[n] != data[0]) return;
   b.action = kCollapse;
   b.tile = data[0];
+}
+
+/// A voxel's value as stored: float, clamped to the band.
+inline float stored(double m, float bgf) {
+  const float v = float(m);
+  return v >= bgf ? bgf : v <= -bgf ? -bgf : v;
+}
+
+/// Pass 4, measured: the block's cuts in their order on each voxel; each one
+/// that raises the value is credited with the inside fraction it removed and
+/// checked for a gouge (material before it, inside it, into the design).
+void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
+  RemoveScratch &w = p.s.scratch;
+  const float bgf = p.bgf;
+  const double tol = p.measure->tolerance;
+  const float *data = leaf.buffer().data();
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        const float old = data[n];
+        if (!(old < bgf)) continue;  // outside stays outside
+        const Vec3d q = block_point(p, b.origin, x, y, z);
+        float v = old;
+        double dq = 0.0;
+        bool have_dq = false;
+        for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
+          if (w.centre_sdf[i] - p.radius[n] + v >= p.eps) continue;  // cannot raise v
+          const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+          const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+          const float nv = stored(d, bgf);
+          if (!(nv > v)) continue;
+          w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+          if (design && v < 0.0f && d > 0.0) {
+            if (!have_dq) dq = design->at(q), have_dq = true;
+            const double depth = -dq + vouched_radius(std::min(d, -double(v)), p.voxel);
+            if (depth > tol && depth > w.gouge[i]) w.gouge[i] = depth, w.gouge_at[i] = q;
+          }
+          v = nv;
+          if (v >= bgf) break;
+        }
+        if (!(v > old)) continue;
+        if (v >= bgf) leaf.setValueOff(n, bgf);
+        else if (v <= -bgf) leaf.setValueOff(n, -bgf);
+        else leaf.setValueOn(n, v);
+      }
+  if (!leaf.isInactive()) return;
+  for (openvdb::Index n = 1; n < Leaf::SIZE; n++)
+    if (data[n] != data[0]) return;
+  b.action = kCollapse;
+  b.tile = data[0];
+}
+
+/// Measured: the pairs' findings added up per cut, in pair order (deterministic).
+void report_effects(const Pass &p, size_t ncuts) {
+  const RemoveScratch &w = p.s.scratch;
+  swarf_stock_cut_effect *e = p.measure->effects;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), v3 = p.voxel * p.voxel * p.voxel;
+  std::vector<double> removed(ncuts, 0.0);
+  for (size_t i = 0; i < ncuts; i++) e[i].removed = 0.0, e[i].gouge_depth = 0.0, e[i].gouge_at[0] = e[i].gouge_at[1] = e[i].gouge_at[2] = nan;
+  for (const Block &b : w.blocks)
+    for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
+      if (b.action == kSkip) break;
+      swarf_stock_cut_effect &c = e[w.pairs[i].cut];
+      removed[w.pairs[i].cut] += w.removed[i];
+      if (w.gouge[i] > c.gouge_depth) {
+        c.gouge_depth = w.gouge[i];
+        for (int k = 0; k < 3; k++) c.gouge_at[k] = w.gouge_at[i][k];
+      }
+    }
+  for (size_t i = 0; i < ncuts; i++) e[i].removed = removed[i] * v3;
 }
 
 /// Pass 5: leaves without band become tiles, serial.
@@ -279,12 +376,49 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
   return false;
 }
 
-void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts) {
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}};
+/// Deepest gouge of the cut into the design where the stock has material (see stock.h).
+double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
+                 double tolerance, Vec3d &where) {
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  init_pass(p);
+  Coord a, b;
+  double best = 0.0;
+  if (!cut_blocks(p, cut, a, b)) return best;
+  ConstAcc acc(s.grid->constTree());
+  GridProbe probe(design, s);
+  const double half_diagonal = p.reach - p.bgf;
+  for (int x = a.x(); x <= b.x(); x += 8)
+    for (int y = a.y(); y <= b.y(); y += 8)
+      for (int z = a.z(); z <= b.z(); z += 8) {
+        const Coord o(x, y, z);
+        const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
+        if (cut.sdf(cut.ctx, c.x(), c.y(), c.z()) - half_diagonal >= 0.0) continue;  // no centre in the cut
+        const Leaf *leaf = acc.probeConstLeaf(o);
+        const float tile = leaf ? 0.0f : acc.getValue(o);
+        if (!leaf && !(tile < 0.0f)) continue;
+        for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+          const double v = leaf ? leaf->getValue(n) : tile;
+          if (!(v < 0.0)) continue;
+          const Coord l = Leaf::offsetToLocalCoord(n);
+          const Vec3d q = block_point(p, o, l.x(), l.y(), l.z());
+          const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+          if (!(d > 0.0)) continue;
+          const double depth = -probe.at(q) + vouched_radius(std::min(d, -v), p.voxel);
+          if (depth > tolerance && depth > best) best = depth, where = q;
+        }
+      }
+  return best;
+}
+
+void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, const Measure *measure) {
+  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, measure};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);
-  if (w.blocks.empty()) return;
+  if (w.blocks.empty()) {
+    if (measure) report_effects(p, ncuts);
+    return;
+  }
   const Tree &ctree = s.grid->constTree();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, w.blocks.size(), 16),
                     [&](const tbb::blocked_range<size_t> &r) {
@@ -296,12 +430,16 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, w.visit.size(), 1),
                     [&](const tbb::blocked_range<size_t> &r) {
                       Acc acc(tree);
+                      std::unique_ptr<GridProbe> design;
+                      if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
                       for (size_t i = r.begin(); i != r.end(); ++i) {
                         Block &b = w.blocks[w.visit[i]];
-                        visit_leaf(p, *acc.probeLeaf(b.origin), b);
+                        if (measure) visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
+                        else visit_leaf(p, *acc.probeLeaf(b.origin), b);
                       }
                     });
   collapse(p);
+  if (measure) report_effects(p, ncuts);
 }
 
 }  // namespace swarf
@@ -362,5 +500,42 @@ extern "C" int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *c
     if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_STOCK_ERR_ARG, "too many cuts in one batch");
     for (size_t i = 0; i < ncuts; i++) check_cut(cuts[i], i);
     swarf::remove_cuts(*s, cuts, ncuts);
+  });
+}
+
+extern "C" swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stock *design,
+                                          const swarf_stock_cut *cut, double tolerance,
+                                          double *depth, double where[3], swarf_error *err) {
+  if (depth) *depth = 0.0;
+  if (where) where[0] = where[1] = where[2] = std::numeric_limits<double>::quiet_NaN();
+  return swarf::guard_status(err, nullptr, [&] {
+    if (s == nullptr || design == nullptr || cut == nullptr || depth == nullptr)
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, design, cut or depth is NULL");
+    check_cut(*cut, 0);
+    if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "tolerance must be finite and >= 0");
+    openvdb::Vec3d q;
+    *depth = swarf::cut_gouge(*s, *design, *cut, tolerance, q);
+    if (*depth > 0.0 && where != nullptr)
+      for (int k = 0; k < 3; k++) where[k] = q[k];
+  });
+}
+
+extern "C" swarf_status swarf_stock_remove_batch_measured(swarf_stock *s,
+                                                          const swarf_stock_cut *cuts, size_t ncuts,
+                                                          const swarf_stock *design,
+                                                          double tolerance,
+                                                          swarf_stock_cut_effect *effects,
+                                                          swarf_error *err) {
+  return swarf::guard_status(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+    if (ncuts == 0) return;
+    if (cuts == nullptr || effects == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "cuts or effects is NULL");
+    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_STOCK_ERR_ARG, "too many cuts in one batch");
+    if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "tolerance must be finite and >= 0");
+    for (size_t i = 0; i < ncuts; i++) check_cut(cuts[i], i);
+    const swarf::Measure m{design, tolerance, effects};
+    swarf::remove_cuts(*s, cuts, ncuts, &m);
   });
 }

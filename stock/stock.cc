@@ -138,7 +138,7 @@ void check_box_args(const double lo[3], const double hi[3], double voxel, int ha
 swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, int half_width,
                         swarf_stock_sdf_fn outside, const void *ctx) {
   init_openvdb();
-  const float bg = float(half_width * voxel);
+  const float bg = band_background(half_width, voxel);
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bg);
   grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
@@ -165,13 +165,6 @@ swarf_stock *make_box(const double lo[3], const double hi[3], double voxel, int 
   Box box;
   for (int k = 0; k < 3; k++) box.lo[k] = lo[k], box.hi[k] = hi[k];
   return make_shape(lo, hi, voxel, half_width, box_outside, &box);
-}
-
-/// Fraction of voxel volume inside the material for a value phi (mm): a ramp
-/// one voxel wide, exact for a plane parallel to a voxel face at any offset.
-inline double inside_fraction(float phi, double voxel) {
-  const double t = 0.5 - phi / voxel;
-  return t > 1.0 ? 1.0 : t > 0.0 ? t : 0.0;  // NaN counts as outside
 }
 
 /// Volume (mm^3) enclosed by the zero level: voxel^3 times the sum of the
@@ -212,6 +205,12 @@ bool world_to_index(const swarf_stock &s, double x, double y, double z, openvdb:
 }
 
 }  // namespace
+
+float band_background(int half_width, double voxel) {
+  float bg = float(half_width * voxel);
+  while (double(bg) / voxel < double(half_width)) bg = std::nextafter(bg, std::numeric_limits<float>::infinity());
+  return bg;
+}
 
 void init_openvdb() {
   static std::once_flag once;

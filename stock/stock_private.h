@@ -11,6 +11,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <cmath>
 #include <cstdint>
 #include <new>
 #include <string>
@@ -43,6 +44,17 @@ struct RemoveScratch {
   std::vector<double> centre_sdf;  ///< sdf (mm) at the block centre, one per pair
   std::vector<Block> blocks;
   std::vector<uint32_t> visit;     ///< blocks whose voxels are visited
+  /// Measured removals only, one per pair: what the pair's cut did in the block.
+  std::vector<double> removed;     ///< inside fraction removed (voxels, not yet mm^3)
+  std::vector<double> gouge;       ///< deepest gouge (mm), 0 if none
+  std::vector<openvdb::Vec3d> gouge_at;
+};
+
+/// What a measured removal measures (remove_cuts).
+struct Measure {
+  const swarf_stock *design;  ///< may be NULL: no gouges
+  double tolerance;           ///< mm
+  swarf_stock_cut_effect *effects;  ///< one per cut, filled
 };
 
 /// Call openvdb::initialize() once per process (thread-safe).
@@ -61,7 +73,7 @@ template <class F> int guard(char *msg, size_t msglen, F &&body) noexcept {
       return SWARF_STOCK_OK;
     } catch (const Error &e) {
       set_message(msg, msglen, e.what());
-      return e.status;
+      return to_stock_status(e.status);
     } catch (const std::bad_alloc &) {
       set_message(msg, msglen, "out of memory");
       return SWARF_STOCK_ERR_MEMORY;
@@ -76,6 +88,33 @@ template <class F> int guard(char *msg, size_t msglen, F &&body) noexcept {
     set_message(msg, msglen, "internal error: unknown exception");
     return SWARF_STOCK_ERR_INTERNAL;
   }
+}
+
+/// guard() for the swarf_status API: every exception becomes a status and a
+/// message in err (may be NULL; cleared first), with `file` (may be NULL) as
+/// err->file. Never throws.
+template <class F> swarf_status guard_status(swarf_error *err, const char *file, F &&body) noexcept {
+  swarf_status st = SWARF_OK;
+  std::string text;
+  try {
+    try {
+      body();
+    } catch (const Error &e) {
+      st = to_swarf_status(e.status), text = e.what();
+    } catch (const std::bad_alloc &) {
+      st = SWARF_ERR_MEMORY, text = "out of memory";
+    } catch (const openvdb::Exception &e) {
+      st = SWARF_ERR_INTERNAL, text = std::string("OpenVDB: ") + e.what();
+    } catch (const std::exception &e) {
+      st = SWARF_ERR_INTERNAL, text = std::string("internal error: ") + e.what();
+    }
+  } catch (...) {
+    st = SWARF_ERR_INTERNAL, text = "internal error: unknown exception";
+  }
+  swarf_error_init(err);
+  if (file != nullptr) swarf_error_at(err, file, 0, 0, nullptr);
+  if (st != SWARF_OK) swarf_error_set(err, st, "%s", text.c_str());
+  return st;
 }
 
 }  // namespace swarf
@@ -102,17 +141,104 @@ swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid);
 /// Apply stock = max(stock, -sdf) for every cut (remove.cc). Arguments are
 /// assumed checked. On an exception the stock may be partly cut but stays a
 /// valid narrow band.
-void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts);
+void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
+                 const Measure *measure = nullptr);
+
+/// Tolerance and colour range (mm) of an output's options with the defaults
+/// of stock.h filled in (render.cc). Throws Error(ARG) for bad values.
+void output_scale(const swarf_stock &s, const swarf_stock_output &o, double &tol, double &range);
+
+/// Throw Error(ARG) unless the design's and the stock's bounds meet (compare.cc).
+void check_design(const swarf_stock &s, const swarf_stock &design);
+
+/// Deepest gouge of the cut (see swarf_stock_gouge; arguments checked):
+/// depth (0 if not deeper than the tolerance) and where (remove.cc).
+double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
+                 double tolerance, openvdb::Vec3d &where);
 
 /// True if the cut (checked) overlaps the material deeper than depth (mm):
 /// a voxel centre, returned in where, lies that deep inside both (remove.cc).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth,
                   openvdb::Vec3d &where);
 
+/// The band half-width in mm for `half_width` voxels of `voxel` mm, as a float
+/// background: the smallest float with background / voxel >= half_width in
+/// double (OpenVDB's checkLevelSet tests exactly that; float(3 * 0.3) = 0.9f
+/// is below 3 * 0.3 and failed it).
+float band_background(int half_width, double voxel);
+
+/// Throw Error(kErrOpen) unless `path` names an existing regular file (io.cc).
+void check_readable(const char *path);
+
+/// The float level set of a .vdb file ("stock", or the first), read in a
+/// child process (io.cc; untrusted input). Throws Error(FORMAT) otherwise.
+openvdb::FloatGrid::Ptr read_grid(const std::string &path);
+
 /// World position (mm) of the centre of voxel ijk.
 inline openvdb::Vec3d index_to_world(const swarf_stock &s, const openvdb::Coord &ijk) {
   return s.origin + s.voxel * ijk.asVec3d();
 }
+
+/// Inside fraction of a voxel whose value is phi (mm): a ramp one voxel wide,
+/// exact for a plane parallel to a voxel face at any offset; NaN counts as outside.
+inline double inside_fraction(double phi, double voxel) {
+  const double t = 0.5 - phi / voxel;
+  return t > 1.0 ? 1.0 : t > 0.0 ? t : 0.0;
+}
+
+/// Reads a level set (a design, another stock) at the voxel centres of a
+/// grid `frame`: the stored values when both lattices coincide (same voxel,
+/// origins whole voxels apart), trilinear interpolation otherwise. One per
+/// thread (it holds a value accessor). Outside its content: its background.
+class GridProbe {
+public:
+  GridProbe(const swarf_stock &g, const swarf_stock &frame)
+      : g_(g), acc_(g.grid->constTree()), aligned_(lattices_coincide(g, frame)) {}
+  /// Value (mm) at world point w (a voxel centre of frame).
+  double at(const openvdb::Vec3d &w) {
+    const openvdb::Vec3d i = (w - g_.origin) / g_.voxel;
+    if (aligned_) return acc_.getValue(openvdb::Coord(int(std::lround(i[0])), int(std::lround(i[1])), int(std::lround(i[2]))));
+    return trilinear(i);
+  }
+  /// Value at the frame's voxel whose index in g is ijk (aligned probes only).
+  float at_index(const openvdb::Coord &ijk) { return acc_.getValue(ijk); }
+  bool aligned() const { return aligned_; }
+  /// The index in g of a world point, rounded (aligned probes only).
+  openvdb::Coord index_of(const openvdb::Vec3d &w) const {
+    const openvdb::Vec3d i = (w - g_.origin) / g_.voxel;
+    return openvdb::Coord(int(std::lround(i[0])), int(std::lround(i[1])), int(std::lround(i[2])));
+  }
+  static bool lattices_coincide(const swarf_stock &a, const swarf_stock &b) {
+    if (std::fabs(a.voxel - b.voxel) > 1e-9 * a.voxel) return false;
+    for (int k = 0; k < 3; k++) {
+      const double d = (a.origin[k] - b.origin[k]) / a.voxel;
+      if (std::fabs(d - std::round(d)) > 1e-6) return false;
+    }
+    return true;
+  }
+
+private:
+  double trilinear(const openvdb::Vec3d &i) {
+    const double fx = std::floor(i[0]), fy = std::floor(i[1]), fz = std::floor(i[2]);
+    if (!(std::fabs(fx) < 1e9 && std::fabs(fy) < 1e9 && std::fabs(fz) < 1e9)) return g_.background;
+    const openvdb::Coord c(static_cast<int>(fx), static_cast<int>(fy), static_cast<int>(fz));
+    const double u = i[0] - fx, v = i[1] - fy, w = i[2] - fz;
+    double r = 0.0;
+    for (int k = 0; k < 8; k++) {
+      const double wt = (k & 1 ? u : 1 - u) * (k & 2 ? v : 1 - v) * (k & 4 ? w : 1 - w);
+      if (wt != 0.0) r += wt * acc_.getValue(c.offsetBy(k & 1, (k >> 1) & 1, (k >> 2) & 1));
+    }
+    return r;
+  }
+  const swarf_stock &g_;
+  openvdb::tree::ValueAccessor<const openvdb::FloatTree> acc_;
+  bool aligned_;
+};
+
+/// How far (mm) the region a voxel centre vouches for reaches beyond it: the
+/// radius of the ball the region is known to hold (|value| of the grids
+/// bounding it), capped at one voxel (the estimate of stock.h's depths).
+inline double vouched_radius(double r, double voxel) { return r < voxel ? r : voxel; }
 
 }  // namespace swarf
 

@@ -14,7 +14,9 @@
 #include "stock.h"
 
 static int forks;
-static void count_fork(void) { forks++; }
+static void count_fork(void) {
+  forks++;
+}
 
 /* Reads `path`, returns how many forks that took; checks the contents. */
 static int read_forks(const char *path, const swarf_stock *ref, const char *what) {

@@ -28,12 +28,12 @@
 #ifndef SWARF_H
 #define SWARF_H
 
-#include "swarf_version.h"
-#include "swarf_status.h"
-#include "gcode.h"
-#include "toolpath.h"
 #include "engine.h"
+#include "gcode.h"
 #include "stock.h"
 #include "swarf_sim.h"
+#include "swarf_status.h"
+#include "swarf_version.h"
+#include "toolpath.h"
 
 #endif

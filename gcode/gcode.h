@@ -90,8 +90,8 @@ typedef struct swarf_gcode_parser swarf_gcode_parser;
 /* A new parser for a program called `filename` (used in error messages; it is
  * not opened). The machine starts at 0,0,0 (all axes), G17 G21 G90 G91.1 G94,
  * feed 0, spindle off, no tool. Returns NULL when out of memory. */
-swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
-                                           void *user);
+SWARF_API swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
+                                                     void *user);
 
 /* Called with each canonical call, formatted as `rs274 -g` prints it (a
  * sequence number, the N field, the call; no newline), in program
@@ -101,13 +101,14 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
 typedef void (*swarf_gcode_canon_fn)(const char *call, void *user);
 
 /* Sets the canon listener; call before the first feed. */
-int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn, void *user);
+SWARF_API int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
+                                           void *user);
 
 /* Loads a LinuxCNC tool table (lines "T1 P1 Z0.511 D0.125 ;comment"; values
  * in inches, as rs274 reads a table without an INI file). Call before the
  * first feed. Returns a status; *err says why it failed. */
-int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                  swarf_gcode_error *err);
+SWARF_API int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                            swarf_gcode_error *err);
 
 /* Empties the tool table (the built-in one of rs274 too: without a table,
  * tools 1-3 have rs274's lengths 0.511, 0.1 and 1.273 in), so that only tools
@@ -115,25 +116,26 @@ int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
  * (1..999): its length offset (mm, what G43 H<tool> applies) and diameter
  * (mm). Call before the first feed. The simulator gives every cutter length
  * 0: it follows the tool tip, so G43 with the right H changes nothing. */
-int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
-int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length, double diameter);
+SWARF_API int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
+SWARF_API int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length,
+                                          double diameter);
 
 /* Feed `len` bytes of program text (any split, CRLF or LF). Complete lines are
  * interpreted at once. Returns SWARF_GCODE_OK or an error; after an error the
  * parser refuses further input and swarf_gcode_parser_error says why. */
-int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
+SWARF_API int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
 
 /* Interpret the last, unterminated line if any, and end the program. */
-int swarf_gcode_parser_finish(swarf_gcode_parser *p);
+SWARF_API int swarf_gcode_parser_finish(swarf_gcode_parser *p);
 
 /* The error that stopped the parser, or NULL if none. Owned by the parser. */
-const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
+SWARF_API const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
 
 /* Number of lines read so far and whether the program ended (M2/M30/%). */
-long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
-int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
+SWARF_API long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
+SWARF_API int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
 
-void swarf_gcode_parser_free(swarf_gcode_parser *p);
+SWARF_API void swarf_gcode_parser_free(swarf_gcode_parser *p);
 
 /* ---- The machine's setup (call before the first feed) ----------------------
  * Without these calls a parser starts as rs274 without an INI file: the
@@ -197,8 +199,8 @@ SWARF_API long swarf_gcode_parser_units_line(const swarf_gcode_parser *p);
 
 /* Convenience: stream a whole file through a parser. Returns a status code;
  * on error *err (if not NULL) is filled. */
-int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
-                           swarf_gcode_error *err);
+SWARF_API int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
+                                     swarf_gcode_error *err);
 
 #ifdef __cplusplus
 }

@@ -53,6 +53,17 @@ swarf_status swarf_gc_fail(swarf_gc_fault *f, int code, const char *format, int 
   return f->status;
 }
 
+swarf_status swarf_gc_error(int code, const char *format, swarf_error *err, ...) {
+  va_list ap;
+  if (err == NULL) return swarf_gcode_error_status(code);
+  err->status = swarf_gcode_error_status(code);
+  err->code = code;
+  va_start(ap, err);
+  vsnprintf(err->message, sizeof err->message, format, ap);
+  va_end(ap);
+  return err->status;
+}
+
 swarf_status swarf_gc_fail_code(swarf_gc_fault *f, int code, int column) {
   const char *s = swarf_gcode_error_format(code);
   size_t k = 0;

@@ -26,34 +26,6 @@
 
 #define READ_CHUNK (64 * 1024)
 
-#define NTOOLS 1000 /* tool numbers 1..999 */
-
-struct swarf_gcode_parser {
-  swarf_gcode_move_fn fn;
-  void *user;
-  swarf_gcode_canon_fn canon;
-  void *canon_user;
-  long seq;                 /* rs274's call counter */
-  int canon_started;        /* the preamble was printed */
-  swarf_gc_state states[2]; /* the committed state and the next block's copy */
-  swarf_gc_state *state;    /* the committed one */
-  swarf_gc_params params;
-  swarf_gc_flow *flow;
-  swarf_gc_out out;
-  swarf_gc_out held; /* calls held back at the end of the last block (ccomp.c) */
-  double tools[NTOOLS][2];
-  long cur_line;           /* line of the block being run (stored lines too) */
-  swarf_error error;       /* .file holds the program's name from the start */
-  swarf_status status;     /* first error, sticky */
-  long lines;              /* lines read so far */
-  int seen_code;           /* a non-blank line was read */
-  int percent_open;        /* the program opened with a `%` line */
-  int ended;               /* M2, M30 or a closing `%` */
-  int finished;            /* swarf_gcode_parser_finish was called */
-  char *partial;           /* the unterminated line so far */
-  size_t partial_len, partial_cap;
-};
-
 static int is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r';
 }
@@ -255,7 +227,7 @@ static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n)
   swarf_gc_block b;
   swarf_gc_fault f;
   swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
-  swarf_gc_exec ex = {&p->params, &p->out, p->tools, NTOOLS};
+  swarf_gc_exec ex = {&p->params, &p->out, p->tools, SWARF_GC_NTOOLS};
   int status;
   *next = *p->state;
   out_start(p);
@@ -366,7 +338,7 @@ static swarf_status complete_line(swarf_gcode_parser *p, const char *s, size_t n
 /* Without a table, rs274's built-in one: tools 1-3 (inches). */
 static void default_tools(swarf_gcode_parser *p) {
   static const double z[3] = {0.511, 0.1, 1.273};
-  for (int t = 0; t < NTOOLS; t++)
+  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
   for (int t = 1; t <= 3; t++)
     p->tools[t][0] = z[t - 1] * SWARF_GC_MM_PER_INCH;
@@ -447,32 +419,17 @@ static void tool_line(swarf_gcode_parser *p, const char *line) {
     if (c == 'Z') z = atof(s + 1);
     if (c == 'D') d = atof(s + 1);
   }
-  if (t > 0 && t < NTOOLS) {
+  if (t > 0 && t < SWARF_GC_NTOOLS) {
     p->tools[t][0] = z * SWARF_GC_MM_PER_INCH;
     p->tools[t][1] = d * SWARF_GC_MM_PER_INCH;
   }
 }
 
-/* A file of the caller's cannot be used: *err (may be NULL) names it, no
- * line. FILE_FAIL(err, code, path, format arguments...), as SWARF_GC_FAIL. */
-#define FILE_FAIL(err, code, ...) file_fail((err), (code), swarf_gc_fmt_##code, __VA_ARGS__)
-static swarf_status file_fail(swarf_error *err, int code, const char *format, const char *path, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 5)))
-#endif
-    ;
-static swarf_status file_fail(swarf_error *err, int code, const char *format, const char *path,
-                              ...) {
-  va_list ap;
-  if (err == NULL) return swarf_gcode_error_status(code);
+/* *err (may be NULL), cleared, names a file of the caller's, no line. */
+static swarf_error *file_at(swarf_error *err, const char *path) {
   swarf_error_init(err);
   swarf_error_at(err, path, 0, 0, NULL);
-  err->status = swarf_gcode_error_status(code);
-  err->code = code;
-  va_start(ap, path);
-  vsnprintf(err->message, sizeof err->message, format, ap);
-  va_end(ap);
-  return err->status;
+  return err;
 }
 
 swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
@@ -481,8 +438,9 @@ swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *pa
   FILE *in;
   if (p == NULL || path == NULL) return SWARF_ERR_ARG;
   in = fopen(path, "r");
-  if (in == NULL) return FILE_FAIL(err, SWARF_GCODE_E_TOOL_TABLE_OPEN, path, strerror(errno));
-  for (int t = 0; t < NTOOLS; t++)
+  if (in == NULL)
+    return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_OPEN, file_at(err, path), strerror(errno));
+  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
   while (fgets(line, sizeof line, in) != NULL)
     tool_line(p, line);
@@ -493,14 +451,14 @@ swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *pa
 swarf_status swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
   if (p == NULL) return SWARF_ERR_ARG;
   if (p->lines > 0) return SWARF_ERR_STATE;
-  for (int t = 0; t < NTOOLS; t++)
+  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
   return SWARF_OK;
 }
 
 swarf_status swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length,
                                          double diameter) {
-  if (p == NULL || tool < 1 || tool >= NTOOLS) return SWARF_ERR_ARG;
+  if (p == NULL || tool < 1 || tool >= SWARF_GC_NTOOLS) return SWARF_ERR_ARG;
   if (!isfinite(length) || !isfinite(diameter) || diameter < 0) return SWARF_ERR_ARG;
   if (p->lines > 0) return SWARF_ERR_STATE;
   p->tools[tool][0] = length;
@@ -535,11 +493,12 @@ static swarf_status stream_file(FILE *in, swarf_gcode_parser *p, const char *pat
   char *chunk = malloc(READ_CHUNK);
   swarf_status status = SWARF_OK;
   size_t got;
-  if (chunk == NULL) return FILE_FAIL(err, SWARF_GCODE_E_OUT_OF_MEMORY, path);
+  if (chunk == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, file_at(err, path));
   while (status == SWARF_OK && !p->ended && (got = fread(chunk, 1, READ_CHUNK, in)) > 0)
     status = swarf_gcode_parser_feed(p, chunk, got);
   free(chunk);
-  if (status == SWARF_OK && ferror(in)) return FILE_FAIL(err, SWARF_GCODE_E_FILE_READ, path);
+  if (status == SWARF_OK && ferror(in))
+    return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_READ, file_at(err, path));
   return status;
 }
 
@@ -548,12 +507,13 @@ swarf_status swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, vo
   swarf_gcode_parser *p;
   FILE *in;
   swarf_status status;
-  if (path == NULL) return FILE_FAIL(err, SWARF_GCODE_E_NO_FILE_NAME, "");
+  if (path == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_NO_FILE_NAME, file_at(err, ""));
   in = fopen(path, "rb");
-  if (in == NULL) return FILE_FAIL(err, SWARF_GCODE_E_FILE_OPEN, path, strerror(errno));
+  if (in == NULL)
+    return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), strerror(errno));
   if (swarf_gcode_parser_new(path, fn, user, &p) != SWARF_OK) {
     fclose(in);
-    return FILE_FAIL(err, SWARF_GCODE_E_OUT_OF_MEMORY, path);
+    return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, file_at(err, path));
   }
   status = stream_file(in, p, path, err);
   fclose(in);

@@ -162,8 +162,8 @@ static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
 }
 
 static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
-  s->parser = swarf_gcode_parser_new(s->name, on_move, s);
-  if (s->parser == NULL || swarf_sim_batch_init(s) != 0)
+  if (swarf_gcode_parser_new(s->name, on_move, s, &s->parser) != SWARF_OK ||
+      swarf_sim_batch_init(s) != 0)
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   set_tool_table(s);
   if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
@@ -224,21 +224,17 @@ static swarf_status check_open(swarf_sim *s) {
   return SWARF_ERR_STATE;
 }
 
-/* Map the parser's outcome: its own errors carry their place. */
-static swarf_status parser_outcome(swarf_sim *s, int rc) {
-  const swarf_gcode_error *e = swarf_gcode_parser_error(s->parser);
-  if (rc == SWARF_GCODE_OK) return SWARF_OK;
-  if (rc == SWARF_GCODE_ERR_STOPPED)
-    return s->err.status != SWARF_OK ? s->err.status
-                                     : swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "stopped");
-  swarf_status st = rc == SWARF_GCODE_ERR_MEMORY   ? SWARF_ERR_MEMORY
-                    : rc == SWARF_GCODE_ERR_SYNTAX ? SWARF_ERR_SYNTAX
-                    : rc == SWARF_GCODE_ERR_ARG    ? SWARF_ERR_ARG
-                                                   : SWARF_ERR_SEMANTIC;
-  if (e == NULL) return swarf_sim_fail(s, st, 0, 0, "%s", swarf_status_message(st));
-  swarf_sim_fail(s, st, e->line, e->column, "%s", e->message);
-  snprintf(s->err.file, sizeof s->err.file, "%s", e->file);
-  return st;
+/* Map the parser's outcome: its own errors carry their place and identity;
+ * a stop asked by on_move carries the handle's own error. */
+static swarf_status parser_outcome(swarf_sim *s, swarf_status rc) {
+  const swarf_error *e = swarf_gcode_parser_error(s->parser);
+  if (rc == SWARF_OK) return SWARF_OK;
+  if (s->err.status != SWARF_OK) return s->err.status;
+  if (e == NULL || e->status == SWARF_OK)
+    return swarf_sim_fail(s, rc, 0, 0, "%s", swarf_status_message(rc));
+  s->err = *e;
+  s->state = SIM_FAILED;
+  return rc;
 }
 
 swarf_status swarf_sim_feed(swarf_sim *s, const char *text, size_t len) {

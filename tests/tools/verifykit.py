@@ -72,6 +72,20 @@ class Run:
         return [l for l in self.stderr.splitlines() if word in l]
 
 
+def grid_volume(path):
+    """The volume of the level set in a .vdb (pyopenvdb and numpy): voxel^3
+    times the sum of each voxel's inside fraction clamp(1/2 - value / voxel)."""
+    import numpy as np
+    import pyopenvdb as vdb
+    g = vdb.read(path, "stock")
+    vox = g.transform.voxelSize()[0]
+    lo, hi = g.evalActiveVoxelBoundingBox()
+    arr = np.empty(tuple(h - l + 1 for l, h in zip(lo, hi)), dtype=np.float32)
+    arr.fill(g.background)
+    g.copyToArray(arr, ijk=lo)
+    return float(np.clip(0.5 - arr.astype(np.float64) / vox, 0, 1).sum() * vox ** 3)
+
+
 def workdir():
     return tempfile.mkdtemp(prefix="swarf_verify_")
 

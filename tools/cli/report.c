@@ -28,6 +28,8 @@ struct swarf_report {
   size_t nslot;
   swarf_alarm *alarms;
   size_t nalarms, alarm_cap;
+  swarf_alarm *told, *gouges; /* swarf_report_alarms and _gouges */
+  size_t ntold, ngouges;
   int oom;
   int sorted;
 };
@@ -41,6 +43,8 @@ void swarf_report_free(swarf_report *r) {
   free(r->lines);
   free(r->slot);
   free(r->alarms);
+  free(r->told);
+  free(r->gouges);
   free(r);
 }
 
@@ -112,6 +116,80 @@ void swarf_report_add_alarm(swarf_report *r, const swarf_alarm *a) {
     r->alarm_cap = cap;
   }
   r->alarms[r->nalarms++] = *a;
+}
+
+/* Gouge indices by line, then by arrival. */
+static const swarf_alarm *sort_base;
+static int gouge_order(const void *a, const void *b) {
+  const size_t i = *(const size_t *)a, j = *(const size_t *)b;
+  if (sort_base[i].line != sort_base[j].line) return sort_base[i].line < sort_base[j].line ? -1 : 1;
+  return (i > j) - (i < j);
+}
+
+/* keep[i]: 1 if alarm i is told; a line's first gouge takes its deepest depth and place. */
+static int merge_gouges(swarf_report *r, char *keep, swarf_alarm *merged) {
+  size_t *g = malloc((r->nalarms ? r->nalarms : 1) * sizeof *g), ng = 0;
+  if (g == NULL) return -1;
+  for (size_t i = 0; i < r->nalarms; i++) {
+    merged[i] = r->alarms[i];
+    keep[i] = 1;
+    if (r->alarms[i].kind == SWARF_ALARM_GOUGE) g[ng++] = i;
+  }
+  sort_base = r->alarms;
+  qsort(g, ng, sizeof *g, gouge_order);
+  for (size_t a = 0, b; a < ng; a = b) {
+    swarf_alarm *first = &merged[g[a]];
+    for (b = a + 1; b < ng && r->alarms[g[b]].line == first->line; b++) {
+      const swarf_alarm *x = &r->alarms[g[b]];
+      keep[g[b]] = 0;
+      if (x->depth > first->depth) {
+        first->depth = x->depth;
+        memcpy(first->at, x->at, sizeof first->at);
+      }
+    }
+  }
+  free(g);
+  return 0;
+}
+
+const swarf_alarm *swarf_report_alarms(swarf_report *r, size_t *n) {
+  swarf_alarm *merged = malloc((r->nalarms ? r->nalarms : 1) * sizeof *merged);
+  char *keep = malloc(r->nalarms ? r->nalarms : 1);
+  size_t k = 0;
+  if (merged == NULL || keep == NULL || merge_gouges(r, keep, merged) != 0) {
+    free(merged);
+    free(keep);
+    r->oom = 1;
+    *n = 0;
+    return NULL;
+  }
+  for (size_t i = 0; i < r->nalarms; i++)
+    if (keep[i]) merged[k++] = merged[i];
+  free(keep);
+  free(r->told);
+  r->told = merged;
+  r->ntold = *n = k;
+  return merged;
+}
+
+static int gouge_by_line(const void *a, const void *b) {
+  const swarf_alarm *x = a, *y = b;
+  return (x->line > y->line) - (x->line < y->line);
+}
+
+const swarf_alarm *swarf_report_gouges(swarf_report *r, size_t *n) {
+  size_t nt, k = 0;
+  const swarf_alarm *t = swarf_report_alarms(r, &nt);
+  swarf_alarm *g = malloc((nt ? nt : 1) * sizeof *g);
+  *n = 0;
+  if (g == NULL) return r->oom = 1, NULL;
+  for (size_t i = 0; i < nt; i++)
+    if (t[i].kind == SWARF_ALARM_GOUGE) g[k++] = t[i];
+  qsort(g, k, sizeof *g, gouge_by_line); /* one a line: no ties */
+  free(r->gouges);
+  r->gouges = g;
+  r->ngouges = *n = k;
+  return g;
 }
 
 static int by_line(const void *a, const void *b) {
@@ -198,10 +276,12 @@ static json_t *tools_json(swarf_report *r) {
   return a;
 }
 
-static json_t *alarms_json(const swarf_report *r) {
+static json_t *alarms_json(swarf_report *r) {
   json_t *a = json_array();
-  for (size_t i = 0; i < r->nalarms; i++) {
-    const swarf_alarm *al = &r->alarms[i];
+  size_t n;
+  const swarf_alarm *told = swarf_report_alarms(r, &n);
+  for (size_t i = 0; i < n; i++) {
+    const swarf_alarm *al = &told[i];
     json_t *o = json_pack("{ss sI si si so so}", "kind", alarm_kind(al->kind), "line",
                           (json_int_t)al->line, "column", al->column, "tool", al->tool,
                           "depth_mm", num(al->depth), "at", point(al->at));
@@ -211,15 +291,17 @@ static json_t *alarms_json(const swarf_report *r) {
   return a;
 }
 
-static json_t *design_json(const swarf_report_design *d, double tolerance) {
-  return json_pack("{so so so so so so so}", "tolerance_mm", num(tolerance), "gouge_mm3",
-                   num(d->gouge_mm3), "gouge_depth_mm", num(d->gouge_depth_mm), "gouge_at",
-                   point(d->gouge_at), "excess_mm3", num(d->excess_mm3), "excess_mm",
-                   num(d->excess_mm), "excess_at", point(d->excess_at));
+static json_t *design_json(const swarf_stock_deviation *d) {
+  return json_pack("{so so so so so so so so so so so so}", "tolerance_mm", num(d->tolerance),
+                   "reach_mm", num(d->reach), "design_mm3", num(d->design_volume), "gouge_mm3",
+                   num(d->gouge_volume), "gouge_depth_mm", num(d->gouge_depth), "gouge_at",
+                   point(d->gouge_at), "gouge_clamped", json_boolean(d->gouge_clamped),
+                   "excess_mm3", num(d->excess_volume), "excess_mm", num(d->excess_height),
+                   "excess_at", point(d->excess_at), "excess_clamped",
+                   json_boolean(d->excess_clamped), "missing_mm3", num(d->missing_volume));
 }
 
-static json_t *summary_json(swarf_report *r, const swarf_sim_report *f,
-                            const swarf_report_inputs *in, const swarf_report_design *d) {
+static json_t *summary_json(swarf_report *r, const swarf_sim_report *f) {
   static const char *kinds[] = {"rapid", "shank", "holder", "fixture", "gouge"};
   json_t *s, *counts = json_object();
   double rate = 0;
@@ -233,17 +315,17 @@ static json_t *summary_json(swarf_report *r, const swarf_sim_report *f,
                 num(f->machining_s), "volume_before_mm3", num(f->volume_before),
                 "volume_after_mm3", num(f->volume_after), "removed_mm3",
                 num(f->volume_before - f->volume_after), "simulation_s", num(f->seconds),
-                "start", json_pack("{so sb}", "at", point(in->start), "default", in->start_default),
+                "start", json_pack("{so sb}", "at", point(f->start), "default", f->start_default),
                 "alarms", (json_int_t)f->alarms, "alarm_counts", counts);
   json_object_set_new(s, "peak_mrr",
                       peak > 0 ? json_pack("{sI si sf}", "line", (json_int_t)peak, "tool", tool,
                                            "mm3_per_min", rate)
                                : json_null());
+  json_object_set_new(s, "units_line", f->units_line > 0 ? json_integer(f->units_line) : json_null());
   json_object_set_new(s, "units_warning_line",
-                      in->units_warning_line > 0 ? json_integer(in->units_warning_line)
-                                                 : json_null());
-  json_object_set_new(s, "design", d != NULL && d->present ? design_json(d, in->tolerance)
-                                                           : json_null());
+                      f->units_missing_line > 0 ? json_integer(f->units_missing_line)
+                                                : json_null());
+  json_object_set_new(s, "design", f->has_deviation ? design_json(&f->deviation) : json_null());
   return s;
 }
 
@@ -254,12 +336,13 @@ static json_t *str_or_null(const char *s) {
 static json_t *inputs_json(const swarf_report_inputs *in) {
   json_t *tools = json_array();
   for (int i = 0; i < in->ntools; i++) json_array_append_new(tools, json_string(in->tools[i]));
-  return json_pack("{so so so so so so so so so so ss}", "program", str_or_null(in->program),
+  return json_pack("{so so so so so so so so so so so ss}", "program", str_or_null(in->program),
                    "stock", str_or_null(in->stock), "tools", tools, "voxel", num(in->voxel),
                    "machine", str_or_null(in->machine ? in->machine : "xyz"), "offsets",
                    str_or_null(in->offsets), "g54", in->g54 ? point(in->g54) : json_null(),
-                   "units", str_or_null(in->units), "design", str_or_null(in->design),
-                   "tolerance", in->design ? num(in->tolerance) : json_null(), "version",
+                   "start", in->start ? point(in->start) : json_null(), "units",
+                   str_or_null(in->units), "design", str_or_null(in->design), "tolerance",
+                   in->design && in->tolerance > 0 ? num(in->tolerance) : json_null(), "version",
                    SWARF_VERSION);
 }
 
@@ -294,13 +377,12 @@ static swarf_status write_atomic(const json_t *doc, const char *path, swarf_erro
 }
 
 swarf_status swarf_report_write(swarf_report *r, const swarf_sim_report *final,
-                                const swarf_report_inputs *in, const swarf_report_design *design,
-                                const char *path, swarf_error *err) {
+                                const swarf_report_inputs *in, const char *path, swarf_error *err) {
   json_t *doc;
   swarf_status s;
   if (r->oom) return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");
   doc = json_pack("{si so so so so so}", "swarf_report", 1, "summary",
-                  summary_json(r, final, in, design), "lines", lines_json(r), "tools",
+                  summary_json(r, final), "lines", lines_json(r), "tools",
                   tools_json(r), "alarms", alarms_json(r), "inputs", inputs_json(in));
   if (doc == NULL || r->oom) {
     json_decref(doc);

@@ -3,7 +3,7 @@
  * Role: a client of the driver (swarf_sim.h). It collects what the driver's
  * line and alarm callbacks hand out -- per source line and tool: moves, time,
  * tip path and the volume removed -- sums them per tool, and writes them with
- * the final report, the design comparison (if any) and the run's inputs to
+ * the final report (the design comparison included) and the run's inputs to
  * one JSON document (jansson; the schema is in README.md). The file is
  * written to a temporary name in the same folder and renamed into place.
  *
@@ -38,20 +38,11 @@ typedef struct {
   const char *program, *stock, *machine, *offsets, *units, *design;
   const char *const *tools; /* --tool specs */
   int ntools;
-  double voxel;     /* of the stock, mm */
-  double tolerance; /* design tolerance, mm (with design) */
-  const double *g54;   /* [3], mm, or NULL */
-  double start[3];     /* tool tip at the start, workpiece frame, mm */
-  int start_default;   /* 1: X0 Y0 at the safe height (not --start) */
-  long units_warning_line; /* first move before any G20/G21; 0 none */
+  double voxel;       /* of the stock, mm */
+  double tolerance;   /* as given (<= 0: the default) */
+  const double *g54;  /* [3], mm, or NULL */
+  const double *start; /* [3], mm, or NULL (the default) */
 } swarf_report_inputs;
-
-/* The design comparison's results (NaN / 0 where not measured). */
-typedef struct {
-  int present;
-  double gouge_mm3, gouge_depth_mm, gouge_at[3];
-  double excess_mm3, excess_mm, excess_at[3];
-} swarf_report_design;
 
 swarf_report *swarf_report_new(void);
 void swarf_report_free(swarf_report *r);
@@ -65,14 +56,23 @@ void swarf_report_add_alarm(swarf_report *r, const swarf_alarm *a);
 /* The entries so far, sorted by line then tool (valid until the next add). */
 const swarf_report_line *swarf_report_lines(swarf_report *r, size_t *n);
 
+/* The alarms to tell: every one in program order, except that the gouges of
+ * one program line are one alarm (its deepest; the column of the first).
+ * *n gets the count; valid until the next call. */
+const swarf_alarm *swarf_report_alarms(swarf_report *r, size_t *n);
+
+/* The gouges of that list, one a program line, sorted by line. */
+const swarf_alarm *swarf_report_gouges(swarf_report *r, size_t *n);
+
 /* The line of the highest removal rate (removed / time over entries with
  * time > 0); *mm3_per_min its rate. 0 when nothing was removed. */
 long swarf_report_peak_mrr(swarf_report *r, double *mm3_per_min, int *tool);
 
-/* Writes the document to `path` (temporary name, then rename). */
+/* Writes the document to `path` (temporary name, then rename): the final
+ * report (its start, units check and design comparison included), the
+ * entries, the alarms and the inputs. */
 swarf_status swarf_report_write(swarf_report *r, const swarf_sim_report *final,
-                                const swarf_report_inputs *in, const swarf_report_design *design,
-                                const char *path, swarf_error *err);
+                                const swarf_report_inputs *in, const char *path, swarf_error *err);
 
 #ifdef __cplusplus
 }

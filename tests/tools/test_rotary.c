@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "move_motion.h"
 #include "sim.h"
 
 #define VOXEL 0.1
@@ -128,7 +129,7 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   memset(&cfg, 0, sizeof cfg);
   cfg.voxel = VOXEL;
   cfg.half_width = 3;
-  CHECK(swarf_machine_parse(&cfg.machine, machine, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(swarf_machine_parse(&cfg.machine, machine, NULL) == SWARF_OK, "%s", machine);
   CHECK(swarf_sim_parse_stock(stock, &cfg, msg, sizeof msg) == 0, "%s", msg);
   CHECK(swarf_sim_parse_tool(tool, &cfg.tools[0], msg, sizeof msg) == 0, "%s", msg);
   cfg.ntools = 1;
@@ -141,7 +142,7 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   mv.feed = 100;
   memcpy(mv.start, s6, sizeof mv.start);
   memcpy(mv.end, e6, sizeof mv.end);
-  CHECK(swarf_machine_motion(&cfg.machine, &mv, &m) == 0, "motion");
+  CHECK(swarf_machine_motion(&cfg.machine, &mv, &m, NULL) == SWARF_OK, "motion");
   swarf_sweep_init_voxel(&sw, &cfg.tools[0].cutter, &m, VOXEL);
   int n = (int)sw.aux[6]; /* the production's time steps */
   const swarf_cutter *c = &cfg.tools[0].cutter;

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "move_motion.h"
 #include "sim.h"
 
 /* A move stamped at n + 1 evenly spaced poses (the benchmark baseline). */
@@ -65,7 +66,8 @@ static double pose_sdf(const swarf_cutter *c, const double t[3], const double U[
  * one the swept sdf uses) for moves of up to 4096 stamps (600 kB a slot). */
 static double stamp_sdf(const void *ctx, double x, double y, double z) {
   const stamp_ctx *s = ctx;
-  const swarf_pose *table = s->n <= 4096 ? swarf_motion_pose_table(s->motion, s->n) : NULL;
+  const swarf_pose *table = NULL;
+  if (s->n <= 4096) swarf_motion_pose_table(s->motion, s->n, &table); /* NULL: poses computed */
   double best = INFINITY, t[3], U[9];
   for (int i = 0; i <= s->n; i++) {
     double d;
@@ -198,12 +200,10 @@ static int on_move(const swarf_move *mv, void *user) {
   swarf_motion *m = &st->motions[st->n];
   if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(st, mv);
   if (mv->kind == SWARF_MOVE_DWELL) return 0;
-  int rc = swarf_machine_motion(&st->cfg->machine, mv, m);
-  if (rc == -2)
-    return fail_at(st, mv,
-                   "this move turns a rotary axis the machine does not have; choose "
-                   "one with --machine xyza, xyzac-trt or xyzbc-trt");
-  if (rc != 0) return 0;
+  swarf_error e;
+  swarf_status rc = swarf_machine_motion(&st->cfg->machine, mv, m, &e);
+  if (rc == SWARF_ERR_MACHINE) return fail_at(st, mv, e.message);
+  if (rc != SWARF_OK) return 0;
   st->rep->moves++;
   st->rep->rapids += m->rapid;
   st->rep->arcs += m->kind == SWARF_MOTION_HELIX;

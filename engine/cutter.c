@@ -74,7 +74,8 @@ int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter
     return fail(why, "the cutting length of a bull nose cutter must be at least twice its corner "
                      "radius");
   memset(c, 0, sizeof *c);
-  for (int i = 0; i < 8; i++) c->param[i] = NAN;
+  for (int i = 0; i < 8; i++)
+    c->param[i] = NAN;
   c->shape = shape;
   c->diameter = diameter;
   c->corner_radius = r;

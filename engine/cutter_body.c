@@ -15,7 +15,8 @@ void swarf_cutter_begin(swarf_cutter *c) {
   if (c == NULL) return;
   memset(c, 0, sizeof *c);
   c->shape = SWARF_CUTTER_BODY;
-  for (int i = 0; i < 8; i++) c->param[i] = NAN;
+  for (int i = 0; i < 8; i++)
+    c->param[i] = NAN;
 }
 
 static swarf_profile_piece *new_piece(swarf_cutter *c, swarf_error *err) {
@@ -75,7 +76,8 @@ swarf_status swarf_cutter_add_hull_clipped(swarf_cutter *c, const double (*circl
                                            double top, swarf_error *err) {
   swarf_profile_piece *pc;
   double reach = 0.0;
-  if (c == NULL || circles == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no body or circles");
+  if (c == NULL || circles == NULL)
+    return swarf_error_set(err, SWARF_ERR_ARG, "no body or circles");
   if (n < 1 || n > SWARF_PIECE_MAX_CIRCLES)
     return swarf_error_set(err, SWARF_ERR_TOOL, "a hull piece takes 1 to %d circles (got %d)",
                            SWARF_PIECE_MAX_CIRCLES, n);
@@ -83,12 +85,14 @@ swarf_status swarf_cutter_add_hull_clipped(swarf_cutter *c, const double (*circl
     const double *k = circles[i];
     if (!isfinite(k[0]) || !isfinite(k[1]) || !isfinite(k[2]) || k[0] < 0.0 || k[2] < 0.0)
       return swarf_error_set(err, SWARF_ERR_TOOL,
-                             "circle %d of a hull piece needs finite r >= 0, z, radius >= 0", i + 1);
+                             "circle %d of a hull piece needs finite r >= 0, z, radius >= 0",
+                             i + 1);
     reach = fmax(reach, k[0] + k[2]);
   }
   if (!(reach > 0.0))
-    return swarf_error_set(err, SWARF_ERR_TOOL, "a hull piece has no width (every circle on the axis "
-                                                "with radius 0)");
+    return swarf_error_set(err, SWARF_ERR_TOOL,
+                           "a hull piece has no width (every circle on the axis "
+                           "with radius 0)");
   if ((pc = new_piece(c, err)) == NULL) return SWARF_ERR_TOOL;
   pc->kind = SWARF_PIECE_HULL;
   pc->convex = 1;
@@ -112,10 +116,11 @@ swarf_status swarf_cutter_add_frustum(swarf_cutter *c, double z0, double r0, dou
                                       swarf_error *err) {
   const double k[2][3] = {{r0, z0, 0.0}, {r1, z1, 0.0}};
   if (!isfinite(z0) || !isfinite(z1) || !(z0 < z1))
-    return swarf_error_set(err, SWARF_ERR_TOOL, "a frustum needs heights z0 < z1 (got %g, %g)", z0, z1);
+    return swarf_error_set(err, SWARF_ERR_TOOL, "a frustum needs heights z0 < z1 (got %g, %g)", z0,
+                           z1);
   if (!isfinite(r0) || !isfinite(r1) || r0 < 0.0 || r1 < 0.0 || !(r0 + r1 > 0.0))
-    return swarf_error_set(err, SWARF_ERR_TOOL, "a frustum needs radii >= 0, not both 0 (got %g, %g)",
-                           r0, r1);
+    return swarf_error_set(err, SWARF_ERR_TOOL,
+                           "a frustum needs radii >= 0, not both 0 (got %g, %g)", r0, r1);
   return swarf_cutter_add_hull(c, k, 2, err);
 }
 
@@ -166,7 +171,8 @@ swarf_status swarf_cutter_add_qss(swarf_cutter *c, const swarf_qss *q, double li
                            "2a - b + f > 0 (got %g)",
                            pc->q0, pc->q0 - pc->q2);
   if (!qss_simple(pc))
-    return swarf_error_set(err, SWARF_ERR_TOOL, "the QSS profile crosses itself: it bounds no solid");
+    return swarf_error_set(err, SWARF_ERR_TOOL,
+                           "the QSS profile crosses itself: it bounds no solid");
   ends[ne++] = -1.0, ends[ne++] = 1.0, ends[ne++] = 0.0;
   if (pc->q2 != 0.0 && (cusp = (pc->q0 + 2.0 * pc->q2) / (3.0 * pc->q2)) > 0.0 && cusp < 1.0)
     ends[ne++] = sqrt(cusp), ends[ne++] = -sqrt(cusp);
@@ -186,7 +192,8 @@ swarf_status swarf_cutter_add_qss(swarf_cutter *c, const swarf_qss *q, double li
 swarf_status swarf_cutter_finish(swarf_cutter *c, swarf_error *err) {
   double rmax = 0.0, zlo = INFINITY, zhi = -INFINITY;
   if (c == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no body");
-  if (c->npieces == 0) return swarf_error_set(err, SWARF_ERR_TOOL, "a body needs at least one piece");
+  if (c->npieces == 0)
+    return swarf_error_set(err, SWARF_ERR_TOOL, "a body needs at least one piece");
   for (int i = 0; i < c->npieces; i++) {
     rmax = fmax(rmax, c->piece[i].rmax);
     zlo = fmin(zlo, c->piece[i].zlo);

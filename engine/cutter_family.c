@@ -24,7 +24,8 @@ void swarf_cutter_spec_init(swarf_cutter_spec *s) {
 #ifdef __GNUC__
 __attribute__((format(printf, 3, 4)))
 #endif
-static swarf_status bad(swarf_error *err, const char *letter, const char *fmt, ...) {
+static swarf_status
+bad(swarf_error *err, const char *letter, const char *fmt, ...) {
   char msg[400];
   va_list ap;
   va_start(ap, fmt);
@@ -34,7 +35,9 @@ static swarf_status bad(swarf_error *err, const char *letter, const char *fmt, .
   return swarf_error_set(err, SWARF_ERR_TOOL, "%s: %s", letter, msg);
 }
 
-static int given(double x) { return !isnan(x); }
+static int given(double x) {
+  return !isnan(x);
+}
 
 /* A positive finite number, or an error naming the letter. */
 static swarf_status need_pos(double x, const char *letter, const char *what, swarf_error *err) {
@@ -68,7 +71,8 @@ static swarf_status pointed(swarf_cutter *c, const swarf_cutter_spec *s, swarf_c
   if (!given(A)) return bad(err, "A", "the included angle is required (degrees, e.g. A90)");
   if (!(A > 0.0 && A < 180.0))
     return bad(err, "A", "the %s angle must be between 0 and 180 degrees (got %g)",
-               shape == SWARF_CUTTER_VEE || shape == SWARF_CUTTER_CHAMFER ? "included" : "point", A);
+               shape == SWARF_CUTTER_VEE || shape == SWARF_CUTTER_CHAMFER ? "included" : "point",
+               A);
   if (!isfinite(tip) || tip < 0.0 || !(tip < d))
     return bad(err, "T", "the tip diameter must be >= 0 and below D = %g (got %g)", d, tip);
   ta = tan(0.5 * A * DEG);
@@ -92,7 +96,8 @@ static swarf_status taper(swarf_cutter *c, const swarf_cutter_spec *s, swarf_err
   swarf_status st;
   if ((st = need_pos(d, "D", "tip diameter", err)) != SWARF_OK) return st;
   if (!given(A)) return bad(err, "A", "the taper half-angle is required (degrees)");
-  if (!(A >= 0.0 && A < 90.0)) return bad(err, "A", "the taper half-angle must be in [0, 90) (got %g)", A);
+  if (!(A >= 0.0 && A < 90.0))
+    return bad(err, "A", "the taper half-angle must be in [0, 90) (got %g)", A);
   if (!(R >= 0.0 && R <= 0.5 * d))
     return bad(err, "R", "the tip corner radius must be in [0, D/2 = %g] (got %g)", 0.5 * d, R);
   t0r = 0.5 * d - R + R * cos(A * DEG);
@@ -127,13 +132,15 @@ static swarf_status apt(swarf_cutter *c, const swarf_cutter_spec *s, swarf_error
   tol = 1e-3 + 1e-3 * d;
   want = (R + E * sin(al)) / cos(al);
   if (fabs(F - want) > tol)
-    return bad(err, "F", "with R, E and alpha the bottom line passes through the tip only for "
-                         "F = (R + E sin A) / cos A = %.6g (got %g)",
+    return bad(err, "F",
+               "with R, E and alpha the bottom line passes through the tip only for "
+               "F = (R + E sin A) / cos A = %.6g (got %g)",
                want, F);
   want = 2.0 * (E + R / cos(be));
   if (fabs(d - want) > tol)
-    return bad(err, "D", "the diameter at the corner centre's height is 2 (E + R / cos B) = %.6g "
-                         "(got %g)",
+    return bad(err, "D",
+               "the diameter at the corner centre's height is 2 (E + R / cos B) = %.6g "
+               "(got %g)",
                want, d);
   t0r = E + R * cos(be);
   t0z = F - R * sin(be);
@@ -162,7 +169,8 @@ static swarf_status lollipop(swarf_cutter *c, const swarf_cutter_spec *s, swarf_
   swarf_status st;
   if ((st = need_pos(d, "D", "sphere diameter", err)) != SWARF_OK) return st;
   if ((st = need_pos(n, "N", "neck diameter", err)) != SWARF_OK) return st;
-  if (!(n < d)) return bad(err, "N", "the neck must be thinner than the sphere D = %g (got %g)", d, n);
+  if (!(n < d))
+    return bad(err, "N", "the neck must be thinner than the sphere D = %g (got %g)", d, n);
   if ((st = length_or(&L, 4.0 * d, d, "above the sphere", err)) != SWARF_OK) return st;
   swarf_cutter_begin(c);
   if ((st = swarf_cutter_add_hull(c, ball, 1, err)) != SWARF_OK) return st;
@@ -200,7 +208,8 @@ static swarf_status tslot(swarf_cutter *c, const swarf_cutter_spec *s, swarf_err
   if ((st = need_pos(d, "D", "diameter", err)) != SWARF_OK) return st;
   if ((st = need_pos(H, "H", "disk thickness", err)) != SWARF_OK) return st;
   if ((st = need_pos(n, "N", "neck diameter", err)) != SWARF_OK) return st;
-  if (!(n < d)) return bad(err, "N", "the neck must be thinner than the disk D = %g (got %g)", d, n);
+  if (!(n < d))
+    return bad(err, "N", "the neck must be thinner than the disk D = %g (got %g)", d, n);
   if ((st = length_or(&L, H + 2.0 * d, H, "above the disk", err)) != SWARF_OK) return st;
   swarf_cutter_begin(c);
   if ((st = swarf_cutter_add_frustum(c, 0.0, 0.5 * d, H, 0.5 * d, err)) != SWARF_OK) return st;
@@ -226,9 +235,9 @@ static swarf_status classic(swarf_cutter *c, const swarf_cutter_spec *s, swarf_e
   const char *why = NULL;
   if (swarf_cutter_init(c, s->shape, given(s->d) ? s->d : 0.0, given(s->r) ? s->r : 0.0,
                         given(s->length) ? s->length : 0.0, &why) != 0) {
-    const char *letter = why != NULL && strstr(why, "corner") ? "R"
+    const char *letter = why != NULL && strstr(why, "corner")   ? "R"
                          : why != NULL && strstr(why, "length") ? "L"
-                                                               : "D";
+                                                                : "D";
     return bad(err, letter, "%s", why ? why : "impossible cutter");
   }
   return SWARF_OK;
@@ -267,8 +276,8 @@ swarf_status swarf_cutter_make(swarf_cutter *c, const swarf_cutter_spec *s, swar
 }
 
 static const char *family_name(swarf_cutter_shape s) {
-  static const char *names[] = {"flat", "ball", "bull", "vee", "drill", "spot", "chamfer",
-                                "taper", "apt", "lollipop", "dovetail", "tslot", "qss", "body"};
+  static const char *names[] = {"flat",  "ball", "bull",     "vee",      "drill", "spot", "chamfer",
+                                "taper", "apt",  "lollipop", "dovetail", "tslot", "qss",  "body"};
   return (unsigned)s < sizeof names / sizeof names[0] ? names[s] : "?";
 }
 

@@ -93,7 +93,8 @@ static int first_support(const swarf_profile_piece *pc, double psi) {
     double hi = support_at(pc->circle[i], psi), hb = support_at(pc->circle[best], psi);
     double di = -pc->circle[i][0] * sin(psi) + pc->circle[i][1] * cos(psi);
     double db = -pc->circle[best][0] * sin(psi) + pc->circle[best][1] * cos(psi);
-    if (hi > hb + 1e-12 * (1.0 + fabs(hb)) || (fabs(hi - hb) <= 1e-12 * (1.0 + fabs(hb)) && di > db))
+    if (hi > hb + 1e-12 * (1.0 + fabs(hb)) ||
+        (fabs(hi - hb) <= 1e-12 * (1.0 + fabs(hb)) && di > db))
       best = i;
   }
   return best;

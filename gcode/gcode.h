@@ -14,13 +14,21 @@
  * The canon listener (swarf_gcode_parser_set_canon) sees program
  * coordinates instead, as `rs274 -g` prints them.
  *
+ * Errors: every call that can fail returns a swarf_status (swarf_status.h).
+ * A program the front end rejects leaves a swarf_error with the file, line,
+ * column and word, the message the user reads and, in .code, the error's
+ * identity: one of the SWARF_GCODE_E_* of errors.def, one per distinct error
+ * (like LinuxCNC's NCE_ codes), so callers and tests can match identities.
+ *
  * Thread safety: a parser is used by one thread at a time; distinct parsers
- * are independent.
+ * are independent. The error table is constant.
  */
 #ifndef SWARF_GCODE_H
 #define SWARF_GCODE_H
 
 #include <stddef.h>
+
+#include "swarf_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -60,36 +68,38 @@ typedef struct {
   int column;                /* 1-based column of the block's motion word */
 } swarf_move;
 
-/* Where and why a program was rejected. */
-typedef struct {
-  char file[256];
-  long line;    /* 1-based; 0 when not tied to a line */
-  int column;   /* 1-based */
-  char message[256];
-} swarf_gcode_error;
-
-/* Status codes of the front end. */
+/* The identities of the front end's errors (errors.def), the .code of its
+ * swarf_errors: SWARF_GCODE_E_NESTED_COMMENT, SWARF_GCODE_E_ARC_RADIUS_MISMATCH, ...
+ * Values follow the table (new identities are added at its end). */
 typedef enum {
-  SWARF_GCODE_OK = 0,
-  SWARF_GCODE_ERR_SYNTAX = 1,   /* malformed word, number, comment */
-  SWARF_GCODE_ERR_SEMANTIC = 2, /* valid words that make no sense together */
-  SWARF_GCODE_ERR_STOPPED = 3,  /* the move callback asked to stop */
-  SWARF_GCODE_ERR_ARG = 4,      /* NULL or invalid argument */
-  SWARF_GCODE_ERR_MEMORY = 5
-} swarf_gcode_status;
+  SWARF_GCODE_E_NONE = 0,
+#define X(id, status, format) SWARF_GCODE_E_##id,
+#include "errors.def"
+#undef X
+  SWARF_GCODE_E_END_
+} swarf_gcode_error_code;
+
+/* "SWARF_GCODE_E_NESTED_COMMENT"; NULL for a value that is no identity. */
+SWARF_API const char *swarf_gcode_error_name(int code);
+/* The status an identity fails with (SWARF_ERR_SYNTAX, ...); SWARF_ERR_INTERNAL
+ * for a value that is no identity. */
+SWARF_API swarf_status swarf_gcode_error_status(int code);
+/* Its message's printf format (errors.def); NULL for a value that is no identity. */
+SWARF_API const char *swarf_gcode_error_format(int code);
 
 /* Called for every move, in program order. Return 0 to go on, non-zero to
- * stop the parser (feed/finish then return SWARF_GCODE_ERR_STOPPED). The move
- * is only valid during the call. */
+ * stop the parser (feed/finish then return SWARF_ERR_ABORTED, identity
+ * SWARF_GCODE_E_STOPPED). The move is only valid during the call. */
 typedef int (*swarf_gcode_move_fn)(const swarf_move *move, void *user);
 
 typedef struct swarf_gcode_parser swarf_gcode_parser;
 
 /* A new parser for a program called `filename` (used in error messages; it is
- * not opened). The machine starts at 0,0,0 (all axes), G17 G21 G90 G91.1 G94,
- * feed 0, spindle off, no tool. Returns NULL when out of memory. */
-swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
-                                           void *user);
+ * not opened) into *out. The machine starts at 0,0,0 (all axes), G17 G21 G90
+ * G91.1 G94, feed 0, spindle off, no tool. SWARF_ERR_MEMORY (*out = NULL)
+ * when out of memory, SWARF_ERR_ARG when out is NULL. */
+SWARF_API swarf_status swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
+                                              void *user, swarf_gcode_parser **out);
 
 /* Called with each canonical call, formatted as `rs274 -g` prints it (a
  * sequence number, the N field, the call; no newline), in program
@@ -98,14 +108,16 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
  * and message calls around them. The text is only valid during the call. */
 typedef void (*swarf_gcode_canon_fn)(const char *call, void *user);
 
-/* Sets the canon listener; call before the first feed. */
-int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn, void *user);
+/* Sets the canon listener; call before the first feed (SWARF_ERR_STATE after). */
+SWARF_API swarf_status swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
+                                                    void *user);
 
 /* Loads a LinuxCNC tool table (lines "T1 P1 Z0.511 D0.125 ;comment"; values
  * in inches, as rs274 reads a table without an INI file). Call before the
- * first feed. Returns a status; *err says why it failed. */
-int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                  swarf_gcode_error *err);
+ * first feed. SWARF_ERR_OPEN (identity SWARF_GCODE_E_TOOL_TABLE_OPEN) when it
+ * cannot be read; *err (may be NULL) says why. */
+SWARF_API swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                                     swarf_error *err);
 
 /* Empties the tool table (the built-in one of rs274 too: without a table,
  * tools 1-3 have rs274's lengths 0.511, 0.1 and 1.273 in), so that only tools
@@ -113,30 +125,94 @@ int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
  * (1..999): its length offset (mm, what G43 H<tool> applies) and diameter
  * (mm). Call before the first feed. The simulator gives every cutter length
  * 0: it follows the tool tip, so G43 with the right H changes nothing. */
-int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
-int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length, double diameter);
+SWARF_API swarf_status swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
+SWARF_API swarf_status swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length,
+                                                   double diameter);
 
 /* Feed `len` bytes of program text (any split, CRLF or LF). Complete lines are
- * interpreted at once. Returns SWARF_GCODE_OK or an error; after an error the
- * parser refuses further input and swarf_gcode_parser_error says why. */
-int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
+ * interpreted at once. Returns SWARF_OK or the status of the first error;
+ * after an error the parser refuses further input (returning that status
+ * again) and swarf_gcode_parser_error says what and where. Feeding after
+ * finish is SWARF_ERR_STATE. */
+SWARF_API swarf_status swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
 
 /* Interpret the last, unterminated line if any, and end the program. */
-int swarf_gcode_parser_finish(swarf_gcode_parser *p);
+SWARF_API swarf_status swarf_gcode_parser_finish(swarf_gcode_parser *p);
 
 /* The error that stopped the parser, or NULL if none. Owned by the parser. */
-const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
+SWARF_API const swarf_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
 
 /* Number of lines read so far and whether the program ended (M2/M30/%). */
-long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
-int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
+SWARF_API long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
+SWARF_API int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
 
-void swarf_gcode_parser_free(swarf_gcode_parser *p);
+SWARF_API void swarf_gcode_parser_free(swarf_gcode_parser *p);
 
-/* Convenience: stream a whole file through a parser. Returns a status code;
- * on error *err (if not NULL) is filled. */
-int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
-                           swarf_gcode_error *err);
+/* ---- The machine's setup (call before the first feed) ----------------------
+ * Without these calls a parser starts as rs274 without an INI file: the
+ * controlled point at machine 0,0,0 (all axes), G21, every offset zero, and
+ * the parameters that back offsets (#5161-#5189, #5211-#5219, #5221-#5399,
+ * #5401-#5409) read in inches. These calls describe the machine a program
+ * runs on instead, as LinuxCNC's INI and parameter file do. Each returns
+ * SWARF_ERR_ARG for a NULL parser or a value out of range and
+ * SWARF_ERR_STATE once the first byte was fed; err (may be NULL) says why. */
+
+typedef enum {
+  SWARF_GCODE_UNITS_MM = 1,  /* G21 */
+  SWARF_GCODE_UNITS_INCH = 2 /* G20 */
+} swarf_gcode_units;
+
+/* The machine's length unit (LinuxCNC's [TRAJ]LINEAR_UNITS): the program
+ * starts in it (G21 or G20 until it gives its own), and the parameters that
+ * back offsets hold values in it, as the machine's parameter file does.
+ * Call it first: SWARF_ERR_STATE once a parameter was set. */
+SWARF_API swarf_status swarf_gcode_parser_set_units(swarf_gcode_parser *p, swarf_gcode_units u,
+                                                    swarf_error *err);
+
+/* Sets numbered parameter `index` (1..5601) as `#index = value` would just
+ * before the first line: #5221-#5223 move G54's origin (values in the
+ * machine's length unit), #5161 G28's home, and so on. Two follow LinuxCNC's
+ * start-up: #5220 (1..9) selects the work system in force (G54..G59.3), and
+ * #5210 = 1 puts the G92 offset #5211-#5216 in force. The parameters the
+ * interpreter computes (#5021-#5029, #5400, #5420-#5428) are refused
+ * (SWARF_ERR_ARG), as is a value that is not finite. */
+SWARF_API swarf_status swarf_gcode_parser_set_param(swarf_gcode_parser *p, int index,
+                                                    double value, swarf_error *err);
+
+/* Reads LinuxCNC's parameter file (the machine's .var: one parameter a line,
+ * "NUMBER VALUE", e.g. "5221 10.000000" for G54's X origin) and sets each
+ * as swarf_gcode_parser_set_param does. Strict: every line that is not blank
+ * must be an integer, blanks and a number and nothing else; a number twice,
+ * a value out of range or a parameter that cannot be set is an error too
+ * (SWARF_ERR_FORMAT, err->file and err->line say where); SWARF_ERR_OPEN when
+ * the file cannot be read. On failure the parser is unchanged. */
+SWARF_API swarf_status swarf_gcode_parser_load_params(swarf_gcode_parser *p, const char *path,
+                                                      swarf_error *err);
+
+/* Where the controlled point is when the program starts, in machine
+ * coordinates (mm, degrees; before any offset). The program's current point
+ * (what G91 adds to, what #5420 reads) follows from the offsets set up, in
+ * any order with the calls above. Default: all zero. */
+SWARF_API swarf_status swarf_gcode_parser_set_start(swarf_gcode_parser *p,
+                                                    const double machine[SWARF_NAXES],
+                                                    swarf_error *err);
+
+/* Work system `system` (1 = G54 ... 9 = G59.3) as it stands: its origin
+ * (machine mm, degrees) and XY rotation (degrees). SWARF_ERR_ARG when
+ * system is out of range. */
+SWARF_API swarf_status swarf_gcode_parser_work_system(const swarf_gcode_parser *p, int system,
+                                                      double origin[SWARF_NAXES],
+                                                      double *rotation);
+
+/* The source line of the first G20 or G21 the program ran; 0 while none
+ * (the program then runs in the machine's unit). */
+SWARF_API long swarf_gcode_parser_units_line(const swarf_gcode_parser *p);
+
+/* Convenience: stream a whole file through a parser. On error *err (if not
+ * NULL) is filled: the parser's error, or the file's (SWARF_ERR_OPEN,
+ * identity SWARF_GCODE_E_FILE_OPEN or _FILE_READ, line 0). */
+SWARF_API swarf_status swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
+                                              swarf_error *err);
 
 #ifdef __cplusplus
 }

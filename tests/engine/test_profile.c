@@ -68,7 +68,9 @@ static double out_sdf(const outline *o, double r, double z) {
   return cross & 1 ? -best : best;
 }
 
-static void out_free(outline *o) { free(o->p); }
+static void out_free(outline *o) {
+  free(o->p);
+}
 
 /* ---- the families' drawings ------------------------------------------------ */
 
@@ -135,7 +137,8 @@ static void draw_qss(outline *o, double a, double b, double e, double f, double 
   *lift = -lo;
   for (int i = 0; i <= n; i++) {
     double s = -cos(tk_pi * i / n);
-    out_push(o, sqrt(fmax(0, 1 - s * s)) * (q0 - q2 * s * s), (-q2 * s * s + q0 + 2 * q2) * s + q1 - lo);
+    out_push(o, sqrt(fmax(0, 1 - s * s)) * (q0 - q2 * s * s),
+             (-q2 * s * s + q0 + 2 * q2) * s + q1 - lo);
   }
 }
 
@@ -164,8 +167,8 @@ static void compare(const char *name, const swarf_cutter *c, outline *o, int con
     double rr = tk_uniform(&r, 0, o->rmax + pad), z = tk_uniform(&r, o->zlo - pad, o->zhi + pad);
     double p[3] = {rr * cos(th), rr * sin(th), z}, g[3], e = 1e-6;
     double d = swarf_cutter_sdf(c, p), ref = out_sdf(o, rr, z);
-    CHECK((d < 0) == (ref < 0) || fabs(ref) < tol, "%s: sign at r %g z %g (%g vs %g)", name, rr, z, d,
-          ref);
+    CHECK((d < 0) == (ref < 0) || fabs(ref) < tol, "%s: sign at r %g z %g (%g vs %g)", name, rr, z,
+          d, ref);
     if (ref >= 0 || convex)
       worst_out = fmax(worst_out, fabs(d - ref));
     else {
@@ -203,7 +206,8 @@ static void check_support(const char *name, const swarf_cutter *c, const outline
     double n[3], rho, best = -INFINITY, x[3];
     tk_unit(&r, n);
     rho = hypot(n[0], n[1]);
-    for (int k = 0; k < o->n; k++) best = fmax(best, o->p[k][0] * rho + o->p[k][1] * n[2]);
+    for (int k = 0; k < o->n; k++)
+      best = fmax(best, o->p[k][0] * rho + o->p[k][1] * n[2]);
     worst = fmax(worst, fabs(swarf_cutter_support(c, n) - best));
     swarf_cutter_point(c, n, x);
     worstp = fmax(worstp, fabs(tk_dot(x, n) - best));
@@ -232,7 +236,8 @@ static void test_families(void) {
   c = make(s), draw_pointed(&o, 3.175, 30, fmax(4 * 3.175, 1.5875 / tan(15 * DEG)), 0);
   compare("vee D3.175 A30", &c, &o, 1, 1e-7), o.n = 0;
   s.angle = 20, s.length = 2;
-  c = make(s), draw_pointed(&o, 3.175, 20, 2, 0), compare("vee cut at L2", &c, &o, 1, 1e-7), o.n = 0;
+  c = make(s), draw_pointed(&o, 3.175, 20, 2, 0), compare("vee cut at L2", &c, &o, 1, 1e-7),
+  o.n = 0;
   swarf_cutter_spec_init(&s);
   s.shape = SWARF_CUTTER_DRILL, s.d = 5;
   c = make(s), draw_pointed(&o, 5, 118, 20, 0), compare("drill D5 (A118)", &c, &o, 1, 1e-7);
@@ -248,7 +253,8 @@ static void test_families(void) {
   c = make(s), draw_taper(&o, 2, 5, 1, 20), compare("taper ball D2 A5", &c, &o, 1, 1e-7);
   check_support("taper ball", &c, &o, 1e-6), o.n = 0;
   s.r = 0.25, s.angle = 10;
-  c = make(s), draw_taper(&o, 2, 10, 0.25, 20), compare("taper D2 A10 R0.25", &c, &o, 1, 1e-7), o.n = 0;
+  c = make(s), draw_taper(&o, 2, 10, 0.25, 20), compare("taper D2 A10 R0.25", &c, &o, 1, 1e-7),
+  o.n = 0;
   s.r = NAN, s.angle = 3;
   c = make(s), draw_taper(&o, 2, 3, 0, 20), compare("taper flat D2 A3", &c, &o, 1, 1e-7), o.n = 0;
   swarf_cutter_spec_init(&s); /* APT: E = 2, R = 1, alpha 10, beta 8 */
@@ -259,7 +265,8 @@ static void test_families(void) {
     c = make(s), draw_apt(&o, R, E, F, 10, 8, 12), compare("apt alpha 10 beta 8", &c, &o, 1, 1e-7);
     check_support("apt", &c, &o, 1e-6), o.n = 0;
     s.beta = -12, be = -12 * DEG, s.d = 2 * (E + R / cos(be));
-    c = make(s), draw_apt(&o, R, E, F, 10, -12, 12), compare("apt beta -12", &c, &o, 1, 1e-7), o.n = 0;
+    c = make(s), draw_apt(&o, R, E, F, 10, -12, 12), compare("apt beta -12", &c, &o, 1, 1e-7),
+    o.n = 0;
   }
   swarf_cutter_spec_init(&s);
   s.shape = SWARF_CUTTER_LOLLIPOP, s.d = 6, s.neck = 3, s.length = 20;
@@ -271,7 +278,8 @@ static void test_families(void) {
   compare("dovetail D12 A60 H4 N5", &c, &o, 0, 1e-7), o.n = 0;
   swarf_cutter_spec_init(&s);
   s.shape = SWARF_CUTTER_TSLOT, s.d = 16, s.h = 3, s.neck = 6, s.length = 25;
-  c = make(s), draw_stack(&o, 16, 3, 16, 6, 25), compare("tslot D16 H3 N6", &c, &o, 0, 1e-7), o.n = 0;
+  c = make(s), draw_stack(&o, 16, 3, 16, 6, 25), compare("tslot D16 H3 N6", &c, &o, 0, 1e-7),
+  o.n = 0;
   swarf_cutter_spec_init(&s);
   s.shape = SWARF_CUTTER_BALL, s.d = 12, s.length = 8; /* a ball with flutes shorter than D */
   c = make(s);
@@ -300,7 +308,8 @@ static void test_qss(void) {
   CHECK_NEAR(lift, 3 * sqrt(2.0), 1e-6, "qss 3,-3: lowest at the rims (3 sqrt 2)");
   compare("qss 3,-3,0,0", &c, &o, 1, 1e-6), o.n = 0;
   s.qa = 1, s.qb = 2, s.qe = 0.5, s.qf = 1;
-  c = make(s), draw_qss(&o, 1, 2, 0.5, 1, &lift), compare("qss 1,2,0.5,1", &c, &o, 1, 1e-6), o.n = 0;
+  c = make(s), draw_qss(&o, 1, 2, 0.5, 1, &lift), compare("qss 1,2,0.5,1", &c, &o, 1, 1e-6),
+  o.n = 0;
   out_free(&o);
   npts = 3000;
 }

@@ -262,12 +262,12 @@ static void state_clear(sim_state *st) {
 
 /* Map a parser status to the run's status; fills msg for parser errors. */
 static int parser_outcome(sim_state *st, swarf_gcode_parser *p, int rc) {
-  const swarf_gcode_error *e = swarf_gcode_parser_error(p);
-  if (rc == SWARF_GCODE_OK) return 0;
-  if (rc == SWARF_GCODE_ERR_STOPPED) return st->status ? st->status : 1;
+  const swarf_error *e = swarf_gcode_parser_error(p);
+  if (rc == SWARF_OK) return 0;
+  if (rc == SWARF_ERR_ABORTED) return st->status ? st->status : 1;
   if (e != NULL)
     snprintf(st->msg, st->msglen, "%s:%ld:%d: %s", e->file, e->line, e->column, e->message);
-  return rc == SWARF_GCODE_ERR_MEMORY ? 1 : 2;
+  return swarf_status_classify(rc) == SWARF_CLASS_INPUT ? 2 : 1;
 }
 
 /* The parser's tool table is the cutters given: each with length offset 0,
@@ -288,7 +288,8 @@ static int run(const swarf_sim_config *cfg, const char *name, feed_fn feed, cons
   int rc = 1;
   *out = NULL;
   if (state_init(&st, cfg, name, rep, msg, msglen) == 0) {
-    swarf_gcode_parser *p = swarf_gcode_parser_new(name, on_move, &st);
+    swarf_gcode_parser *p = NULL;
+    swarf_gcode_parser_new(name, on_move, &st, &p);
     if (p == NULL) {
       snprintf(msg, msglen, "out of memory");
     } else {

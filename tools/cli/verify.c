@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "gcode.h"
 #include "verify.h"
 
 const char swarf_verify_help[] =

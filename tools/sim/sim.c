@@ -112,14 +112,13 @@ static int on_move(const swarf_move *machine_mv, void *user) {
   if (machine_mv->kind == SWARF_MOVE_DWELL) return 0;
   swarf_sim_to_workpiece(s, machine_mv, &w);
   swarf_sim_check_units(s, mv);
-  int rc = swarf_machine_motion(&s->cfg.machine, mv, &m);
-  if (rc == -2) {
-    swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column,
-                   "this move turns a rotary axis the machine does not have; choose one with "
-                   "--machine xyza, xyzac-trt or xyzbc-trt");
+  swarf_error e;
+  swarf_status rc = swarf_machine_motion(&s->cfg.machine, mv, &m, &e);
+  if (rc == SWARF_ERR_MACHINE) {
+    swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column, "%s", e.message);
     return 1;
   }
-  if (rc != 0) return 0;
+  if (rc != SWARF_OK) return 0;
   return take_motion(s, &m);
 }
 

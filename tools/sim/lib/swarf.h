@@ -10,7 +10,8 @@
  *   swarf_version.h  SWARF_VERSION_* and swarf_version()
  *   swarf_status.h   the status type every call returns, the error record
  *   gcode.h          the streaming RS274/NGC interpreter (canonical moves)
- *   toolpath.h       moves -> rigid motions of the cutter; machines
+ *   toolpath.h       rigid motions of the cutter; machines
+ *   move_motion.h    G-code moves -> rigid motions
  *   engine.h         cutters, characteristic curves, swept volumes
  *   stock.h          the OpenVDB stock: remove, measure, read and write
  *   swarf_sim.h      the simulation handle tying them together
@@ -30,6 +31,7 @@
 
 #include "engine.h"
 #include "gcode.h"
+#include "move_motion.h"
 #include "stock.h"
 #include "swarf_sim.h"
 #include "swarf_status.h"

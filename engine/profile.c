@@ -316,3 +316,15 @@ double swarf_profile_piece_sdf(const swarf_profile_piece *pc, double r, double z
   if (pc->kind == SWARF_PIECE_QSS) return swarf_profile_qss_sdf(pc, r, z, g);
   return swarf_profile_hull_sdf(pc, r, z, 0.0, g);
 }
+
+double swarf_profile_piece_sdf_grad(const swarf_profile_piece *pc, const double q[3], double g[3]) {
+  double r = sqrt(q[0] * q[0] + q[1] * q[1]), g2[2], d = swarf_profile_piece_sdf(pc, r, q[2], g2);
+  if (r > 0.0) {
+    double k = g2[0] / r;
+    g[0] = k * q[0], g[1] = k * q[1];
+  } else {
+    g[0] = g2[0], g[1] = 0.0;
+  }
+  g[2] = g2[1];
+  return d;
+}

@@ -123,7 +123,9 @@ static void rpush(rctx *h, rsample lo, rsample hi) {
   swarf_tspan_push(h->heap, &h->nheap, sp);
 }
 
-static rspan rpop(rctx *h) { return swarf_tspan_pop(h->heap, &h->nheap); }
+static rspan rpop(rctx *h) {
+  return swarf_tspan_pop(h->heap, &h->nheap);
+}
 
 /* lo.dg < 0 < hi.dg: Illinois regula falsi to g' = 0 (the characteristic). */
 static rsample rrefine(rctx *h, rsample lo, rsample hi) {
@@ -224,23 +226,28 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
   return m - 1;
 }
 
-double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
-                                  const double p[3], double *alpha) {
+double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                    const double p[3], double upper, double *alpha) {
   rsample smp[MAXN + 1];
   rctx h;
   int n;
   double lb;
-  if (s == NULL || s->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL) return NAN;
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
-  h.best.a = 0.0, h.best.g = INFINITY, h.best.dg = 0.0, h.best.dist = 0.0;
+  h.best.a = 0.0, h.best.g = upper, h.best.dg = 0.0, h.best.dist = 0.0;
   n = (int)s->aux[RG_N];
   n = rsteps(&h, swarf_motion_pose_table(s->motion, n), n, smp, &lb);
   if (alpha != NULL) *alpha = h.best.a;
-  if (n < 0) return lb;
+  if (n < 0) return fmin(lb, upper);
   h.evals = 0;
   rcertify(&h, smp, n);
   if (alpha != NULL) *alpha = h.best.a;
   return h.best.g;
+}
+
+double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                  const double p[3], double *alpha) {
+  if (s == NULL || s->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL) return NAN;
+  return swarf_sweep_rigid_body_below(s, body, ctx, p, INFINITY, alpha);
 }
 
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha) {

@@ -5,6 +5,8 @@
 #ifndef SWARF_SIM_PRIVATE_H
 #define SWARF_SIM_PRIVATE_H
 
+#include "gcode.h"
+#include "move_motion.h"
 #include "swarf_sim.h"
 
 /* A move stamped at n + 1 evenly spaced poses (the benchmark baseline). */

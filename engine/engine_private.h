@@ -125,6 +125,11 @@ void swarf_profile_hull_extent(swarf_profile_piece *pc);
 double swarf_profile_hull_sdf(const swarf_profile_piece *pc, double r, double z, double dz,
                               double g[2]);
 double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
+/* The same, with the nearest point of the profile curve in near; and the
+ * curve's point at parameter s = n_z in [-1, 1]. */
+double swarf_profile_qss_sdf_near(const swarf_profile_piece *pc, double r, double z, double g[2],
+                                  double near[2]);
+void swarf_profile_qss_point(const swarf_profile_piece *pc, double s, double y[2]);
 double swarf_profile_piece_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
 /* The same at a 3-D point q of the cutter frame, with the 3-D gradient. */
 double swarf_profile_piece_sdf_grad(const swarf_profile_piece *pc, const double q[3], double g[3]);

@@ -175,6 +175,8 @@ int main(int argc, char **argv) {
   c = make(s), run_cutter("dovetail D6 A60 H2 N2.5", &c, npts, &tot);
   swarf_cutter_spec_init(&s), s.shape = SWARF_CUTTER_QSS, s.qa = 2, s.qb = 3, s.qe = 0, s.qf = 0;
   c = make(s), run_cutter("qss 2,3,0,0", &c, npts / 3 + 1, &tot);
+  swarf_cutter_spec_init(&s), s.shape = SWARF_CUTTER_QSS, s.qa = 1, s.qb = -1, s.qe = 0, s.qf = 0;
+  c = make(s), run_cutter("qss 1,-1,0,0 (non-convex)", &c, npts / 3 + 1, &tot);
   printf("all: outside max error %.2e mm, inside shallower %.2e mm\n", tot.out, tot.shallow);
   return check_done();
 }

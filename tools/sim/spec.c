@@ -97,12 +97,18 @@ static const struct {
   const char *name;
   swarf_cutter_shape shape;
   const char *letters;
-} families[] = {{"flat", SWARF_CUTTER_FLAT, "DRL"},        {"ball", SWARF_CUTTER_BALL, "DRL"},
-                {"bull", SWARF_CUTTER_BULL, "DRL"},        {"vee", SWARF_CUTTER_VEE, "DAL"},
-                {"drill", SWARF_CUTTER_DRILL, "DAL"},      {"spot", SWARF_CUTTER_SPOT, "DAL"},
-                {"chamfer", SWARF_CUTTER_CHAMFER, "DATL"}, {"taper", SWARF_CUTTER_TAPER, "DARL"},
-                {"apt", SWARF_CUTTER_APT, "DREFABH"},      {"lollipop", SWARF_CUTTER_LOLLIPOP, "DKL"},
-                {"dovetail", SWARF_CUTTER_DOVETAIL, "DAHKL"}, {"tslot", SWARF_CUTTER_TSLOT, "DHKL"},
+} families[] = {{"flat", SWARF_CUTTER_FLAT, "DRL"},
+                {"ball", SWARF_CUTTER_BALL, "DRL"},
+                {"bull", SWARF_CUTTER_BULL, "DRL"},
+                {"vee", SWARF_CUTTER_VEE, "DAL"},
+                {"drill", SWARF_CUTTER_DRILL, "DAL"},
+                {"spot", SWARF_CUTTER_SPOT, "DAL"},
+                {"chamfer", SWARF_CUTTER_CHAMFER, "DATL"},
+                {"taper", SWARF_CUTTER_TAPER, "DARL"},
+                {"apt", SWARF_CUTTER_APT, "DREFABH"},
+                {"lollipop", SWARF_CUTTER_LOLLIPOP, "DKL"},
+                {"dovetail", SWARF_CUTTER_DOVETAIL, "DAHKL"},
+                {"tslot", SWARF_CUTTER_TSLOT, "DHKL"},
                 {"qss", SWARF_CUTTER_QSS, ""}};
 
 static int parse_family(const char **s) {
@@ -118,17 +124,28 @@ static int parse_family(const char **s) {
 
 static double *field(swarf_cutter_spec *sp, char letter) {
   switch (letter) {
-  case 'D': return &sp->d;
-  case 'R': return &sp->r;
-  case 'L': return &sp->length;
-  case 'A': return &sp->angle;
-  case 'T': return &sp->tip;
-  case 'E': return &sp->e;
-  case 'F': return &sp->f;
-  case 'B': return &sp->beta;
-  case 'H': return &sp->h;
-  case 'K': return &sp->neck;
-  default: return NULL;
+  case 'D':
+    return &sp->d;
+  case 'R':
+    return &sp->r;
+  case 'L':
+    return &sp->length;
+  case 'A':
+    return &sp->angle;
+  case 'T':
+    return &sp->tip;
+  case 'E':
+    return &sp->e;
+  case 'F':
+    return &sp->f;
+  case 'B':
+    return &sp->beta;
+  case 'H':
+    return &sp->h;
+  case 'K':
+    return &sp->neck;
+  default:
+    return NULL;
   }
 }
 
@@ -141,7 +158,8 @@ static int parse_fields(const char *s, int fam, swarf_cutter_spec *sp, char *bad
     char k = (char)toupper((unsigned char)*key);
     double v;
     if (*key == '\0' || strchr(letters, k) == NULL || k == '\0') {
-      snprintf(bad, badlen, "unknown field \"%.20s\" for %s (use %s)", key, families[fam].name, letters);
+      snprintf(bad, badlen, "unknown field \"%.20s\" for %s (use %s)", key, families[fam].name,
+               letters);
       return -1;
     }
     if (strchr(seen, k) != NULL) {
@@ -169,7 +187,8 @@ static int parse_qss(const char *s, swarf_cutter_spec *sp, char *bad, size_t bad
   for (int i = 0; i < 4; i++) {
     if (*s++ != ',' || read_number(&s, dst[i]) != 0 || (*s != ',' && *s != '\0') ||
         (i == 3 && *s != '\0')) {
-      snprintf(bad, badlen, "qss takes four numbers a,b,e,f (h = a(x^2+y^2) + b z^2 + e z + f, mm)");
+      snprintf(bad, badlen,
+               "qss takes four numbers a,b,e,f (h = a(x^2+y^2) + b z^2 + e z + f, mm)");
       return -1;
     }
   }
@@ -177,8 +196,8 @@ static int parse_qss(const char *s, swarf_cutter_spec *sp, char *bad, size_t bad
 }
 
 #define TOOL_USAGE                                                                                 \
-  "write --tool T<n>=<family>,<fields>: flat|ball|bull,D,R,L; vee|drill|spot,D,A,L; "             \
-  "chamfer,D,A,T,L; taper,D,A,R,L; apt,D,R,E,F,A,B,H; lollipop,D,K,L; dovetail,D,A,H,K,L; "      \
+  "write --tool T<n>=<family>,<fields>: flat|ball|bull,D,R,L; vee|drill|spot,D,A,L; "              \
+  "chamfer,D,A,T,L; taper,D,A,R,L; apt,D,R,E,F,A,B,H; lollipop,D,K,L; dovetail,D,A,H,K,L; "        \
   "tslot,D,H,K,L; qss,a,b,e,f (swarf simulate --help)"
 
 swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_error *err) {

@@ -311,12 +311,14 @@ SWARF_API int swarf_char_gauss_slice(double dphi, const double v[3], const doubl
 /* ---- Swept volume of one move ------------------------------------------- */
 
 /* The volume swept by cutter c along motion m (a value; it points at both,
- * which must outlive it). */
+ * which must outlive it). The evaluator that applies and its per-move
+ * constants live in `internal_`, opaque storage typed in engine_private.h
+ * (swarf_sweep_data, which a static assertion keeps within it). */
+#define SWARF_SWEEP_STORAGE 17 /* doubles */
 typedef struct {
   const swarf_cutter *cutter;
   const swarf_motion *motion;
-  int method;     /* internal: which evaluator applies */
-  double aux[16]; /* internal: precomputed per-move constants */
+  double internal_[SWARF_SWEEP_STORAGE]; /* internal: do not touch */
 } swarf_sweep;
 
 SWARF_API void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m);

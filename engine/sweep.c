@@ -3,7 +3,7 @@
  *
  * A swarf_sweep is a value that points at a cutter and a motion owned by the
  * caller; init picks the evaluator (engine_private.h lists them) and stores
- * its per-move constants in aux. The evaluators live in sweep_line.c,
+ * its per-move constants, typed per method (swarf_sweep_data). The evaluators live in sweep_line.c,
  * sweep_helix.c and (motions with rotation) sweep_rigid.c.
  */
 #include <math.h>
@@ -33,8 +33,9 @@ void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_m
 
 void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
   double r = 0.5 * s->cutter->diameter;
-  if (s->method == SWARF_SWEEP_RIGID || s->method == SWARF_SWEEP_P_RIGID ||
-      s->method == SWARF_SWEEP_P_GENERAL) {
+  int method = swarf_sweep_cdata(s)->method;
+  if (method == SWARF_SWEEP_RIGID || method == SWARF_SWEEP_P_RIGID ||
+      method == SWARF_SWEEP_P_GENERAL) {
     swarf_sweep_rigid_bounds(s, lo, hi);
     return;
   }
@@ -48,8 +49,9 @@ void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
 }
 
 double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  if (s->method >= SWARF_SWEEP_P_SLOT) return swarf_sweep_profile_sdf(s, p, alpha);
-  switch (s->method) {
+  int method = swarf_sweep_cdata(s)->method;
+  if (method >= SWARF_SWEEP_P_SLOT) return swarf_sweep_profile_sdf(s, p, alpha);
+  switch (method) {
   case SWARF_SWEEP_SLOT:
     return swarf_sweep_slot_sdf(s, p, alpha);
   case SWARF_SWEEP_RAMP_BALL:

@@ -185,13 +185,13 @@ static double outside_dist(const swarf_profile_piece *pc, const double a[2], con
 
 /* Lower bound of g over [A.a, B.a]. */
 static double gbound(const gctx *h, const gsample *A, const gsample *B) {
-  const double *x = h->s->aux;
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(h->s)->u.rigid;
   /* |q| = |p - t| grows by at most V w / 2 inside; |q'| <= V + W |q| */
   double w = B->a - A->a,
          Q = fmax(len2(len2(A->q[0], A->q[1]), A->q[2]), len2(len2(B->q[0], B->q[1]), B->q[2])) +
-             0.5 * x[RG_V] * w;
-  double L = x[RG_V] + x[RG_W] * Q, lip = 0.5 * (A->g + B->g - L * w);
-  double M = (x[RG_WD] + x[RG_W] * x[RG_W]) * Q + x[RG_W] * x[RG_V] + x[RG_VD];
+             0.5 * x->v * w;
+  double L = x->v + x->w * Q, lip = 0.5 * (A->g + B->g - L * w);
+  double M = (x->wd + x->w * x->w) * Q + x->w * x->v + x->vd;
   double d3 = M * w * w / 8.0, dh = hyperbola_gap(A->q, B->q, A->c[0], B->c[0]), m;
   if (A->g > 0.0 && B->g > 0.0 && (m = outside_dist(h->pc, A->c, B->c, A->g, B->g)) >= 0.0)
     return fmax(lip, m - dh - d3);
@@ -250,7 +250,7 @@ static double piece_min(const swarf_sweep *s, const swarf_profile_piece *pc, con
   const swarf_pose *table = NULL;
   gsample cs[MAXN + 1];
   double lbc[MAXN], lbmin = INFINITY;
-  int order[MAXN], n = (int)s->aux[RG_N], S = (int)sqrt((double)n), nc;
+  int order[MAXN], n = swarf_sweep_cdata(s)->u.rigid.n, S = (int)sqrt((double)n), nc;
   memset(&h.best, 0, sizeof h.best);
   h.s = s, h.pc = pc, h.p = p, h.n = 0, h.evals = 0;
   h.best.g = upper;
@@ -268,7 +268,7 @@ static double piece_min(const swarf_sweep *s, const swarf_profile_piece *pc, con
     order[k] = j;
   }
   if (alpha != NULL) *alpha = h.best.a;
-  if (lbmin > s->aux[RG_FAR]) return fmin(lbmin, h.best.g);
+  if (lbmin > swarf_sweep_cdata(s)->u.rigid.far) return fmin(lbmin, h.best.g);
   for (int k = 0; k < nc; k++) {
     int j = order[k], i0 = j * S, i1 = (j + 1) * S < n ? (j + 1) * S : n;
     gsample prev = cs[j];

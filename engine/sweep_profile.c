@@ -16,7 +16,7 @@
  *   helix: sweep_sampled.c per piece (semiconvex: g'' >= -|t''|).
  *   rigid: sweep_rigid.c per piece.
  * A non-convex QSS piece has none of these: sweep_general.c for any motion.
- * aux: LINE p0 (0-2), d = p1 - p0 (3-5), 1 / |d_xy|^2 (6). Pure functions.
+ * Lines keep swarf_sweep_pline (engine_private.h). Pure functions.
  */
 #include <math.h>
 #include <string.h>
@@ -26,8 +26,6 @@
 #define RAMP_EPS 1e-10 /* certified accuracy of the ramp's 1-D minimum, mm */
 #define RAMP_ITERS 80
 
-enum { P_P0 = 0, P_D = 3, P_INV = 6 };
-
 static int has_general(const swarf_cutter *c) {
   for (int i = 0; i < c->npieces; i++)
     if (!c->piece[i].convex) return 1;
@@ -35,11 +33,13 @@ static int has_general(const swarf_cutter *c) {
 }
 
 static void line_init(swarf_sweep *s, const double p0[3], const double p1[3]) {
+  swarf_sweep_data *sd = swarf_sweep_data_of(s);
+  swarf_sweep_pline *x = &sd->u.pline;
   double d[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, h2 = d[0] * d[0] + d[1] * d[1];
   for (int k = 0; k < 3; k++)
-    s->aux[P_P0 + k] = p0[k], s->aux[P_D + k] = d[k];
-  s->aux[P_INV] = h2 > 0.0 ? 1.0 / h2 : 0.0;
-  s->method = h2 == 0.0     ? SWARF_SWEEP_P_PLUNGE
+    x->p0[k] = p0[k], x->d[k] = d[k];
+  x->inv_h2 = h2 > 0.0 ? 1.0 / h2 : 0.0;
+  sd->method = h2 == 0.0     ? SWARF_SWEEP_P_PLUNGE
               : d[2] == 0.0 ? SWARF_SWEEP_P_SLOT
                             : SWARF_SWEEP_P_RAMP;
 }
@@ -48,17 +48,18 @@ void swarf_sweep_profile_init(swarf_sweep *s, double voxel) {
   const swarf_motion *m = s->motion;
   if (has_general(s->cutter)) {
     swarf_sweep_rigid_init(s, voxel);
-    s->method = SWARF_SWEEP_P_GENERAL;
+    swarf_sweep_data_of(s)->method = SWARF_SWEEP_P_GENERAL;
   } else if (m->kind == SWARF_MOTION_RIGID) {
     swarf_sweep_rigid_init(s, voxel);
-    s->method = SWARF_SWEEP_P_RIGID;
+    swarf_sweep_data_of(s)->method = SWARF_SWEEP_P_RIGID;
   } else if (m->kind == SWARF_MOTION_LINE) {
     line_init(s, m->p0, m->p1);
   } else {
     swarf_sweep_helix_init(s);
-    if (s->method == SWARF_SWEEP_HELIX)
-      s->method = SWARF_SWEEP_P_HELIX;
-    else if (s->method != SWARF_SWEEP_ARC && s->method != SWARF_SWEEP_RING)
+    swarf_sweep_data *sd = swarf_sweep_data_of(s);
+    if (sd->method == SWARF_SWEEP_HELIX)
+      sd->method = SWARF_SWEEP_P_HELIX;
+    else if (sd->method != SWARF_SWEEP_ARC && sd->method != SWARF_SWEEP_RING)
       line_init(s, m->p0, m->p1); /* a degenerate arc */
   }
 }
@@ -70,13 +71,13 @@ static double piece_body(const void *ctx, const double q[3], double grad[3]) {
 /* ---- lines ------------------------------------------------------------------ */
 
 static double slot_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  const double *x = s->aux;
-  double wx = p[0] - x[P_P0], wy = p[1] - x[P_P0 + 1];
-  double t = (wx * x[P_D] + wy * x[P_D + 1]) * x[P_INV], ex, ey;
+  const swarf_sweep_pline *x = &swarf_sweep_cdata(s)->u.pline;
+  double wx = p[0] - x->p0[0], wy = p[1] - x->p0[1];
+  double t = (wx * x->d[0] + wy * x->d[1]) * x->inv_h2, ex, ey;
   t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-  ex = wx - t * x[P_D], ey = wy - t * x[P_D + 1];
+  ex = wx - t * x->d[0], ey = wy - t * x->d[1];
   if (alpha != NULL) *alpha = t;
-  return swarf_cutter_sdf2(s->cutter, sqrt(ex * ex + ey * ey), p[2] - x[P_P0 + 2], NULL);
+  return swarf_cutter_sdf2(s->cutter, sqrt(ex * ex + ey * ey), p[2] - x->p0[2], NULL);
 }
 
 typedef struct {
@@ -140,10 +141,10 @@ static double ramp_piece(const swarf_profile_piece *pc, const double q0[3], cons
 
 static double ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   const swarf_cutter *c = s->cutter;
-  const double *x = s->aux;
-  double q0[3] = {p[0] - x[P_P0], p[1] - x[P_P0 + 1], p[2] - x[P_P0 + 2]}, best = INFINITY, ab = 0;
+  const swarf_sweep_pline *x = &swarf_sweep_cdata(s)->u.pline;
+  double q0[3] = {p[0] - x->p0[0], p[1] - x->p0[1], p[2] - x->p0[2]}, best = INFINITY, ab = 0;
   for (int i = 0; i < c->npieces; i++) {
-    double a, g = ramp_piece(&c->piece[i], q0, x + P_D, best, &a);
+    double a, g = ramp_piece(&c->piece[i], q0, x->d, best, &a);
     if (g < best) best = g, ab = a;
   }
   if (alpha != NULL) *alpha = ab;
@@ -153,18 +154,18 @@ static double ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
 /* Vertical: hulls swept up (exact closed form), QSS pieces minimised. */
 static double plunge_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   const swarf_cutter *c = s->cutter;
-  const double *x = s->aux;
-  double dz = x[P_D + 2], zlo = x[P_P0 + 2] + fmin(dz, 0.0), r, best = INFINITY;
+  const swarf_sweep_pline *x = &swarf_sweep_cdata(s)->u.pline;
+  double dz = x->d[2], zlo = x->p0[2] + fmin(dz, 0.0), r, best = INFINITY;
   if (alpha != NULL) return ramp_sdf(s, p, alpha); /* the nearest instance wanted too */
-  r = hypot(p[0] - x[P_P0], p[1] - x[P_P0 + 1]);
+  r = hypot(p[0] - x->p0[0], p[1] - x->p0[1]);
   for (int i = 0; i < c->npieces; i++) {
     const swarf_profile_piece *pc = &c->piece[i];
     double g, a;
     if (pc->kind == SWARF_PIECE_HULL) {
       g = swarf_profile_hull_sdf(pc, r, p[2] - zlo, fabs(dz), NULL);
     } else {
-      double q0[3] = {p[0] - x[P_P0], p[1] - x[P_P0 + 1], p[2] - x[P_P0 + 2]};
-      g = ramp_piece(pc, q0, x + P_D, best, &a);
+      double q0[3] = {p[0] - x->p0[0], p[1] - x->p0[1], p[2] - x->p0[2]};
+      g = ramp_piece(pc, q0, x->d, best, &a);
     }
     if (g < best) best = g;
   }
@@ -196,7 +197,7 @@ static double rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha) 
 }
 
 double swarf_sweep_profile_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  switch (s->method) {
+  switch (swarf_sweep_cdata(s)->method) {
   case SWARF_SWEEP_P_SLOT:
     return slot_sdf(s, p, alpha);
   case SWARF_SWEEP_P_PLUNGE:

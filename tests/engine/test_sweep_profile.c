@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "engine_private.h" /* the sweep's method */
 #include "testkit.h"
 
 #define VOXEL 0.1
@@ -99,7 +100,7 @@ static void compare(const char *name, const swarf_cutter *c, const swarf_motion 
   }
   printf("%-30s method %2d: outside %3d max |err| %.1e (alpha %.1e); inside %3d shallower %.1e "
          "deeper %.1e\n",
-         name, s.method, e.nout, e.out, e.alpha, e.nin, e.shallow, e.deeper);
+         name, swarf_sweep_cdata(&s)->method, e.nout, e.out, e.alpha, e.nin, e.shallow, e.deeper);
   CHECK(e.out <= 1e-6, "%s: outside error %g", name, e.out);
   CHECK(e.alpha <= 1e-6, "%s: alpha's instance off by %g", name, e.alpha);
   CHECK(e.shallow <= 1e-6, "%s: inside shallower than an instance by %g", name, e.shallow);

@@ -15,6 +15,7 @@
 #include "cli.h"
 #include "modbus_service.h"
 #include "swarf_sim.h"
+#include "verify.h"
 
 static const char help[] =
     "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
@@ -63,19 +64,23 @@ static const char help[] =
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "\n"
     "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ...), 1 on an\n"
-    "internal failure. Nothing is written unless the whole program ran.\n";
+    "internal failure, 4 with --fail-on gouge when a gouge was found. Nothing is\n"
+    "written unless the whole program ran.\n";
 
 typedef struct {
   const char *program, *out, *mesh, *image;
   int quiet;
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
+  swarf_verify verify;
 } sim_options;
 
-/* What the run's callbacks reach: the progress bar and the Modbus service. */
+/* What the run's callbacks reach: the progress bar, the Modbus service, the
+ * verification (alarms, lines). */
 typedef struct {
   swarf_progress *bar; /* NULL when quiet */
   swarf_modbus_service *modbus;
+  swarf_verify *verify;
 } sim_clients;
 
 static int usage_error(const char *what) {
@@ -101,6 +106,7 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   double d;
   int rc = swarf_modbus_option(&o->modbus, flag, val, i);
   if (rc >= 0) return rc;
+  if ((rc = swarf_verify_option(&o->verify, flag, val, i)) >= 0) return rc;
   if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
   if (val == NULL) {
     snprintf(msg, sizeof msg, "%s needs a value", flag);
@@ -168,7 +174,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   memset(o, 0, sizeof *o);
   swarf_sim_config_init(&o->cfg);
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_modbus_help, stdout), 1;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
       if (o->program) return usage_error("give one PROGRAM only");
       o->program = argv[i];
@@ -238,7 +244,8 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
   printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
          r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
          r->volume_after);
-  printf("  alarms %ld (rapid moves cutting into material)\n", r->alarms);
+  printf("  alarms %ld (%ld rapid moves cutting into material, %ld moves gouging the design)\n",
+         r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE]);
   printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
          r->seconds > 0 ? r->moves / r->seconds : 0.0, total_s);
   printf("  grid: voxel %g mm, active voxels %llu\n", swarf_stock_voxel(stock),
@@ -253,6 +260,14 @@ static int on_progress(void *user, const swarf_sim_progress *p) {
   sim_clients *c = user;
   if (c->bar != NULL) swarf_progress_update(c->bar, p->fraction, p->report->moves);
   return swarf_modbus_observe(c->modbus, p);
+}
+
+static void on_alarm(void *user, const swarf_alarm *a) {
+  swarf_verify_alarm(((sim_clients *)user)->verify, a);
+}
+
+static void on_line(void *user, const swarf_line_result *l) {
+  swarf_verify_line(((sim_clients *)user)->verify, l);
 }
 
 /* The run's failure on stderr; returns the exit status. */
@@ -278,23 +293,33 @@ int swarf_cli_simulate(int argc, char **argv) {
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
   if (rc || (rc = check_size(&o.cfg))) return rc;
-  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb))) return rc;
+  if ((rc = swarf_verify_prepare(&o.verify, &o.cfg))) return swarf_verify_free(&o.verify), rc;
+  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb))) return swarf_verify_free(&o.verify), rc;
   swarf_progress_init(&pb);
-  sim_clients clients = {o.quiet ? NULL : &pb, mb};
+  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify};
   o.cfg.cb.progress = on_progress;
+  o.cfg.cb.alarm = on_alarm;
+  if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
   o.cfg.cb.user = &clients;
   swarf_error_init(&err);
   if (swarf_sim_run(&o.cfg, o.program, &stock, &rep, &err) != SWARF_OK) {
     swarf_progress_finish(&pb);
     rc = report_failure(&err, mb);
     swarf_modbus_finish(mb, rc, &rep);
+    swarf_verify_free(&o.verify);
     return rc;
   }
   swarf_progress_finish(&pb);
   print_alarms(&o, &rep);
+  swarf_verify_warn(&o.verify, o.program, &rep);
   rc = write_outputs(&o, stock, &ntri);
-  if (rc == 0 && !o.quiet) print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
-  swarf_modbus_finish(mb, rc, &rep);
+  if (rc == 0 && !o.quiet) {
+    print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
+    swarf_verify_summary(&o.verify, &rep);
+  }
+  if (rc == 0) rc = swarf_verify_finish(&o.verify, o.program, &o.cfg, &rep);
+  swarf_modbus_finish(mb, rc == 4 ? 0 : rc, &rep); /* a gouge is the part's, not the run's */
   swarf_stock_free(stock);
+  swarf_verify_free(&o.verify);
   return rc;
 }

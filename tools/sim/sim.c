@@ -104,11 +104,14 @@ static int take_motion(swarf_sim *s, swarf_motion *m) {
   return swarf_sim_batch_queue(s, m);
 }
 
-static int on_move(const swarf_move *mv, void *user) {
+static int on_move(const swarf_move *machine_mv, void *user) {
   swarf_sim *s = user;
   swarf_motion m;
-  if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, mv);
-  if (mv->kind == SWARF_MOVE_DWELL) return 0;
+  swarf_move w, *mv = &w;
+  if (machine_mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, machine_mv);
+  if (machine_mv->kind == SWARF_MOVE_DWELL) return 0;
+  swarf_sim_to_workpiece(s, machine_mv, &w);
+  swarf_sim_check_units(s, mv);
   swarf_error e;
   swarf_status rc = swarf_machine_motion(&s->cfg.machine, mv, &m, &e);
   if (rc == SWARF_ERR_MACHINE) {
@@ -154,6 +157,8 @@ static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
     swarf_stock_bounds(s->stock, lo, hi);
     band = swarf_stock_voxel(s->stock);
   }
+  memcpy(s->mat_lo, lo, sizeof lo);
+  memcpy(s->mat_hi, hi, sizeof hi);
   for (int k = 0; k < 3; k++) {
     s->pad_lo[k] = lo[k] - band;
     s->pad_hi[k] = hi[k] + band;
@@ -161,10 +166,13 @@ static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
 }
 
 static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
+  swarf_status st;
   if (swarf_gcode_parser_new(s->name, on_move, s, &s->parser) != SWARF_OK ||
       swarf_sim_batch_init(s) != 0)
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   set_tool_table(s);
+  if ((st = swarf_sim_setup(s, err)) != SWARF_OK || (st = swarf_sim_design_init(s, err)) != SWARF_OK)
+    return st;
   if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
   s->rep.volume_before = swarf_stock_volume(s->stock);
   s->rep.volume_after = NAN;
@@ -292,8 +300,10 @@ swarf_status swarf_sim_finish(swarf_sim *s) {
   if (st != SWARF_OK) return st;
   st = parser_outcome(s, swarf_gcode_parser_finish(s->parser));
   s->rep.lines = swarf_gcode_parser_lines(s->parser);
+  s->rep.units_line = swarf_gcode_parser_units_line(s->parser);
   if (st == SWARF_OK && swarf_sim_batch_flush(s) != 0) st = s->err.status;
   if (st == SWARF_OK && swarf_sim_lines_flush(s, 1) != 0) st = s->err.status;
+  if (st == SWARF_OK) st = swarf_sim_design_compare(s);
   s->rep.seconds = now_seconds() - s->t0;
   if (st != SWARF_OK) return st;
   s->rep.volume_after = swarf_stock_volume(s->stock);
@@ -327,6 +337,7 @@ void swarf_sim_free(swarf_sim *s) {
   swarf_gcode_parser_free(s->parser);
   swarf_sim_batch_clear(s);
   swarf_stock_free(s->stock);
+  swarf_stock_free(s->initial);
   free(s);
 }
 

@@ -71,9 +71,10 @@ double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   }
 }
 
-int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol, swarf_char_curve *cc) {
+swarf_status swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,
+                                    swarf_char_curve *cc) {
   double t[3], U[9], tdot[3], v[3], omega[3];
-  if (s == NULL || s->cutter == NULL || s->motion == NULL || cc == NULL) return -1;
+  if (s == NULL || s->cutter == NULL || s->motion == NULL || cc == NULL) return SWARF_ERR_ARG;
   swarf_motion_eval(s->motion, alpha, t, U);
   swarf_motion_velocity(s->motion, alpha, tdot, v, omega);
   return swarf_char_curve_compute(cc, s->cutter, t, U, v, omega, tol);

@@ -241,7 +241,9 @@ static double char_distance(const swarf_motion *m, const double p[3], double d, 
   for (int k = 0; k < 3; k++)
     x[k] = p[k] - d * nw[k];
   swarf_char_curve_init(&cc);
-  if (swarf_char_curve_compute_qss(&cc, &qss, t, U, v, w, 1e-3) <= 0) best = -1;
+  if ((swarf_char_curve_compute_qss(&cc, &qss, t, U, v, w, 1e-3) == SWARF_OK ? (int)cc.ncomp
+                                                                             : -1) <= 0)
+    best = -1;
   for (size_t j = 0; best >= 0 && j + 1 < cc.len; j++)
     best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
   swarf_char_curve_clear(&cc);

@@ -209,7 +209,7 @@ static void test_on_characteristic(void) {
     }
     for (int k = 0; k < 3; k++)
       x[k] = p[k] - d * gw[k];
-    if (swarf_sweep_char_curve(&s, a, 1e-3, &cc) <= 0) continue;
+    if ((swarf_sweep_char_curve(&s, a, 1e-3, &cc) == SWARF_OK ? (int)cc.ncomp : -1) <= 0) continue;
     for (size_t j = 0; j + 1 < cc.len; j++)
       best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
     worst = fmax(worst, best);

@@ -241,25 +241,100 @@ enum {
   SWARF_SWEEP_RIGID       /* motion with rotation (rotary machines) */
 };
 
+/* ---- The sweep's per-method data (swarf_sweep.internal_) ----------------- */
+
+/* PLUNGE: the tip goes from z0 straight up or down the axis (x, y). */
+typedef struct {
+  double x, y;     /* the axis */
+  double mid;      /* middle of the swept body, z */
+  double half;     /* half height of the swept core */
+  double z0;       /* tip at alpha = 0 */
+  double inv_dz;   /* 1 / (z1 - z0); 0 when the tip does not move */
+  double zlo, zhi; /* lowest and highest tip */
+} swarf_sweep_plunge;
+
+/* SLOT: a horizontal line p0 + alpha d. */
+typedef struct {
+  double p0[3];
+  double d[2];     /* horizontal displacement */
+  double inv_len2; /* 1 / |d|^2 */
+} swarf_sweep_slot;
+
+/* RAMP, RAMP_BALL: a climbing line, tip p0 + u (e, k) for u in [0, len]. */
+typedef struct {
+  double p0[3];
+  double e[2];     /* unit horizontal direction */
+  double len;      /* horizontal length */
+  double k;        /* climb per horizontal mm */
+  double core_mid; /* middle of the core above the tip */
+  double core_half;/* half height of the core */
+  double core;     /* core radius a */
+  double w;        /* 1 / (1 + k^2) */
+} swarf_sweep_ramp;
+
+/* ARC, RING: a planar arc about a vertical axis through (cx, cy) at height z0,
+ * from the direction e1 towards e2, ending at (x1, y1). */
+typedef struct {
+  double cx, cy, z0;
+  double e1[2], e2[2];
+  double radius, angle, cos_angle, sin_angle;
+  double x1, y1;
+} swarf_sweep_arc;
+
+/* HELIX: t(alpha) = c + radius (cos(angle alpha) e1 + sin(angle alpha) e2)
+ * + alpha rise axis; n samples `step` mm apart along the path of length len. */
+typedef struct {
+  double c[3], e1[3], e2[3];
+  double radius, angle, rise;
+  double step, len;
+  int n;
+} swarf_sweep_helix;
+
+/* RIGID: bounds lo, hi of the volume; n time steps; v, w bounds of |v|,
+ * |omega| and vd, wd of their alpha-derivatives; beyond `far` mm a lower
+ * bound is returned. */
+typedef struct {
+  double lo[3], hi[3];
+  double v, w, vd, wd;
+  double far;
+  int n;
+} swarf_sweep_rigid;
+
+typedef struct {
+  int method; /* SWARF_SWEEP_* */
+  union {
+    swarf_sweep_plunge plunge;
+    swarf_sweep_slot slot;
+    swarf_sweep_ramp ramp;
+    swarf_sweep_arc arc;
+    swarf_sweep_helix helix;
+    swarf_sweep_rigid rigid;
+  } u;
+} swarf_sweep_data;
+
+_Static_assert(sizeof(swarf_sweep_data) <= sizeof(((swarf_sweep *)0)->internal_),
+               "swarf_sweep_data must fit in swarf_sweep.internal_ (SWARF_SWEEP_STORAGE)");
+_Static_assert(_Alignof(swarf_sweep_data) <= _Alignof(double),
+               "swarf_sweep.internal_ is aligned for doubles");
+
+/* The typed data of a sweep (only engine code and tests use it). */
+static inline swarf_sweep_data *swarf_sweep_data_of(swarf_sweep *s) {
+  return (swarf_sweep_data *)(void *)s->internal_;
+}
+static inline const swarf_sweep_data *swarf_sweep_cdata(const swarf_sweep *s) {
+  return (const swarf_sweep_data *)(const void *)s->internal_;
+}
+
 void swarf_sweep_line_init(swarf_sweep *s, const double p0[3], const double p1[3]);
 double swarf_sweep_slot_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_plunge_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
-/* aux of SWARF_SWEEP_HELIX: t(alpha) = C + RAD (cos(ANG alpha) E1 + sin(ANG alpha) E2)
- * + alpha RISE axis; N samples STEP mm apart along the path of length LEN. */
-enum { SWARF_H_C, SWARF_H_E1 = 3, SWARF_H_E2 = 6, SWARF_H_RAD = 9, SWARF_H_ANG, SWARF_H_RISE,
-       SWARF_H_STEP, SWARF_H_N, SWARF_H_LEN };
-
 void swarf_sweep_helix_init(swarf_sweep *s);
 double swarf_sweep_arc_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ring_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha);
-
-/* aux of SWARF_SWEEP_RIGID: bounds LO, HI of the volume; N time steps; V, W
- * bounds of |v|, |omega| and VD, WD of their alpha-derivatives; FAR mm. */
-enum { RG_LO, RG_HI = 3, RG_N = 6, RG_V, RG_W, RG_VD, RG_WD, RG_FAR };
 
 void swarf_sweep_rigid_init(swarf_sweep *s, double voxel);
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]);

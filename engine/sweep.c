@@ -3,7 +3,7 @@
  *
  * A swarf_sweep is a value that points at a cutter and a motion owned by the
  * caller; init picks the evaluator (engine_private.h lists them) and stores
- * its per-move constants in aux. The evaluators live in sweep_line.c,
+ * its per-move constants, typed per method (swarf_sweep_data). The evaluators live in sweep_line.c,
  * sweep_helix.c and (motions with rotation) sweep_rigid.c.
  */
 #include <math.h>
@@ -32,7 +32,7 @@ void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_m
 
 void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
   double r = 0.5 * s->cutter->diameter;
-  if (s->method == SWARF_SWEEP_RIGID) {
+  if (swarf_sweep_cdata(s)->method == SWARF_SWEEP_RIGID) {
     swarf_sweep_rigid_bounds(s, lo, hi);
     return;
   }
@@ -45,7 +45,7 @@ void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
 }
 
 double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  switch (s->method) {
+  switch (swarf_sweep_cdata(s)->method) {
   case SWARF_SWEEP_SLOT:
     return swarf_sweep_slot_sdf(s, p, alpha);
   case SWARF_SWEEP_RAMP_BALL:
@@ -65,9 +65,10 @@ double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   }
 }
 
-int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol, swarf_char_curve *cc) {
+swarf_status swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,
+                                    swarf_char_curve *cc) {
   double t[3], U[9], tdot[3], v[3], omega[3];
-  if (s == NULL || s->cutter == NULL || s->motion == NULL || cc == NULL) return -1;
+  if (s == NULL || s->cutter == NULL || s->motion == NULL || cc == NULL) return SWARF_ERR_ARG;
   swarf_motion_eval(s->motion, alpha, t, U);
   swarf_motion_velocity(s->motion, alpha, tdot, v, omega);
   return swarf_char_curve_compute(cc, s->cutter, t, U, v, omega, tol);

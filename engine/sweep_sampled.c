@@ -51,14 +51,15 @@ typedef struct {
 /* g and g' at a; the best value is kept (among values equal to rounding, the
  * flatter point: the converged stationary point rather than an iterate). */
 static sample eval(hctx *h, double a) {
-  const double *x = h->s->aux, *ax = h->s->motion->axis;
-  double th = a * x[SWARF_H_ANG], c = cos(th), sn = sin(th), q[3], td[3], gr[3];
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(h->s)->u.helix;
+  const double *ax = h->s->motion->axis;
+  double th = a * x->angle, c = cos(th), sn = sin(th), q[3], td[3], gr[3];
   sample r = {a, 0.0, 0.0, 0.0};
   for (int k = 0; k < 3; k++) {
-    double u = c * x[SWARF_H_E1 + k] + sn * x[SWARF_H_E2 + k];
-    double du = c * x[SWARF_H_E2 + k] - sn * x[SWARF_H_E1 + k];
-    q[k] = h->p[k] - x[SWARF_H_C + k] - x[SWARF_H_RAD] * u - a * x[SWARF_H_RISE] * ax[k];
-    td[k] = x[SWARF_H_RAD] * x[SWARF_H_ANG] * du + x[SWARF_H_RISE] * ax[k];
+    double u = c * x->e1[k] + sn * x->e2[k];
+    double du = c * x->e2[k] - sn * x->e1[k];
+    q[k] = h->p[k] - x->c[k] - x->radius * u - a * x->rise * ax[k];
+    td[k] = x->radius * x->angle * du + x->rise * ax[k];
   }
   r.g = swarf_cutter_sdf_grad(h->s->cutter, q, gr);
   r.dg = -(gr[0] * td[0] + gr[1] * td[1] + gr[2] * td[2]);
@@ -197,13 +198,13 @@ static void certify(hctx *h) {
 
 double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   hctx h;
-  const double *x = s->aux;
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(s)->u.helix;
   h.s = s;
   h.p = p;
-  h.K = x[SWARF_H_RAD] * x[SWARF_H_ANG] * x[SWARF_H_ANG];
-  h.len = x[SWARF_H_LEN];
-  h.step = x[SWARF_H_STEP];
-  h.n = (int)x[SWARF_H_N];
+  h.K = x->radius * x->angle * x->angle;
+  h.len = x->len;
+  h.step = x->step;
+  h.n = x->n;
   h.evals = 0;
   h.best.a = 0.0;
   h.best.g = INFINITY;

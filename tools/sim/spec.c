@@ -136,7 +136,8 @@ static int parse_dims(const char *s, double dims[3], char *bad, size_t badlen) {
 swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_error *err) {
   static const char usage[] =
       "write --tool T<n>=<ball|flat|bull>,D<diameter>[,R<corner>][,L<length>]";
-  const char *s = spec, *why = NULL;
+  const char *s = spec;
+  swarf_error why;
   double dims[3] = {0, 0, 0};
   char bad[96];
   long n;
@@ -152,10 +153,9 @@ swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_e
   if (parse_dims(s, dims, bad, sizeof bad) != 0) {
     return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, spec, usage);
   }
-  if (swarf_cutter_init(&out->cutter, shape, dims[0], dims[1], dims[2], &why) != 0) {
-    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"",
-                           why ? why : "impossible cutter", spec);
-  }
+  swarf_error_init(&why);
+  if (swarf_cutter_init(&out->cutter, shape, dims[0], dims[1], dims[2], &why) != SWARF_OK)
+    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"", why.message, spec);
   out->number = (int)n;
   out->length = 0.0;
   return SWARF_OK;

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "engine_private.h" /* the sweep's typed data */
 #include "testkit.h"
 
 #define VOXEL 0.1
@@ -90,7 +91,7 @@ static errors compare(const char *name, const swarf_cutter *c, const swarf_motio
   tk_rng r = {0x9e3779b97f4a7c15ull * (unsigned)seed + 1};
   errors e = {0, 0, 0, 0};
   swarf_sweep_init_voxel(&s, c, m, VOXEL);
-  e.steps = (int)s.aux[6 /* RG_N */];
+  e.steps = swarf_sweep_cdata(&s)->u.rigid.n;
   for (int i = 0; i < NPTS; i++) {
     double p[3], a, lo[3], hi[3];
     near_point(&r, c, m, p);
@@ -116,14 +117,14 @@ static swarf_motion make(const char *machine, const double s6[6], const double e
   swarf_machine mc;
   swarf_move mv;
   swarf_motion m;
-  char msg[200];
+  swarf_error err;
   memset(&mv, 0, sizeof mv);
   mv.kind = SWARF_MOVE_LINE;
   mv.feed = 500;
   memcpy(mv.start, s6, sizeof mv.start);
   memcpy(mv.end, e6, sizeof mv.end);
-  CHECK(swarf_machine_parse(&mc, machine, msg, sizeof msg) == 0, "parse %s: %s", machine, msg);
-  CHECK(swarf_machine_motion(&mc, &mv, &m) == 0, "motion on %s", machine);
+  CHECK(swarf_machine_parse(&mc, machine, &err) == SWARF_OK, "parse %s: %s", machine, err.message);
+  CHECK(swarf_machine_motion(&mc, &mv, &m, NULL) == SWARF_OK, "motion on %s", machine);
   CHECK(m.kind == SWARF_MOTION_RIGID, "%s: rigid", machine);
   return m;
 }
@@ -208,7 +209,7 @@ static void test_on_characteristic(void) {
     }
     for (int k = 0; k < 3; k++)
       x[k] = p[k] - d * gw[k];
-    if (swarf_sweep_char_curve(&s, a, 1e-3, &cc) <= 0) continue;
+    if ((swarf_sweep_char_curve(&s, a, 1e-3, &cc) == SWARF_OK ? (int)cc.ncomp : -1) <= 0) continue;
     for (size_t j = 0; j + 1 < cc.len; j++)
       best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
     worst = fmax(worst, best);

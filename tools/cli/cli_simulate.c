@@ -14,11 +14,12 @@
 
 #include "cli.h"
 #include "modbus_service.h"
-#include "sim.h"
+#include "swarf_sim.h"
+#include "verify.h"
 
 static const char help[] =
     "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
-    "                      --tool T<n>=<shape>,D<diameter>[,R<corner>][,L<length>] ...\n"
+    "                      --tool T<n>=<family>,<fields> ...\n"
     "                      --out FILE.vdb [--mesh FILE.stl] [--image FILE.png]\n"
     "                      [--voxel MM] [--band VOXELS] [--machine NAME[,k=v...]] [--quiet]\n"
     "\n"
@@ -32,11 +33,27 @@ static const char help[] =
     "  --machine NAME   xyz (default); xyza[,pivot=Y,Z] (rotary table about X);\n"
     "                   xyzac-trt or xyzbc-trt[,mode=tcp|joint][,pivot=X,Y,Z] (5-axis\n"
     "                   table-rotary-tilting, tool-centre-point mode by default)\n"
-    "  --tool T1=ball,D3.175,L25   a cutter: shape ball, flat or bull; D diameter,\n"
-    "                   R corner radius (bull), L cutting length above the tip\n"
-    "                   (default 4*D). Repeat for several tools; a single tool is\n"
-    "                   loaded at the start, otherwise T<n> M6 selects one.\n"
-    "                   The controlled point is the tool tip (bottom centre).\n"
+    "  --tool T1=ball,D3.175,L25   a cutter: T number = family, fields (mm, angles in\n"
+    "                   degrees; L is the cutting length above the tip, default 4*D):\n"
+    "     flat|ball|bull,D<d>[,R<corner>][,L]   end mills (bull needs R; flutes may be\n"
+    "                   shorter than D)\n"
+    "     vee,D<d>,A<included angle>[,L]        V-bit / engraver, sharp tip\n"
+    "     drill,D<d>[,A<point angle, 118>][,L]  twist drill\n"
+    "     spot,D<d>[,A<point angle, 90>][,L]    spot drill\n"
+    "     chamfer,D<d>,A<included angle>[,T<tip diameter, 0>][,L]   chamfer mill\n"
+    "     taper,D<tip diameter>,A<half-angle>[,R<tip radius>][,L]  tapered flat/ball\n"
+    "     apt,D,R,E,F,A<alpha>,B<beta>,H        APT 7-parameter cutter: corner circle\n"
+    "                   (E, F, R), bottom at alpha through the tip (F = (R + E sin A)/\n"
+    "                   cos A), side at beta from the axis (D = 2 (E + R/cos B)) to H\n"
+    "     lollipop,D<sphere>,K<neck diameter>[,L]       undercut ball (non-convex)\n"
+    "     dovetail,D<bottom>,A<flank to base>,H<flank height>[,K<neck>][,L]\n"
+    "     tslot,D<d>,H<disk thickness>,K<neck diameter>[,L]\n"
+    "     qss,a,b,e,f   the paper's QSS of revolution h = a(x^2+y^2) + b z^2 + e z + f\n"
+    "                   (mm), its lowest point at the tip (convex or not, e.g. 2,3,0,0\n"
+    "                   or 3,-3,0,0)\n"
+    "                   Repeat for several tools; a single tool is loaded at the start,\n"
+    "                   otherwise T<n> M6 selects one. The controlled point is the\n"
+    "                   tool tip (bottom centre).\n"
     "  --voxel MM       voxel edge (default 0.2); halving it takes ~4x the time\n"
     "  --band N         narrow band half width in voxels (default 3, at least 3)\n"
     "  --out FILE.vdb   remaining material: OpenVDB float level set named \"stock\"\n"
@@ -47,14 +64,24 @@ static const char help[] =
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "\n"
     "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ...), 1 on an\n"
-    "internal failure. Nothing is written unless the whole program ran.\n";
+    "internal failure, 4 with --fail-on gouge when a gouge was found. Nothing is\n"
+    "written unless the whole program ran.\n";
 
 typedef struct {
   const char *program, *out, *mesh, *image;
   int quiet;
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
+  swarf_verify verify;
 } sim_options;
+
+/* What the run's callbacks reach: the progress bar, the Modbus service, the
+ * verification (alarms, lines). */
+typedef struct {
+  swarf_progress *bar; /* NULL when quiet */
+  swarf_modbus_service *modbus;
+  swarf_verify *verify;
+} sim_clients;
 
 static int usage_error(const char *what) {
   fprintf(stderr, "swarf simulate: %s\n(run `swarf simulate --help` for the options)\n", what);
@@ -79,6 +106,7 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   double d;
   int rc = swarf_modbus_option(&o->modbus, flag, val, i);
   if (rc >= 0) return rc;
+  if ((rc = swarf_verify_option(&o->verify, flag, val, i)) >= 0) return rc;
   if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
   if (val == NULL) {
     snprintf(msg, sizeof msg, "%s needs a value", flag);
@@ -105,11 +133,13 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     return 0;
   }
   if (!strcmp(flag, "--stock")) {
-    if (swarf_sim_parse_stock(val, &o->cfg, msg, sizeof msg)) return usage_error(msg);
+    swarf_error err;
+    if (swarf_sim_parse_stock(val, &o->cfg.stock, &err)) return usage_error(err.message);
     return 0;
   }
   if (!strcmp(flag, "--machine")) {
-    if (swarf_machine_parse(&o->cfg.machine, val, msg, sizeof msg)) return usage_error(msg);
+    swarf_error err;
+    if (swarf_machine_parse(&o->cfg.machine, val, &err) != SWARF_OK) return usage_error(err.message);
     return 0;
   }
   if (!strcmp(flag, "--tool")) return -1; /* handled by the caller */
@@ -118,16 +148,14 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
 }
 
 static int add_tool(sim_options *o, const char *spec) {
-  char msg[256];
+  char msg[600];
   swarf_sim_tool t;
-  if (o->cfg.ntools == SWARF_SIM_MAX_TOOLS) return usage_error("--tool: too many tools");
-  if (swarf_sim_parse_tool(spec, &t, msg, sizeof msg)) return usage_error(msg);
-  for (int i = 0; i < o->cfg.ntools; i++)
-    if (o->cfg.tools[i].number == t.number) {
-      snprintf(msg, sizeof msg, "--tool: T%d is given twice", t.number);
-      return usage_error(msg);
-    }
-  o->cfg.tools[o->cfg.ntools++] = t;
+  swarf_error err;
+  if (swarf_sim_parse_tool(spec, &t, &err)) return usage_error(err.message);
+  if (swarf_sim_config_add_tool(&o->cfg, &t, &err)) {
+    snprintf(msg, sizeof msg, "--tool: %s", err.message);
+    return usage_error(msg);
+  }
   return 0;
 }
 
@@ -144,10 +172,9 @@ static int check_output(const char *flag, const char *path) {
 static int parse_args(sim_options *o, int argc, char **argv) {
   int have_stock = 0, rc;
   memset(o, 0, sizeof *o);
-  o->cfg.voxel = 0.2;
-  o->cfg.half_width = 3;
+  swarf_sim_config_init(&o->cfg);
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_modbus_help, stdout), 1;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
       if (o->program) return usage_error("give one PROGRAM only");
       o->program = argv[i];
@@ -173,7 +200,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
 static int check_size(const swarf_sim_config *cfg) {
   double d[3], area, voxels;
   char what[256];
-  for (int k = 0; k < 3; k++) d[k] = cfg->stock_hi[k] - cfg->stock_lo[k];
+  for (int k = 0; k < 3; k++) d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
   area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
   voxels = area / (cfg->voxel * cfg->voxel) * 2.0 * cfg->half_width;
   if (voxels < 2e9) return 0;
@@ -194,12 +221,16 @@ static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t 
 
 /* Each alarm (up to the report's record of them) as a located warning. */
 static void print_alarms(const sim_options *o, const swarf_sim_report *r) {
-  for (long i = 0; i < r->alarms && i < SWARF_SIM_MAX_ALARMS; i++)
+  long rapids = r->alarm_count[SWARF_ALARM_RAPID], told = 0;
+  for (long i = 0; i < r->alarms && i < SWARF_SIM_MAX_ALARMS; i++) {
+    if (r->alarm[i].kind != SWARF_ALARM_RAPID) continue;
     fprintf(stderr, "%s:%ld:%d: warning: rapid move (G0) cuts into the material\n", o->program,
-            r->alarm_line[i], r->alarm_column[i]);
-  if (r->alarms > SWARF_SIM_MAX_ALARMS)
+            r->alarm[i].line, r->alarm[i].column);
+    told++;
+  }
+  if (rapids > told)
     fprintf(stderr, "%s: warning: %ld more rapid moves cut into the material\n", o->program,
-            r->alarms - SWARF_SIM_MAX_ALARMS);
+            rapids - told);
 }
 
 static void print_summary(const sim_options *o, const swarf_stock *stock,
@@ -213,7 +244,8 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
   printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
          r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
          r->volume_after);
-  printf("  alarms %ld (rapid moves cutting into material)\n", r->alarms);
+  printf("  alarms %ld (%ld rapid moves cutting into material, %ld moves gouging the design)\n",
+         r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE]);
   printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
          r->seconds > 0 ? r->moves / r->seconds : 0.0, total_s);
   printf("  grid: voxel %g mm, active voxels %llu\n", swarf_stock_voxel(stock),
@@ -224,34 +256,70 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
   printf("\n");
 }
 
+static int on_progress(void *user, const swarf_sim_progress *p) {
+  sim_clients *c = user;
+  if (c->bar != NULL) swarf_progress_update(c->bar, p->fraction, p->report->moves);
+  return swarf_modbus_observe(c->modbus, p);
+}
+
+static void on_alarm(void *user, const swarf_alarm *a) {
+  swarf_verify_alarm(((sim_clients *)user)->verify, a);
+}
+
+static void on_line(void *user, const swarf_line_result *l) {
+  swarf_verify_line(((sim_clients *)user)->verify, l);
+}
+
+/* The run's failure on stderr; returns the exit status. */
+static int report_failure(const swarf_error *e, const swarf_modbus_service *mb) {
+  char msg[1024];
+  if (e->status == SWARF_ERR_ABORTED && swarf_modbus_aborted(mb))
+    fprintf(stderr, "%s:%ld: aborted by a Modbus command\n", e->file, e->line);
+  else {
+    swarf_error_format(e, msg, sizeof msg);
+    fprintf(stderr, "%s\n", msg);
+  }
+  return (int)swarf_status_classify(e->status);
+}
+
 int swarf_cli_simulate(int argc, char **argv) {
   sim_options o;
   swarf_sim_report rep;
   swarf_stock *stock = NULL;
   swarf_progress pb;
   swarf_modbus_service *mb = NULL;
-  char msg[1024];
+  swarf_error err;
   size_t ntri = 0;
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
   if (rc || (rc = check_size(&o.cfg))) return rc;
-  if ((rc = swarf_modbus_start(&o.modbus, o.program, &o.cfg, &mb))) return rc;
+  if ((rc = swarf_verify_prepare(&o.verify, &o.cfg))) return swarf_verify_free(&o.verify), rc;
+  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb))) return swarf_verify_free(&o.verify), rc;
   swarf_progress_init(&pb);
-  if (!o.quiet) {
-    o.cfg.progress = swarf_progress_update;
-    o.cfg.progress_ctx = &pb;
-  }
-  rc = swarf_sim_run(&o.cfg, o.program, &stock, &rep, msg, sizeof msg);
-  swarf_progress_finish(&pb);
-  if (rc != 0) {
-    fprintf(stderr, "%s\n", msg);
+  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify};
+  o.cfg.cb.progress = on_progress;
+  o.cfg.cb.alarm = on_alarm;
+  if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
+  o.cfg.cb.user = &clients;
+  swarf_error_init(&err);
+  if (swarf_sim_run(&o.cfg, o.program, &stock, &rep, &err) != SWARF_OK) {
+    swarf_progress_finish(&pb);
+    rc = report_failure(&err, mb);
     swarf_modbus_finish(mb, rc, &rep);
+    swarf_verify_free(&o.verify);
     return rc;
   }
+  swarf_progress_finish(&pb);
   print_alarms(&o, &rep);
+  swarf_verify_warn(&o.verify, o.program, &rep);
   rc = write_outputs(&o, stock, &ntri);
-  if (rc == 0 && !o.quiet) print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
-  swarf_modbus_finish(mb, rc, &rep);
+  if (rc == 0 && !o.quiet) {
+    print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
+    swarf_verify_summary(&o.verify, &rep);
+  }
+  if (rc == 0) rc = swarf_verify_finish(&o.verify, o.program, &o.cfg, &rep);
+  swarf_modbus_finish(mb, rc == 4 ? 0 : rc, &rep); /* a gouge is the part's, not the run's */
   swarf_stock_free(stock);
+  swarf_verify_free(&o.verify);
   return rc;
 }

@@ -57,9 +57,9 @@ typedef struct {
 } swarf_sim_tool;
 
 typedef enum {
-  SWARF_SIM_STOCK_BOX = 0,  /* lo..hi */
-  SWARF_SIM_STOCK_CYLINDER  /* about axis (0 x, 1 y, 2 z) through the origin, radius,
-                             * from lo[axis] to hi[axis] along it */
+  SWARF_SIM_STOCK_BOX = 0, /* lo..hi */
+  SWARF_SIM_STOCK_CYLINDER /* about axis (0 x, 1 y, 2 z) through the origin, radius,
+                            * from lo[axis] to hi[axis] along it */
 } swarf_sim_stock_kind;
 
 typedef struct {
@@ -67,7 +67,7 @@ typedef struct {
   double lo[3], hi[3]; /* the box, or the cylinder's bounding box, mm */
   int axis;
   double radius;
-} swarf_sim_stock;
+} swarf_sim_stock_spec;
 
 typedef struct swarf_sim swarf_sim;
 typedef struct swarf_sim_report swarf_sim_report;
@@ -84,21 +84,21 @@ typedef enum {
 
 typedef struct {
   swarf_alarm_kind kind;
-  long line;     /* source line of the move, 1-based */
-  int column;    /* source column of its motion word */
-  int tool;      /* T number in the spindle */
-  double depth;  /* mm, deepest penetration found (NaN when not measured) */
-  double at[3];  /* mm, workpiece frame: where (NaN when not measured) */
-  int index;     /* FIXTURE: which fixture (1-based); 0 otherwise */
+  long line;    /* source line of the move, 1-based */
+  int column;   /* source column of its motion word */
+  int tool;     /* T number in the spindle */
+  double depth; /* mm, deepest penetration found (NaN when not measured) */
+  double at[3]; /* mm, workpiece frame: where (NaN when not measured) */
+  int index;    /* FIXTURE: which fixture (1-based); 0 otherwise */
 } swarf_alarm;
 
 /* Progress, after every motion move (and after each chunk of a file). */
 typedef struct {
-  double fraction;                 /* of the program read, 0..1; < 0 while unknown */
-  long line;                       /* source line of the move */
-  int tool;                        /* T number in the spindle, 0 none */
-  const swarf_sim_report *report;  /* counts so far */
-  const swarf_stock *stock;        /* the stock as of the last removal pass (read only) */
+  double fraction;                /* of the program read, 0..1; < 0 while unknown */
+  long line;                      /* source line of the move */
+  int tool;                       /* T number in the spindle, 0 none */
+  const swarf_sim_report *report; /* counts so far */
+  const swarf_stock *stock;       /* the stock as of the last removal pass (read only) */
 } swarf_sim_progress;
 
 /* Per source line that moved the tool, in program order, once its moves have
@@ -123,19 +123,44 @@ typedef struct {
 } swarf_sim_callbacks;
 
 typedef struct {
-  swarf_machine machine; /* kinematics (toolpath.h); zero: xyz */
-  swarf_sim_stock stock; /* the initial stock, unless swarf_sim_new_with_stock */
-  double voxel;          /* voxel edge, mm */
-  int half_width;        /* narrow band, voxels each side (>= 3) */
-  int batch;             /* moves removed per stock pass (default 128) */
+  swarf_machine machine;      /* kinematics (toolpath.h); zero: xyz */
+  swarf_sim_stock_spec stock; /* the initial stock, unless swarf_sim_new_with_stock */
+  double voxel;               /* voxel edge, mm */
+  int half_width;             /* narrow band, voxels each side (>= 3) */
+  int batch;                  /* moves removed per stock pass (default 128) */
   swarf_sim_tool tools[SWARF_SIM_MAX_TOOLS];
-  int ntools;            /* one tool: loaded at the start; more: T<n> M6 selects */
-  int line_volumes;      /* 1: measure each line's removed volume (swarf_line_result) */
+  int ntools;       /* one tool: loaded at the start; more: T<n> M6 selects */
+  int line_volumes; /* 1: measure each line's removed volume (swarf_line_result) */
   /* Benchmark baseline only: when > 0 each move is not swept exactly but
    * stamped at poses stamp_step mm apart, as stamping simulators do. */
   double stamp_step;
   swarf_sim_callbacks cb;
+  /* The machine's setup. The workpiece frame (the stock's, the design's,
+   * the motions', the report's) is G54's as set up here before the program
+   * runs: machine = Rz(G54 rotation) workpiece + G54 origin. Zero values: a
+   * metric machine, no offsets, the tool at X0 Y0 at a safe height. */
+  int units;                /* swarf_gcode_units: the machine's length unit (programs
+                             * without G20/G21 run in it; offsets_file holds it); 0: mm */
+  const char *offsets_file; /* LinuxCNC parameter file (gcode.h), read by new (borrowed
+                             * until it returns); NULL: none */
+  int g54_set;              /* 1: G54's origin is g54 (after offsets_file) */
+  double g54[3];            /* mm, machine frame */
+  int start_set;            /* 1: the tool tip starts at start; 0: X0 Y0, Z
+                             * SWARF_SIM_CLEARANCE above the stock (a rotary machine:
+                             * above the stock's sphere about the pivot) */
+  double start[3];          /* mm, workpiece frame */
+  /* The part as designed (a level set, stock.h): each move that removes
+   * material deeper than `tolerance` inside it raises SWARF_ALARM_GOUGE
+   * (depth: that move's deepest, as measured against the stock as it stood,
+   * so a gouge is the first move's that cut into the design), and finish
+   * compares the result with it (report.deviation). Borrowed: it must
+   * outlive the handle. NULL: none. */
+  const swarf_stock *design;
+  double tolerance; /* mm; <= 0: half the stock's voxel */
 } swarf_sim_config;
+
+/* How far above the stock the tool starts by default, mm. */
+#define SWARF_SIM_CLEARANCE 10.0
 
 /* Defaults: xyz machine, 0.2 mm voxel, band 3, batch 128, no tools, no stock
  * (a stock or an existing stock handle must be given). */
@@ -150,8 +175,8 @@ SWARF_API swarf_status swarf_sim_config_add_tool(swarf_sim_config *cfg, const sw
 /* A new simulation of a program called `name` (used in messages; not
  * opened). It builds the stock from cfg->stock. The config is copied: the
  * caller may free it. On failure *out is NULL and err (may be NULL) says why. */
-SWARF_API swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name,
-                                     swarf_sim **out, swarf_error *err);
+SWARF_API swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_sim **out,
+                                     swarf_error *err);
 
 /* The same on an existing stock (a .vdb read back, an earlier run's result):
  * the handle takes ownership of `stock` in every case (freed on failure). Its
@@ -182,19 +207,26 @@ SWARF_API const swarf_error *swarf_sim_error(const swarf_sim *sim);
 
 /* Counts so far (final after finish). Owned by the handle. */
 struct swarf_sim_report {
-  long lines;                 /* program lines read */
-  long moves;                 /* motion moves (rapid, line, arc) */
-  long cutting_moves;         /* moves whose sweep touched the stock's bounds */
-  long rapids, arcs;          /* counts among moves */
+  long lines;         /* program lines read */
+  long moves;         /* motion moves (rapid, line, arc) */
+  long cutting_moves; /* moves whose sweep touched the stock's bounds */
+  long rapids, arcs;  /* counts among moves */
   long tool_changes;
-  double path_mm;             /* tip path length */
-  double machining_s;         /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
-  double volume_before;       /* stock volume at the start, mm^3 */
-  double volume_after;        /* at finish, mm^3 (NaN before) */
-  double seconds;             /* wall time from new to finish */
-  long alarms;                /* all alarms */
-  long alarm_count[5];        /* per swarf_alarm_kind */
+  double path_mm;                          /* tip path length */
+  double machining_s;                      /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
+  double volume_before;                    /* stock volume at the start, mm^3 */
+  double volume_after;                     /* at finish, mm^3 (NaN before) */
+  double seconds;                          /* wall time from new to finish */
+  long alarms;                             /* all alarms */
+  long alarm_count[5];                     /* per swarf_alarm_kind */
   swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */
+  double start[3];         /* where the tool tip started, workpiece frame, mm */
+  int start_default;       /* 1: the default start (not cfg.start) */
+  long units_line;         /* the program's first G20/G21 (0: none) */
+  long units_missing_line; /* the first move run before any G20/G21 (0: none): it ran */
+  int units_missing_column; /* in the machine's unit */
+  int has_deviation;       /* 1: deviation holds the comparison with cfg.design */
+  swarf_stock_deviation deviation; /* after finish (stock.h) */
 };
 SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);
 
@@ -223,7 +255,7 @@ SWARF_API swarf_status swarf_sim_run_text(const swarf_sim_config *cfg, const cha
 SWARF_API swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out,
                                             swarf_error *err);
 /* "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" or "cylinder:AXIS,RADIUS,START,END". */
-SWARF_API swarf_status swarf_sim_parse_stock(const char *spec, swarf_sim_stock *out,
+SWARF_API swarf_status swarf_sim_parse_stock(const char *spec, swarf_sim_stock_spec *out,
                                              swarf_error *err);
 
 #ifdef __cplusplus

@@ -1,0 +1,88 @@
+/* sim_private.h -- the simulation handle's insides, shared by sim.c (the
+ * calls), batch.c (queued sweeps, removal passes, rapid alarms) and lines.c
+ * (per-line results). Not installed.
+ */
+#ifndef SWARF_SIM_PRIVATE_H
+#define SWARF_SIM_PRIVATE_H
+
+#include "gcode.h"
+#include "move_motion.h"
+#include "swarf_sim.h"
+
+/* A move stamped at n + 1 evenly spaced poses (the benchmark baseline). */
+typedef struct {
+  const swarf_cutter *cutter;
+  const swarf_motion *motion;
+  int n;
+} swarf_sim_stamp;
+
+typedef enum { SIM_OPEN = 0, SIM_FINISHED, SIM_FAILED, SIM_TAKEN } swarf_sim_state;
+
+struct swarf_sim {
+  swarf_sim_config cfg; /* a copy: the caller's may go away */
+  char name[256];
+  swarf_gcode_parser *parser;
+  swarf_stock *stock;
+  const swarf_sim_tool *tool; /* in the spindle, NULL when empty */
+  swarf_sim_state state;
+  swarf_error err;
+  swarf_sim_report rep;
+  double t0;       /* monotonic seconds at new */
+  double fraction; /* of the file read; < 0 unknown */
+  /* batch: motions, their sweeps and cuts, removed in one pass */
+  swarf_motion *motions;
+  swarf_sweep *sweeps;
+  swarf_stock_cut *cuts;
+  swarf_sim_stamp *stamps;
+  int n, cap;
+  double pad_lo[3], pad_hi[3]; /* material box grown by the narrow band */
+  double mat_lo[3], mat_hi[3]; /* material box: the spec's, or the stock's active voxels */
+  /* per-line results: the open line and the closed ones not yet told */
+  swarf_line_result cur;
+  swarf_line_result *pending;
+  int npending, pending_cap;
+  long cur_id;   /* lines opened so far: cur's id; pending[i]'s is cur_id - npending + i */
+  long *cut_id;  /* batch: the line each cut belongs to (measured removal) */
+  swarf_stock_cut_effect *effects; /* batch: what each cut did (measured removal) */
+  int measured;  /* removal measures each cut (line volumes or a design) */
+  double tolerance; /* gouges deeper than this, mm */
+  swarf_stock *initial; /* the stock before the run, for the design comparison */
+  /* the workpiece frame: machine = Rz(frame_rot) workpiece + frame_origin */
+  double frame_origin[3], frame_cos, frame_sin;
+  int units_checked; /* the first move was checked for a units word */
+};
+
+/* Record the first failure (status, place, message) and return its status. */
+swarf_status swarf_sim_fail(swarf_sim *s, swarf_status st, long line, int column, const char *fmt,
+                            ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+/* batch.c. Return 0, or 1 after swarf_sim_fail. */
+int swarf_sim_batch_init(swarf_sim *s);
+void swarf_sim_batch_clear(swarf_sim *s);
+int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *m);
+int swarf_sim_batch_flush(swarf_sim *s);
+/* An alarm: counted in the report (the first SWARF_SIM_MAX_ALARMS kept) and told. */
+void swarf_sim_raise(swarf_sim *s, const swarf_alarm *a);
+
+/* setup.c: the machine's setup on the parser and the start (from new), the
+ * moves into the workpiece frame, the first move's units check. Return
+ * SWARF_OK or the status, with err filled. */
+swarf_status swarf_sim_setup(swarf_sim *s, swarf_error *err);
+void swarf_sim_to_workpiece(const swarf_sim *s, const swarf_move *in, swarf_move *out);
+void swarf_sim_check_units(swarf_sim *s, const swarf_move *mv);
+/* The design: checked against the stock and the initial stock kept (new);
+ * the comparison (finish). */
+swarf_status swarf_sim_design_init(swarf_sim *s, swarf_error *err);
+swarf_status swarf_sim_design_compare(swarf_sim *s);
+
+/* lines.c: count a motion in its line; tell the closed lines (all, at the end). */
+int swarf_sim_lines_add(swarf_sim *s, const swarf_motion *m, int tool);
+int swarf_sim_lines_flush(swarf_sim *s, int at_end);
+/* Add what a removed cut of line `id` did to that line's result. */
+void swarf_sim_lines_removed(swarf_sim *s, long id, double removed);
+
+#endif

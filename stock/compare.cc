@@ -4,11 +4,15 @@
 /// Two passes over 8^3 blocks, in parallel, each block's findings kept apart
 /// and added up in block order (the result does not depend on the threads):
 ///  - excess, over the stock's material (its leaves and inside tiles): each
-///    voxel's inside fraction times the fraction of it farther than the
-///    tolerance outside the design;
-///  - gouge (and missing), over the design's interior: each voxel's fraction
-///    deeper than the tolerance inside the design times the fraction without
-///    material (with an initial stock: that had material at the start).
+///    voxel's inside fraction in the stock minus that in the design grown by
+///    the tolerance (when positive);
+///  - gouge (and missing), over the design's interior: each voxel's inside
+///    fraction in the design shrunk by the tolerance minus that in the stock
+///    (with an initial stock: in the smaller of the shrunk design and the
+///    initial stock).
+/// A difference of inside fractions is exact for parallel faces at any
+/// offset, and counts nothing where the two surfaces coincide (the stock's
+/// side walls on the design's); a product of fractions would count both.
 /// Where both grids share one lattice and origin, a block that is a tile in
 /// both is counted at once (most of a part's interior).
 #include <tbb/blocked_range.h>
@@ -78,7 +82,7 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
   const double v = f.s.voxel;
   if (w.leaf == nullptr && f.same_lattice && dacc.probeConstLeaf(w.origin) == nullptr) {
     const double d = dacc.getValue(w.origin);  // both tiles here
-    out.volume = Leaf::SIZE * inside_fraction(w.tile, v) * (1.0 - inside_fraction(d - f.tol, v));
+    out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile, v) - inside_fraction(d - f.tol, v));
     const double h = d + vouched_radius(-double(w.tile), v);
     if (h > f.tol) out.depth = h, out.at = index_to_world(f.s, w.origin.offsetBy(4));
     return;
@@ -88,7 +92,7 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
     if (!(s < 0.5 * v)) continue;  // no material in this voxel
     const Vec3d q = index_to_world(f.s, w.origin + Leaf::offsetToLocalCoord(n));
     const double d = design.at(q);
-    out.volume += inside_fraction(s, v) * (1.0 - inside_fraction(d - f.tol, v));
+    out.volume += std::max(0.0, inside_fraction(s, v) - inside_fraction(d - f.tol, v));
     if (!(s < 0.0)) continue;
     const double h = d + vouched_radius(-s, v);
     if (h > f.tol && h > out.depth) out.depth = h, out.at = q;
@@ -101,7 +105,7 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
   const double v = f.design.voxel;
   if (w.leaf == nullptr && f.same_lattice && initial == nullptr && sacc.probeConstLeaf(w.origin) == nullptr) {
     const double s = sacc.getValue(w.origin);  // both tiles here
-    out.volume = Leaf::SIZE * inside_fraction(w.tile + f.tol, v) * (1.0 - inside_fraction(s, v));
+    out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile + f.tol, v) - inside_fraction(s, v));
     const double g = -double(w.tile) + vouched_radius(s, v);
     if (s > 0.0 && g > f.tol) out.depth = g, out.at = index_to_world(f.design, w.origin.offsetBy(4));
     return;
@@ -113,8 +117,8 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
     const Vec3d q = index_to_world(f.design, w.origin + Leaf::offsetToLocalCoord(n));
     const double s = stock.at(q), s0 = initial ? initial->at(q) : -1e30;
     const double had = initial ? inside_fraction(s0, f.s.voxel) : 1.0;
-    out.volume += in * (1.0 - inside_fraction(s, f.s.voxel)) * had;
-    out.missing += in * (1.0 - had);
+    out.volume += std::max(0.0, std::min(in, had) - inside_fraction(s, f.s.voxel));
+    out.missing += std::max(0.0, in - had);
     if (!(s > 0.0) || !(s0 < 0.0)) continue;
     const double g = -d + vouched_radius(std::min(s, -s0), f.s.voxel);
     if (g > f.tol && g > out.depth) out.depth = g, out.at = q;

@@ -1,8 +1,8 @@
 /// @file levelset.cc
 /// @brief Stocks made from other shapes: a closed STL mesh (OpenVDB's
-/// meshToLevelSet), a .vdb grid of swarf or another tool, a stock rebuilt at
-/// another voxel size or band (through its zero isosurface), a stock placed
-/// for the next setup (resampled), and designs for the comparison.
+/// meshToVolume, distances made exact), a .vdb grid of swarf or another tool,
+/// a stock resampled at another voxel size or placed for the next setup, and
+/// designs for the comparison.
 ///
 /// Every grid made here follows swarf's band: background b = the band's
 /// half-width (band_background), a voxel is active iff |value| < b, inactive
@@ -10,14 +10,15 @@
 /// to that form too (values clamped into the band, NaN outside), so the
 /// removal can rely on it whatever tool wrote them.
 ///
-/// Placement: the placed grid's origin is R o + t (o: the source's origin),
-/// so that its voxel j maps back to the source's index R^T j exactly: a
-/// rotation by quarter turns permutes voxels (values copied bit for bit),
-/// any other is sampled trilinearly at R^T j.
+/// Placement and resampling: the new grid's origin is R o + t (o: the
+/// source's origin), so that its voxel j maps back to the source's index
+/// A j, A = (new voxel / old voxel) R^T: a rotation by quarter turns at the
+/// same voxel permutes voxels (values copied bit for bit), anything else is
+/// sampled trilinearly at A j. Where the source reads its band's edge (it
+/// knows only that the surface is farther), the new grid reads its own.
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/Prune.h>
-#include <openvdb/tools/VolumeToMesh.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
 
@@ -25,6 +26,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -110,14 +112,103 @@ void check_mesh_size(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tr
     throw Error(kErrLimit, "the mesh's surface is too large for this voxel size (band over 4e9 voxels)");
 }
 
-/// A stock from a closed polygon mesh (world points, mm).
+/// The mesh in index space, for exact distances.
+struct IndexMesh {
+  std::vector<Vec3s> points;  ///< index space
+  std::vector<Vec4I> prims;   ///< triangles (prim[3] INVALID_IDX) and quads
+
+  /// Distance (voxels) from index point p to primitive n.
+  double distance(const Vec3d &p, size_t n) const {
+    const Vec4I &q = prims[n];
+    Vec3d uvw;
+    double d2 = (p - openvdb::math::closestPointOnTriangleToPoint(Vec3d(points[q[0]]), Vec3d(points[q[1]]),
+                                                                  Vec3d(points[q[2]]), p, uvw))
+                    .lengthSqr();
+    if (q[3] != openvdb::util::INVALID_IDX)
+      d2 = std::min(d2, (p - openvdb::math::closestPointOnTriangleToPoint(Vec3d(points[q[0]]), Vec3d(points[q[2]]),
+                                                                          Vec3d(points[q[3]]), p, uvw))
+                            .lengthSqr());
+    return std::sqrt(d2);
+  }
+};
+
+using IndexGrid = openvdb::Int32Grid;
+
+/// OpenVDB's band beyond the first voxels takes each voxel's distance to a
+/// polygon its neighbours found closest, which is not always the closest one
+/// (up to a voxel off near a box's edges). One pass: every band voxel takes
+/// the least distance to the polygons closest to it and to its 26 neighbours,
+/// and that polygon; the sign is kept. Two passes reach two voxels away.
+void exact_pass(openvdb::FloatGrid &grid, IndexGrid &index, const IndexMesh &mesh, double voxel) {
+  using ILeaf = openvdb::Int32Tree::LeafNodeType;
+  openvdb::tree::LeafManager<Tree> leaves(grid.tree());
+  std::vector<std::vector<float>> values(leaves.leafCount());
+  std::vector<std::vector<int32_t>> owners(leaves.leafCount());
+  const openvdb::Int32Tree &itree = index.constTree();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.leafCount(), 4), [&](const tbb::blocked_range<size_t> &r) {
+    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> acc(itree);
+    std::vector<int32_t> cand;
+    for (size_t l = r.begin(); l != r.end(); ++l) {
+      const Leaf &leaf = leaves.leaf(l);
+      values[l].assign(leaf.buffer().data(), leaf.buffer().data() + Leaf::SIZE);
+      owners[l].assign(Leaf::SIZE, -1);
+      for (auto it = leaf.cbeginValueOn(); it; ++it) {
+        const Coord c = it.getCoord();
+        cand.clear();
+        for (int dx = -1; dx <= 1; dx++)
+          for (int dy = -1; dy <= 1; dy++)
+            for (int dz = -1; dz <= 1; dz++) {
+              const int32_t n = acc.getValue(c.offsetBy(dx, dy, dz));
+              if (n >= 0 && size_t(n) < mesh.prims.size() && std::find(cand.begin(), cand.end(), n) == cand.end())
+                cand.push_back(n);
+            }
+        if (cand.empty()) continue;
+        double best = std::numeric_limits<double>::max();
+        int32_t who = -1;
+        for (int32_t n : cand) {
+          const double d = mesh.distance(Vec3d(c[0], c[1], c[2]), size_t(n));
+          if (d < best) best = d, who = n;
+        }
+        const float v = *it;
+        values[l][it.pos()] = float(v < 0.0f ? -best * voxel : best * voxel);
+        owners[l][it.pos()] = who;
+      }
+    }
+  });
+  openvdb::tree::ValueAccessor<openvdb::Int32Tree> iacc(index.tree());
+  for (size_t l = 0; l < leaves.leafCount(); l++) {
+    Leaf &leaf = leaves.leaf(l);
+    for (auto it = leaf.beginValueOn(); it; ++it) {
+      it.setValue(values[l][it.pos()]);
+      if (owners[l][it.pos()] >= 0) iacc.setValueOnly(it.getCoord(), owners[l][it.pos()]);
+    }
+  }
+  (void)sizeof(ILeaf);
+}
+
+/// A stock from a closed polygon mesh (world points, mm): OpenVDB's
+/// meshToVolume (its renormalization, which smooths the distances near the
+/// surface, turned off) in a band one voxel wider than asked, its distances
+/// made exact (exact_pass), then trimmed to swarf's band.
 swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tris,
                         const std::vector<Vec4I> &quads, double voxel, int half_width) {
   check_mesh_size(pts, tris, quads, voxel, half_width);
   init_openvdb();
   const openvdb::math::Transform::Ptr xf = openvdb::math::Transform::createLinearTransform(voxel);
-  openvdb::FloatGrid::Ptr grid =
-      openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xf, pts, tris, quads, float(half_width));
+  IndexMesh m;
+  m.points.resize(pts.size());
+  for (size_t i = 0; i < pts.size(); i++)
+    m.points[i] = Vec3s(float(pts[i][0] / voxel), float(pts[i][1] / voxel), float(pts[i][2] / voxel));
+  m.prims.reserve(tris.size() + quads.size());
+  for (const Vec3I &t : tris) m.prims.emplace_back(t[0], t[1], t[2], openvdb::util::INVALID_IDX);
+  m.prims.insert(m.prims.end(), quads.begin(), quads.end());
+  const openvdb::tools::QuadAndTriangleDataAdapter<Vec3s, Vec4I> adapter(m.points, m.prims);
+  const float band = float(half_width + 1);
+  IndexGrid::Ptr index = IndexGrid::create(-1);
+  openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+      adapter, *xf, band, band, openvdb::tools::DISABLE_RENORMALIZATION, index.get());
+  for (int pass = 0; pass < 2; pass++) exact_pass(*grid, *index, m, voxel);
+  index.reset();
   set_stock_meta(*grid);
   normalize_band(*grid, band_background(half_width, voxel));
   if (!has_material(*grid))
@@ -125,29 +216,15 @@ swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> 
   return wrap_grid(grid);
 }
 
-/// The zero isosurface of a stock (world points, mm); empty without material.
-void stock_mesh(const swarf_stock &s, std::vector<Vec3s> &pts, std::vector<Vec3I> &tris,
-                std::vector<Vec4I> &quads) {
-  openvdb::tools::volumeToMesh(*s.grid, pts, tris, quads, 0.0, 0.0);
-  if (pts.empty()) throw Error(SWARF_STOCK_ERR_FORMAT, "the stock holds no material");
-}
-
-swarf_stock *rebuild(const swarf_stock &s, double voxel, int half_width) {
-  check_grid_args(voxel, half_width);
-  std::vector<Vec3s> pts;
-  std::vector<Vec3I> tris;
-  std::vector<Vec4I> quads;
-  stock_mesh(s, pts, tris, quads);
-  return mesh_stock(pts, tris, quads, voxel, half_width);
-}
-
 /// ---- Placement by resampling ----
 
-/// The source's index of the placed grid's voxel j: R^T j.
+/// The source's index of the new grid's voxel j: A j, A = (new voxel / old
+/// voxel) R^T (the new grid's origin is R o + t).
 struct Resampler {
   const swarf_stock &src;
-  double rt[9];  ///< R^T, row-major
-  bool exact;    ///< R is a signed permutation: voxels map onto voxels
+  double rt[9];  ///< A, row-major
+  bool exact;    ///< A is a signed permutation: voxels map onto voxels
+  float bg;      ///< the new band; source values at the source's band read as +-bg
 
   Vec3d source_index(const Vec3d &j) const {
     return Vec3d(rt[0] * j[0] + rt[1] * j[1] + rt[2] * j[2], rt[3] * j[0] + rt[4] * j[1] + rt[5] * j[2],
@@ -155,8 +232,11 @@ struct Resampler {
   }
   template <class Acc> float value(Acc &acc, const Vec3d &j) const {
     const Vec3d i = source_index(j);
-    if (exact) return acc.getValue(Coord(int(std::lround(i[0])), int(std::lround(i[1])), int(std::lround(i[2]))));
-    return openvdb::tools::BoxSampler::sample(acc, i);
+    const float v = exact ? acc.getValue(Coord(int(std::lround(i[0])), int(std::lround(i[1])), int(std::lround(i[2]))))
+                          : float(openvdb::tools::BoxSampler::sample(acc, i));
+    if (v >= src.background) return bg;  // beyond what the source knows: outside the band
+    if (v <= -src.background) return -bg;
+    return v;
   }
   /// True if the source holds no leaf under the block at j0 (its footprint,
   /// padded by one voxel for interpolation): the block is one tile.
@@ -182,14 +262,14 @@ struct PlacedBlock {
   int kind;  ///< 0 outside (nothing), 1 inside tile, 2 leaf to sample
 };
 
-/// Index box (block-aligned) of the placed grid: R applied to the source's content box.
-openvdb::CoordBBox placed_box(const swarf_stock &s, const double rot[9]) {
+/// Index box (block-aligned) of the new grid: R / scale applied to the source's content box.
+openvdb::CoordBBox placed_box(const swarf_stock &s, const double rot[9], double scale) {
   const openvdb::CoordBBox &c = s.content;
   Vec3d lo(1e300), hi(-1e300);
   for (int k = 0; k < 8; k++) {
     const Vec3d i(k & 1 ? c.max()[0] : c.min()[0], k & 2 ? c.max()[1] : c.min()[1], k & 4 ? c.max()[2] : c.min()[2]);
-    const Vec3d j(rot[0] * i[0] + rot[1] * i[1] + rot[2] * i[2], rot[3] * i[0] + rot[4] * i[1] + rot[5] * i[2],
-                  rot[6] * i[0] + rot[7] * i[1] + rot[8] * i[2]);
+    const Vec3d j = Vec3d(rot[0] * i[0] + rot[1] * i[1] + rot[2] * i[2], rot[3] * i[0] + rot[4] * i[1] + rot[5] * i[2],
+                          rot[6] * i[0] + rot[7] * i[1] + rot[8] * i[2]) / scale;
     lo = openvdb::math::minComponent(lo, j), hi = openvdb::math::maxComponent(hi, j);
   }
   int a[3], b[3];
@@ -202,26 +282,35 @@ openvdb::CoordBBox placed_box(const swarf_stock &s, const double rot[9]) {
   return openvdb::CoordBBox(Coord(a[0], a[1], a[2]), Coord(b[0], b[1], b[2]));
 }
 
-swarf_stock *place(const swarf_stock &s, const Rigid &m) {
+/// The stock placed by m and sampled at `voxel` mm with a band of `half_width`
+/// voxels (see the file comment).
+swarf_stock *resample(const swarf_stock &s, const Rigid &m, double voxel, int half_width) {
   init_openvdb();
-  Resampler rs{s, {}, true};
+  check_grid_args(voxel, half_width);
+  const double scale = voxel / s.voxel;
+  const float bg = band_background(half_width, voxel);
+  bool identity = scale == 1.0 && bg == s.background;
+  for (int k = 0; k < 9; k++) identity = identity && m.rot[k] == (k % 4 == 0 ? 1.0 : 0.0);
+  for (int k = 0; k < 3; k++) identity = identity && m.t[k] == 0.0;
+  if (identity) return wrap_grid(s.grid->deepCopy());  // a copy, bit for bit
+  if (!(scale > 1e-3 && scale < 1e3)) throw Error(SWARF_STOCK_ERR_ARG, "the new voxel is too far from the old one");
+  Resampler rs{s, {}, scale == 1.0, bg};
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
-      rs.rt[3 * i + j] = m.rot[3 * j + i];
+      rs.rt[3 * i + j] = scale * m.rot[3 * j + i];
       const double a = std::fabs(m.rot[3 * i + j]);
       if (a != 0.0 && a != 1.0) rs.exact = false;
     }
-  const float bg = s.background;
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bg);
   set_stock_meta(*grid);
-  openvdb::math::Transform::Ptr xf = openvdb::math::Transform::createLinearTransform(s.voxel);
+  openvdb::math::Transform::Ptr xf = openvdb::math::Transform::createLinearTransform(voxel);
   double o[3] = {s.origin[0], s.origin[1], s.origin[2]}, ot[3];
   m.apply(o, ot);
   xf->postTranslate(Vec3d(ot[0], ot[1], ot[2]));
   grid->setTransform(xf);
   std::vector<PlacedBlock> blocks;
   if (!s.content.empty()) {
-    const openvdb::CoordBBox box = placed_box(s, m.rot);
+    const openvdb::CoordBBox box = placed_box(s, m.rot, scale);
     for (int x = box.min()[0]; x <= box.max()[0]; x += 8)
       for (int y = box.min()[1]; y <= box.max()[1]; y += 8)
         for (int z = box.min()[2]; z <= box.max()[2]; z += 8) blocks.push_back({Coord(x, y, z), 0});
@@ -267,11 +356,12 @@ std::unique_ptr<swarf_stock> read_vdb(const char *path, const swarf_stock_placem
   normalize_band(*grid, s->background);
   s.reset(wrap_grid(grid));
   if (!has_material(*grid)) throw Error(SWARF_STOCK_ERR_FORMAT, std::string(path) + ": the grid holds no material");
-  if (voxel > 0.0 && std::fabs(voxel - s->voxel) > 1e-9 * voxel) {
+  const bool revoxel = voxel > 0.0 && std::fabs(voxel - s->voxel) > 1e-9 * voxel;
+  if (revoxel || (p && !placement_is_identity(*p))) {
     const int hw = half_width > 0 ? half_width : std::max(3, s->half_width);
-    s.reset(rebuild(*s, voxel, hw));
+    s.reset(resample(*s, placement_map(p ? *p : swarf_stock_placement{}), revoxel ? voxel : s->voxel,
+                     revoxel ? hw : s->half_width));
   }
-  if (p && !placement_is_identity(*p)) s.reset(place(*s, placement_map(*p)));
   return s;
 }
 
@@ -333,16 +423,16 @@ extern "C" swarf_status swarf_stock_place(const swarf_stock *s, const swarf_stoc
   if (out) *out = nullptr;
   return swarf::guard_status(err, nullptr, [&] {
     if (s == nullptr || p == nullptr || out == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock, placement or out is NULL");
-    *out = swarf::place(*s, swarf::placement_map(*p));
+    *out = swarf::resample(*s, swarf::placement_map(*p), s->voxel, s->half_width);
   });
 }
 
-extern "C" swarf_status swarf_stock_rebuild(const swarf_stock *s, double voxel, int half_width,
-                                            swarf_stock **out, swarf_error *err) {
+extern "C" swarf_status swarf_stock_resample(const swarf_stock *s, double voxel, int half_width,
+                                             swarf_stock **out, swarf_error *err) {
   if (out) *out = nullptr;
   return swarf::guard_status(err, nullptr, [&] {
     if (s == nullptr || out == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock or out is NULL");
-    *out = swarf::rebuild(*s, voxel, half_width);
+    *out = swarf::resample(*s, swarf::placement_map(swarf_stock_placement{}), voxel, half_width);
   });
 }
 
@@ -356,8 +446,7 @@ extern "C" swarf_status swarf_stock_read_design(const char *path, double voxel, 
     if (ext == "stl") {
       *out = swarf::read_stl(path, nullptr, voxel, SWARF_STOCK_DESIGN_BAND);
     } else if (ext == "vdb") {
-      std::unique_ptr<swarf_stock> s = swarf::read_vdb(path, nullptr, 0.0, 0);
-      *out = swarf::rebuild(*s, voxel > 0.0 ? voxel : s->voxel, SWARF_STOCK_DESIGN_BAND);
+      *out = swarf::read_vdb(path, nullptr, voxel, 0).release();
     } else {
       throw Error(SWARF_STOCK_ERR_ARG, std::string(path) + ": a design is a .stl or a .vdb file");
     }

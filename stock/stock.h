@@ -172,10 +172,11 @@ SWARF_API swarf_status swarf_stock_read_stl(const char *path, const swarf_stock_
 
 /* A stock from a .vdb file (the float level set named "stock", or the first
  * float level set): its own voxel size if `voxel` is 0 or equal to the
- * file's (to 1e-9 relative; the grid is then used as it is), else rebuilt at
- * `voxel` (through its zero isosurface, half_width voxels of band). Placed
- * by `place` (NULL: as it is). A file without a float level set is
- * SWARF_ERR_FORMAT. */
+ * file's (to 1e-9 relative; the grid is then used as it is, values clamped
+ * into its band, NaN as outside), else resampled at `voxel` as
+ * swarf_stock_resample does (half_width voxels of band; 0: the file's, at
+ * least 3). Placed by `place` (NULL: as it is). A file without a float level
+ * set, or one without material, is SWARF_ERR_FORMAT. */
 SWARF_API swarf_status swarf_stock_read_vdb(const char *path, const swarf_stock_placement *place,
                                             double voxel, int half_width, swarf_stock **out,
                                             swarf_error *err);
@@ -187,11 +188,11 @@ SWARF_API swarf_status swarf_stock_read_vdb(const char *path, const swarf_stock_
 SWARF_API swarf_status swarf_stock_place(const swarf_stock *s, const swarf_stock_placement *p,
                                          swarf_stock **out, swarf_error *err);
 
-/* A new stock: `s` rebuilt at `voxel` mm with `half_width` voxels of band
- * (1 to 64; wider bands measure larger deviations: see swarf_stock_compare),
- * through its zero isosurface (volumeToMesh, then meshToLevelSet). */
-SWARF_API swarf_status swarf_stock_rebuild(const swarf_stock *s, double voxel, int half_width,
-                                           swarf_stock **out, swarf_error *err);
+/* A new stock: `s` sampled at `voxel` mm (trilinear) with a band of
+ * `half_width` voxels (1 to 64); where that band is wider than the source's,
+ * the part beyond the source's reads as outside the band. */
+SWARF_API swarf_status swarf_stock_resample(const swarf_stock *s, double voxel, int half_width,
+                                            swarf_stock **out, swarf_error *err);
 
 /* ==== Comparison with a design (the part as designed) ========================
  * A design is a swarf_stock too: a level set of the part, negative inside.
@@ -200,8 +201,9 @@ SWARF_API swarf_status swarf_stock_rebuild(const swarf_stock *s, double voxel, i
  * so). SWARF_STOCK_DESIGN_BAND is the band the readers below give a design. */
 #define SWARF_STOCK_DESIGN_BAND 10 /* voxels */
 
-/* A design from FILE.stl (a closed mesh, as swarf_stock_read_stl) or
- * FILE.vdb (rebuilt with the design band), by the file name's extension
+/* A design from FILE.stl (a closed mesh, as swarf_stock_read_stl, with
+ * SWARF_STOCK_DESIGN_BAND voxels of band) or FILE.vdb (as swarf_stock_read_vdb:
+ * its own band, so its reach is that band's), by the file name's extension
  * (case-insensitive); at `voxel` mm (a .vdb: 0 keeps its own). */
 SWARF_API swarf_status swarf_stock_read_design(const char *path, double voxel, swarf_stock **out,
                                                swarf_error *err);
@@ -218,13 +220,14 @@ SWARF_API swarf_status swarf_stock_check_design(const swarf_stock *s, const swar
  *           before the run, may be NULL) only where `initial` had material,
  *           the rest being `missing`;
  *  excess = material farther than t outside the design (left to remove).
- * Volumes are voxel estimates like swarf_stock_volume's (each voxel's inside
- * fraction in one grid times its outside fraction in the other, shifted by
- * t), exact for faces parallel to voxel faces. Depths: the deepest point of
- * the gouge below the design's surface, the farthest point of the excess
- * above it, each found at a voxel centre p as the distance in the design
- * plus the radius of the ball around p that the region is known to hold
- * (|stock value|): exact for flat floors and walls, within a voxel always. */
+ * Volumes are voxel estimates like swarf_stock_volume's: per voxel, the
+ * inside fraction in one grid minus that in the other (shifted by t), when
+ * positive: exact for faces parallel to voxel faces, and nothing where the
+ * two surfaces coincide. Depths: the deepest point of the gouge below the
+ * design's surface, the farthest point of the excess above it, each found at
+ * a voxel centre p as the distance in the design plus the radius of the ball
+ * around p that the region is known to hold (|stock value|, at most one
+ * voxel): exact for flat floors and walls, within a voxel always. */
 typedef struct {
   double tolerance;       /* mm, as used */
   double reach;           /* mm: deviations beyond it read as it (the design's band) */

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_stock.h"
 #include "gcode.h"
 #include "stock.h"
 
@@ -30,9 +31,18 @@ static const char info_help[] =
     "whether it is a valid narrow-band level set (OpenVDB's checkLevelSet).\n";
 
 static const char render_help[] =
-    "usage: swarf render FILE.vdb --image FILE.png [--size WIDTHxHEIGHT]\n"
+    "usage: swarf render FILE.vdb --image FILE.png [--size WIDTHxHEIGHT] [--view NAME]\n"
+    "                    [--design FILE.stl|FILE.vdb [--tolerance MM]]\n"
     "\n"
-    "Draws the stock in FILE.vdb with OpenVDB's level-set ray tracer (default 1024x768).\n";
+    "Draws the stock in FILE.vdb with OpenVDB's level-set ray tracer (default 1024x768).\n"
+    "  --view NAME   iso (default: from the front left, above; perspective), or\n"
+    "                orthographic top (X right, Y up), front (from -Y), back, left\n"
+    "                (from -X), right, bottom\n"
+    "  --design F    colour the surface by its signed distance to the design F (a\n"
+    "                closed STL or a .vdb): green within the tolerance, yellow to red\n"
+    "                outside it (excess), cyan to blue inside it (gouge), saturated at\n"
+    "                4 tolerances; a legend with the scale in mm is drawn\n"
+    "  --tolerance MM  default half the stock's voxel\n";
 
 static int print_move(const swarf_move *m, void *user) {
   static const char *kinds[] = {"RAPID", "LINE", "ARC", "DWELL", "TOOL"};
@@ -147,26 +157,74 @@ int swarf_cli_info(int argc, char **argv) {
   return 0;
 }
 
-int swarf_cli_render(int argc, char **argv) {
-  const char *in = NULL, *out = NULL;
-  int w = 1024, h = 768, rc;
-  char msg[512];
-  swarf_stock *s;
+typedef struct {
+  const char *in, *out, *design;
+  int w, h;
+  double tolerance;
+  swarf_stock_view view;
+} render_options;
+
+static int render_args(render_options *o, int argc, char **argv) {
+  swarf_error err;
+  memset(o, 0, sizeof *o);
+  o->w = 1024, o->h = 768;
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help")) return fputs(render_help, stdout), 0;
-    if (!strcmp(argv[i], "--image") && i + 1 < argc) out = argv[++i];
-    else if (!strcmp(argv[i], "--size") && i + 1 < argc) {
-      if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 16 || h < 16 || w > 8192 || h > 8192)
+    const char *f = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    char *end;
+    if (!strcmp(f, "--help")) return fputs(render_help, stdout), 1;
+    if (f[0] != '-' && !o->in) {
+      o->in = f;
+      continue;
+    }
+    if (v == NULL || f[0] != '-') return fprintf(stderr, "swarf render: unexpected \"%s\"\n%s", f, render_help), 2;
+    i++;
+    if (!strcmp(f, "--image")) o->out = v;
+    else if (!strcmp(f, "--design")) o->design = v;
+    else if (!strcmp(f, "--size")) {
+      if (sscanf(v, "%dx%d", &o->w, &o->h) != 2 || o->w < 16 || o->h < 16 || o->w > 8192 || o->h > 8192)
         return fprintf(stderr, "swarf render: --size WIDTHxHEIGHT, 16 to 8192\n"), 2;
-    } else if (argv[i][0] != '-' && !in) in = argv[i];
-    else return fprintf(stderr, "swarf render: unexpected \"%s\"\n%s", argv[i], render_help), 2;
+    } else if (!strcmp(f, "--view")) {
+      if (swarf_stock_view_parse(v, &o->view, &err) != SWARF_OK)
+        return fprintf(stderr, "swarf render: --view: %s\n", err.message), 2;
+    } else if (!strcmp(f, "--tolerance")) {
+      errno = 0;
+      o->tolerance = strtod(v, &end);
+      if (end == v || *end || errno || !(o->tolerance > 0) || o->tolerance > 1e6)
+        return fprintf(stderr, "swarf render: --tolerance: give a number of mm > 0\n"), 2;
+    } else
+      return fprintf(stderr, "swarf render: unexpected \"%s\"\n%s", f, render_help), 2;
   }
-  if (!in || !out) return fputs(render_help, stderr), 2;
-  if ((s = open_grid("render", in)) == NULL) return 2;
-  rc = swarf_stock_write_png(s, out, w, h, msg, sizeof msg);
-  if (rc != 0) fprintf(stderr, "swarf render: %s\n", msg);
+  if (!o->in || !o->out) return fputs(render_help, stderr), 2;
+  if (o->tolerance > 0 && !o->design) return fprintf(stderr, "swarf render: --tolerance needs --design\n"), 2;
+  return 0;
+}
+
+int swarf_cli_render(int argc, char **argv) {
+  render_options o;
+  swarf_stock *s, *design = NULL;
+  swarf_stock_output opt;
+  swarf_error err;
+  char msg[1024];
+  int rc = render_args(&o, argc, argv);
+  if (rc) return rc == 1 ? 0 : rc;
+  if ((s = open_grid("render", o.in)) == NULL) return 2;
+  if (o.design && swarf_stock_read_design(o.design, swarf_stock_voxel(s), &design, &err) != SWARF_OK) {
+    swarf_error_format(&err, msg, sizeof msg);
+    fprintf(stderr, "swarf render: --design: %s\n", msg);
+    swarf_stock_free(s);
+    return (int)swarf_status_classify(err.status);
+  }
+  memset(&opt, 0, sizeof opt);
+  opt.width = o.w, opt.height = o.h, opt.view = o.view, opt.design = design, opt.tolerance = o.tolerance;
+  rc = 0;
+  if (swarf_stock_write_image(s, o.out, &opt, &err) != SWARF_OK) {
+    swarf_error_format(&err, msg, sizeof msg);
+    fprintf(stderr, "swarf render: %s\n", msg);
+    rc = (int)swarf_status_classify(err.status);
+  }
+  swarf_stock_free(design);
   swarf_stock_free(s);
-  return rc == 0 ? 0 : 1;
+  return rc;
 }
 
 int swarf_cli_help(const char *command) {
@@ -175,6 +233,7 @@ int swarf_cli_help(const char *command) {
   if (!strcmp(command, "parse")) return fputs(parse_help, stdout), 0;
   if (!strcmp(command, "info")) return fputs(info_help, stdout), 0;
   if (!strcmp(command, "render")) return fputs(render_help, stdout), 0;
+  if (!strcmp(command, "compare")) return swarf_cli_compare(2, argv);
   if (!strcmp(command, "envelope")) return swarf_cli_envelope(2, argv);
   fprintf(stderr, "swarf help: unknown command \"%s\"\n", command);
   return 2;

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_stock.h"
 #include "modbus_service.h"
 #include "swarf_sim.h"
 #include "verify.h"
@@ -20,7 +21,7 @@
 static const char help[] =
     "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
     "                      --tool T<n>=<family>,<fields> ...\n"
-    "                      --out FILE.vdb [--mesh FILE.stl] [--image FILE.png]\n"
+    "                      --out FILE.vdb [--mesh FILE.stl|.obj|.ply] [--image FILE.png]\n"
     "                      [--voxel MM] [--band VOXELS] [--machine NAME[,k=v...]] [--quiet]\n"
     "\n"
     "Plays PROGRAM (RS274/NGC, LinuxCNC dialect) on the machine, removes the exact\n"
@@ -30,6 +31,8 @@ static const char help[] =
     "                   converted to mm: give the stock in mm)\n"
     "  --stock cylinder:AXIS,RADIUS,START,END  a bar about the x, y or z axis through\n"
     "                   the origin, from START to END along it (rotary work)\n"
+    "                   (stocks from files, --stock-transform, mesh formats and\n"
+    "                   views: below)\n"
     "  --machine NAME   xyz (default); xyza[,pivot=Y,Z] (rotary table about X);\n"
     "                   xyzac-trt or xyzbc-trt[,mode=tcp|joint][,pivot=X,Y,Z] (5-axis\n"
     "                   table-rotary-tilting, tool-centre-point mode by default)\n"
@@ -57,8 +60,8 @@ static const char help[] =
     "  --voxel MM       voxel edge (default 0.2); halving it takes ~4x the time\n"
     "  --band N         narrow band half width in voxels (default 3, at least 3)\n"
     "  --out FILE.vdb   remaining material: OpenVDB float level set named \"stock\"\n"
-    "  --mesh FILE.stl  its surface as a binary STL\n"
-    "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer)\n"
+    "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer;\n"
+    "                   with --design, coloured by the deviation, with a legend)\n"
     "  --quiet          no progress bar and no summary\n"
     "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
@@ -73,6 +76,7 @@ typedef struct {
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
   swarf_verify verify;
+  swarf_cli_stock stock; /* stocks from files, placement, views */
 } sim_options;
 
 /* What the run's callbacks reach: the progress bar, the Modbus service, the
@@ -107,6 +111,7 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   int rc = swarf_modbus_option(&o->modbus, flag, val, i);
   if (rc >= 0) return rc;
   if ((rc = swarf_verify_option(&o->verify, flag, val, i)) >= 0) return rc;
+  if ((rc = swarf_cli_stock_option(&o->stock, flag, val, i)) >= 0) return rc;
   if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
   if (val == NULL) {
     snprintf(msg, sizeof msg, "%s needs a value", flag);
@@ -174,7 +179,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   memset(o, 0, sizeof *o);
   swarf_sim_config_init(&o->cfg);
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs("\nStock from files, placement and outputs:\n", stdout), fputs(swarf_cli_stock_help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
       if (o->program) return usage_error("give one PROGRAM only");
       o->program = argv[i];
@@ -189,6 +194,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   if (!have_stock) return usage_error("--stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX is required");
   if (o->cfg.ntools == 0) return usage_error("--tool is required, e.g. --tool T1=ball,D3.175");
   if (!o->out) return usage_error("--out FILE.vdb is required");
+  if (swarf_cli_mesh_name("--mesh", o->mesh)) return 2;
   return check_output("--out", o->out) || check_output("--mesh", o->mesh) ||
                  check_output("--image", o->image)
              ? 2
@@ -212,11 +218,12 @@ static int check_size(const swarf_sim_config *cfg) {
 
 static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
   char msg[512];
-  int rc = swarf_stock_write_vdb(stock, o->out, msg, sizeof msg);
-  if (rc == 0 && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, msg, sizeof msg);
-  if (rc == 0 && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, msg, sizeof msg);
-  if (rc != 0) fprintf(stderr, "swarf simulate: %s\n", msg);
-  return rc == 0 ? 0 : 1;
+  if (swarf_stock_write_vdb(stock, o->out, msg, sizeof msg) != 0) {
+    fprintf(stderr, "swarf simulate: %s\n", msg);
+    return 1;
+  }
+  return swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design, o->verify.tolerance,
+                               o->stock.view, ntri);
 }
 
 /* Each alarm (up to the report's record of them) as a located warning. */
@@ -290,11 +297,15 @@ int swarf_cli_simulate(int argc, char **argv) {
   swarf_modbus_service *mb = NULL;
   swarf_error err;
   size_t ntri = 0;
+  swarf_stock *initial = NULL;
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
-  if (rc || (rc = check_size(&o.cfg))) return rc;
-  if ((rc = swarf_verify_prepare(&o.verify, &o.cfg))) return swarf_verify_free(&o.verify), rc;
-  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb))) return swarf_verify_free(&o.verify), rc;
+  if (rc || (o.stock.file == NULL && (rc = check_size(&o.cfg)))) return rc;
+  if ((rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial))) return rc;
+  if ((rc = swarf_verify_prepare(&o.verify, &o.cfg)))
+    return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
+  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb)))
+    return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
   swarf_progress_init(&pb);
   sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify};
   o.cfg.cb.progress = on_progress;
@@ -302,7 +313,7 @@ int swarf_cli_simulate(int argc, char **argv) {
   if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
   o.cfg.cb.user = &clients;
   swarf_error_init(&err);
-  if (swarf_sim_run(&o.cfg, o.program, &stock, &rep, &err) != SWARF_OK) {
+  if (swarf_cli_run(&o.cfg, o.program, initial, &stock, &rep, &err) != SWARF_OK) {
     swarf_progress_finish(&pb);
     rc = report_failure(&err, mb);
     swarf_modbus_finish(mb, rc, &rep);

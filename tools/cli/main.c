@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_stock.h"
 
 static const char usage[] =
     "usage: swarf <command> [options]\n"
@@ -19,9 +20,8 @@ static const char usage[] =
     "                     mill PROGRAM into a stock; write .vdb, mesh, picture\n"
     "  parse PROGRAM      list the canonical moves of a program (checks it)\n"
     "  info FILE.vdb      describe a stock grid: voxel, volume, bounds, validity\n"
-    "  render FILE.vdb --image FILE.png   picture of a stock grid\n"
-    "  envelope --qss A,B,C,D,E,F --axis W --tdot V --half-angle B [--exact]\n"
-    "                     characteristic curve of a moving QSS (exact with --exact)\n"
+    "  render FILE.vdb --image FILE.png [--view V] [--design FILE]   picture of a grid\n"
+    "  compare A.vdb B.vdb|B.stl   deviation of a result from another or a design\n"
     "  envelope --qss A,B,C,D,E,F --axis W --tdot V --half-angle B [--exact]\n"
     "                     characteristic curve of a moving QSS (exact with --exact)\n"
     "  help [COMMAND]     this text, or a command's options\n"
@@ -43,6 +43,7 @@ int main(int argc, char **argv) {
   if (!strcmp(cmd, "parse")) return swarf_cli_parse(argc - 1, argv + 1);
   if (!strcmp(cmd, "info")) return swarf_cli_info(argc - 1, argv + 1);
   if (!strcmp(cmd, "render")) return swarf_cli_render(argc - 1, argv + 1);
+  if (!strcmp(cmd, "compare")) return swarf_cli_compare(argc - 1, argv + 1);
   if (!strcmp(cmd, "envelope")) return swarf_cli_envelope(argc - 1, argv + 1);
   fprintf(stderr, "swarf: unknown command \"%s\"; run `swarf --help` for the list\n", cmd);
   return 2;

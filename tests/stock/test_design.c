@@ -1,0 +1,212 @@
+/* test_design.c -- comparison with a design, gouges per move, measured removal.
+ *
+ * Stock: the box [0.05,9.95]^2 x [-4.95,0.05] at 0.1 mm (faces between voxel
+ * centres, where the voxel estimate of a box is exact, edges included). Design
+ * (an STL box read with swarf_stock_read_design): the same box down to z = -1.45
+ * (its sides and bottom on the stock's). Tolerance t = 0.05 mm (half a voxel).
+ *  - excess: the 1.5 mm layer above the design, less t: 9.9^2 (1.5 - t) mm^3;
+ *    the largest, 1.5 mm, beyond the design's reach (1 mm): read as the reach,
+ *    flagged; a 0.32 mm layer: its volume and height exactly;
+ *  - a ball plunged 0.3 mm below the design's top on a voxel column: the per-move
+ *    query says 0.3 before the cut (0 after), the measured batch says the same,
+ *    the comparison gives the gouge there, 0.3 deep, and the cap's volume;
+ *  - moves that stay within the tolerance: no gouge;
+ *  - measured batch: per-cut volumes add up to the volume change exactly (to
+ *    rounding), an identical second cut removes nothing, the grid is bit for bit
+ *    swarf_stock_remove_batch's (also with cleared blocks);
+ *  - with the initial stock: a design wider than the stock gives `missing`
+ *    (analytic), not gouge;
+ *  - a design elsewhere: SWARF_ERR_ARG.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "shapes.h"
+#include "stl_box.h"
+
+static const double V = 0.1, T = 0.05;
+
+static swarf_stock *stock_box(void) {
+  const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, 0.05};
+  char msg[256];
+  swarf_stock *s = swarf_stock_new_box(lo, hi, V, 3, msg, sizeof msg);
+  CHECK(s != NULL, "box: %s", msg);
+  return s;
+}
+
+static swarf_stock *design_box(const double lo[3], const double hi[3]) {
+  swarf_stock *d = NULL;
+  swarf_error err;
+  CHECK(stl_box_write("design_box.stl", lo, hi, 0, STL_GOOD) == 0, "write");
+  CHECK(swarf_stock_read_design("design_box.stl", V, &d, &err) == SWARF_OK, "design: %s", err.message);
+  return d;
+}
+
+static swarf_stock *copy(const swarf_stock *s) {
+  static const swarf_stock_placement same = {{0, 0, 0}, {0, 0, 0}};
+  swarf_stock *c = NULL;
+  swarf_error err;
+  CHECK(swarf_stock_place(s, &same, &c, &err) == SWARF_OK, "copy: %s", err.message);
+  return c;
+}
+
+/* A ball of radius 1.5 whose bottom is at (x, y, zb). */
+static capsule_shape ball(double x, double y, double zb) {
+  capsule_shape c = {{x, y, zb + 1.5}, {x, y, zb + 1.5}, 1.5};
+  return c;
+}
+
+static void test_excess(const swarf_stock *s, const swarf_stock *d) {
+  swarf_stock_deviation dev;
+  swarf_error err;
+  CHECK(swarf_stock_compare(s, d, NULL, T, &dev, &err) == SWARF_OK, "%s", err.message);
+  const double layer = 9.9 * 9.9 * (1.5 - T);
+  printf("excess %.4f mm^3 (analytic %.4f), largest %.3f (reach %.3f, clamped %d), gouge %.4f\n",
+         dev.excess_volume, layer, dev.excess_height, dev.reach, dev.excess_clamped, dev.gouge_volume);
+  CHECK_NEAR(dev.excess_volume, layer, 1e-6 * layer, "excess volume, a 1.5 mm layer less the tolerance");
+  CHECK_NEAR(dev.reach, 10 * V, 1e-6, "reach: the design band");
+  CHECK_NEAR(dev.excess_height, dev.reach, 1e-6, "largest excess 1.5 mm reads as the reach");
+  CHECK(dev.excess_clamped == 1, "flagged as at least the reach");
+  CHECK(dev.gouge_volume < 1e-9 && dev.gouge_depth == 0, "no gouge: %.3g", dev.gouge_volume);
+  CHECK_NEAR(dev.design_volume, 9.9 * 9.9 * 3.5, 1e-6 * 343, "design volume");
+  CHECK_NEAR(dev.stock_volume, 9.9 * 9.9 * 5, 1e-6 * 490, "stock volume");
+  CHECK(fabs(dev.tolerance - T) < 1e-12, "tolerance kept");
+}
+
+static void test_excess_layer(void) {
+  /* A 0.32 mm layer (off the voxel lattice): its height is measured exactly. */
+  swarf_stock *s = stock_box();
+  const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, 0.05 - 0.32};
+  swarf_stock *d = design_box(lo, hi);
+  swarf_stock_deviation dev;
+  swarf_error err;
+  CHECK(swarf_stock_compare(s, d, NULL, 0, &dev, &err) == SWARF_OK, "%s", err.message);
+  const double layer = 9.9 * 9.9 * (0.32 - T);
+  printf("0.32 mm layer: excess %.4f mm^3 (%.4f), largest %.4f at %.2f %.2f %.2f\n", dev.excess_volume,
+         layer, dev.excess_height, dev.excess_at[0], dev.excess_at[1], dev.excess_at[2]);
+  CHECK_NEAR(dev.tolerance, T, 1e-12, "default tolerance: half a voxel");
+  CHECK_NEAR(dev.excess_volume, layer, 1e-5 * layer, "layer volume");
+  CHECK_NEAR(dev.excess_height, 0.32, 1e-4, "largest excess of a flat layer");
+  CHECK(dev.excess_clamped == 0, "not clamped");
+  CHECK(dev.excess_at[2] > -0.28 && dev.excess_at[2] < 0.06, "in the layer: z %.3f", dev.excess_at[2]);
+  swarf_stock_free(d);
+  swarf_stock_free(s);
+}
+
+static void test_gouge(swarf_stock *s, const swarf_stock *d) {
+  swarf_error err;
+  double depth, at[3];
+  swarf_stock *initial = copy(s);
+  /* Within the tolerance (0.02 and 0.04 mm below the design's top): none. */
+  for (int i = 0; i < 2; i++) {
+    capsule_shape b = ball(2, 2, -1.47 - 0.02 * i);
+    swarf_stock_cut cut = capsule_cut(&b);
+    CHECK(swarf_stock_gouge(s, d, &cut, T, &depth, at, &err) == SWARF_OK, "%s", err.message);
+    CHECK(depth == 0 && isnan(at[0]), "within tolerance: %.4f", depth);
+  }
+  capsule_shape b = ball(5, 5, -1.75), c = ball(8, 3.05, -1.55);
+  swarf_stock_cut cuts[3] = {capsule_cut(&b), capsule_cut(&b), capsule_cut(&c)};
+  CHECK(swarf_stock_gouge(s, d, &cuts[0], T, &depth, at, &err) == SWARF_OK, "%s", err.message);
+  printf("gouge query before the cut: %.5f at %.2f %.2f %.2f\n", depth, at[0], at[1], at[2]);
+  CHECK_NEAR(depth, 0.3, 1e-4, "the ball's gouge depth on a voxel column");
+  CHECK(fabs(at[0] - 5) < 0.15 && fabs(at[1] - 5) < 0.15 && at[2] < -1.45 && at[2] > -1.76, "where");
+  CHECK(swarf_stock_gouge(s, d, &cuts[2], T, &depth, at, &err) == SWARF_OK, "%s", err.message);
+  printf("off the voxel column (y 3.05), 0.1 deep: %.5f\n", depth);
+  CHECK_NEAR(depth, 0.1, 0.005, "off-column gouge depth");
+  /* The batch, measured: the second, identical ball finds nothing left. */
+  swarf_stock *plain = copy(s);
+  swarf_stock_cut_effect e[3];
+  double before = swarf_stock_volume(s);
+  char msg[256];
+  CHECK(swarf_stock_remove_batch_measured(s, cuts, 3, d, T, e, &err) == SWARF_OK, "%s", err.message);
+  CHECK(swarf_stock_remove_batch(plain, cuts, 3, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(stock_differences(s, plain) == 0, "measured grid = plain grid bit for bit");
+  double after = swarf_stock_volume(s), sum = e[0].removed + e[1].removed + e[2].removed;
+  printf("measured: removed %.6f %.6f %.6f (sum %.9f, change %.9f), gouges %.5f %.5f %.5f\n", e[0].removed,
+         e[1].removed, e[2].removed, sum, before - after, e[0].gouge_depth, e[1].gouge_depth, e[2].gouge_depth);
+  CHECK(fabs(sum - (before - after)) <= 1e-9 * before, "per-cut volumes add up: %.12g vs %.12g", sum, before - after);
+  CHECK(e[1].removed == 0 && e[1].gouge_depth == 0, "the repeated cut removes nothing: %g", e[1].removed);
+  CHECK_NEAR(e[0].gouge_depth, 0.3, 1e-4, "batch gouge depth = the query's");
+  CHECK_NEAR(e[2].gouge_depth, 0.1, 0.005, "batch gouge depth (off column)");
+  CHECK(swarf_stock_gouge(s, d, &cuts[0], T, &depth, at, &err) == SWARF_OK && depth == 0,
+        "after the cut: nothing left to gouge (%.4f)", depth);
+  /* The comparison after the run. */
+  swarf_stock_deviation dev;
+  CHECK(swarf_stock_compare(s, d, initial, T, &dev, &err) == SWARF_OK, "%s", err.message);
+  const double h = 0.3 - T, cap = M_PI * h * h * (3 * 1.5 - h) / 3, h2 = 0.1 - T,
+               cap2 = M_PI * h2 * h2 * (3 * 1.5 - h2) / 3;
+  printf("after: gouge %.4f mm^3 (caps %.4f), deepest %.5f at %.2f %.2f %.2f, missing %.4f\n", dev.gouge_volume,
+         cap + cap2, dev.gouge_depth, dev.gouge_at[0], dev.gouge_at[1], dev.gouge_at[2], dev.missing_volume);
+  CHECK_NEAR(dev.gouge_depth, 0.3, 1e-4, "deepest gouge");
+  CHECK(fabs(dev.gouge_at[0] - 5) < 0.15 && fabs(dev.gouge_at[1] - 5) < 0.15, "deepest gouge's place");
+  CHECK(fabs(dev.gouge_volume - (cap + cap2)) < 0.05 * (cap + cap2), "gouge volume %.4f vs %.4f",
+        dev.gouge_volume, cap + cap2);
+  CHECK(dev.missing_volume < 1e-9, "nothing missing");
+  CHECK(dev.gouge_clamped == 0, "not clamped");
+  swarf_stock_free(plain);
+  swarf_stock_free(initial);
+}
+
+static void test_cleared_blocks(void) {
+  swarf_stock *s = stock_box(), *plain;
+  plain = copy(s);
+  capsule_shape big = {{-1, 5, -1}, {11, 5, -1}, 4.0}, small = {{5, 1, 0}, {5, 9, 0}, 0.7};
+  swarf_stock_cut cuts[2] = {capsule_cut(&small), capsule_cut(&big)};
+  swarf_stock_cut_effect e[2];
+  swarf_error err;
+  char msg[256];
+  double before = swarf_stock_volume(s);
+  CHECK(swarf_stock_remove_batch_measured(s, cuts, 2, NULL, T, e, &err) == SWARF_OK, "%s", err.message);
+  CHECK(swarf_stock_remove_batch(plain, cuts, 2, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(stock_differences(s, plain) == 0, "measured = plain with cleared blocks");
+  double change = before - swarf_stock_volume(s);
+  printf("cleared blocks: removed %.6f + %.6f = %.9f, change %.9f\n", e[0].removed, e[1].removed,
+         e[0].removed + e[1].removed, change);
+  CHECK(fabs(e[0].removed + e[1].removed - change) <= 1e-9 * before, "adds up with cleared blocks");
+  CHECK(e[0].gouge_depth == 0 && isnan(e[0].gouge_at[0]), "no design, no gouge");
+  swarf_stock_free(plain);
+  swarf_stock_free(s);
+}
+
+static void test_missing_and_elsewhere(void) {
+  swarf_stock *s = stock_box(), *initial = copy(s);
+  const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {12, 9.95, -1.45};
+  swarf_stock *d = design_box(lo, hi);
+  swarf_stock_deviation dev;
+  swarf_error err;
+  CHECK(swarf_stock_compare(s, d, initial, T, &dev, &err) == SWARF_OK, "%s", err.message);
+  const double missing = (12 - T - 9.95) * (9.9 - 2 * T) * (3.5 - 2 * T);
+  printf("wider design: missing %.4f (analytic %.4f), gouge %.4f\n", dev.missing_volume, missing, dev.gouge_volume);
+  CHECK(fabs(dev.missing_volume - missing) < 0.002 * missing, "missing volume");
+  CHECK(dev.gouge_volume < 1e-9, "no gouge with the initial stock");
+  CHECK(swarf_stock_compare(s, d, NULL, T, &dev, &err) == SWARF_OK, "%s", err.message);
+  CHECK(fabs(dev.gouge_volume - missing) < 0.002 * missing, "without it, counted as gouge: %.4f",
+        dev.gouge_volume);
+  swarf_stock_free(d);
+  const double flo[3] = {100, 0, -5}, fhi[3] = {110, 10, -1};
+  d = design_box(flo, fhi);
+  CHECK(swarf_stock_check_design(s, d, &err) == SWARF_ERR_ARG, "far design refused");
+  CHECK(strstr(err.message, "does not overlap") != NULL, "message: %s", err.message);
+  CHECK(swarf_stock_compare(s, d, NULL, T, &dev, &err) == SWARF_ERR_ARG, "compare refuses it too");
+  swarf_stock_free(d);
+  swarf_stock_free(initial);
+  swarf_stock_free(s);
+}
+
+int main(void) {
+  swarf_stock *s = stock_box();
+  const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, -1.45};
+  swarf_stock *d = design_box(lo, hi);
+  if (s && d) {
+    test_excess(s, d);
+    test_gouge(s, d);
+  }
+  swarf_stock_free(d);
+  swarf_stock_free(s);
+  test_excess_layer();
+  test_cleared_blocks();
+  test_missing_and_elsewhere();
+  return check_done();
+}

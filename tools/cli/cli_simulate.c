@@ -195,12 +195,12 @@ static int check_size(const swarf_sim_config *cfg) {
 }
 
 static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
-  char msg[512];
-  int rc = swarf_stock_write_vdb(stock, o->out, msg, sizeof msg);
-  if (rc == 0 && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, msg, sizeof msg);
-  if (rc == 0 && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, msg, sizeof msg);
-  if (rc != 0) fprintf(stderr, "swarf simulate: %s\n", msg);
-  return rc == 0 ? 0 : 1;
+  swarf_error err;
+  swarf_status rc = swarf_stock_write_vdb(stock, o->out, &err);
+  if (rc == SWARF_OK && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, &err);
+  if (rc == SWARF_OK && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, &err);
+  if (rc != SWARF_OK) fprintf(stderr, "swarf simulate: %s\n", err.message);
+  return rc == SWARF_OK ? 0 : 1;
 }
 
 /* Each alarm (up to the report's record of them) as a located warning. */

@@ -63,7 +63,8 @@ static int reindex(swarf_report *r, size_t nslot) {
   r->nslot = nslot;
   for (size_t i = 0; i < r->n; i++) {
     size_t h = hash(r->lines[i].line, r->lines[i].tool, nslot);
-    while (slot[h] != 0) h = (h + 1) & (nslot - 1);
+    while (slot[h] != 0)
+      h = (h + 1) & (nslot - 1);
     slot[h] = i + 1;
   }
   return 0;
@@ -243,11 +244,10 @@ static json_t *lines_json(swarf_report *r) {
   const swarf_report_line *l = swarf_report_lines(r, &n);
   json_t *a = json_array();
   for (size_t i = 0; i < n; i++)
-    json_array_append_new(a, json_pack("{sI sI sI so so so}", "line", (json_int_t)l[i].line,
-                                       "tool", (json_int_t)l[i].tool, "moves",
-                                       (json_int_t)l[i].moves, "removed_mm3",
-                                       num(l[i].removed_mm3), "time_s", num(l[i].time_s),
-                                       "path_mm", num(l[i].path_mm)));
+    json_array_append_new(a, json_pack("{sI sI sI so so so}", "line", (json_int_t)l[i].line, "tool",
+                                       (json_int_t)l[i].tool, "moves", (json_int_t)l[i].moves,
+                                       "removed_mm3", num(l[i].removed_mm3), "time_s",
+                                       num(l[i].time_s), "path_mm", num(l[i].path_mm)));
   return a;
 }
 
@@ -260,7 +260,8 @@ static json_t *tools_json(swarf_report *r) {
   if (t == NULL) return r->oom = 1, a;
   for (size_t i = 0; i < n; i++) {
     size_t k = 0;
-    while (k < nt && t[k].tool != l[i].tool) k++;
+    while (k < nt && t[k].tool != l[i].tool)
+      k++;
     if (k == nt) t[nt++].tool = l[i].tool;
     t[k].moves += l[i].moves;
     t[k].time_s += l[i].time_s;
@@ -269,9 +270,8 @@ static json_t *tools_json(swarf_report *r) {
   }
   for (size_t k = 0; k < nt; k++)
     json_array_append_new(a, json_pack("{sI sI so so so}", "tool", (json_int_t)t[k].tool, "moves",
-                                       (json_int_t)t[k].moves, "removed_mm3",
-                                       num(t[k].removed_mm3), "time_s", num(t[k].time_s),
-                                       "path_mm", num(t[k].path_mm)));
+                                       (json_int_t)t[k].moves, "removed_mm3", num(t[k].removed_mm3),
+                                       "time_s", num(t[k].time_s), "path_mm", num(t[k].path_mm)));
   free(t);
   return a;
 }
@@ -283,8 +283,8 @@ static json_t *alarms_json(swarf_report *r) {
   for (size_t i = 0; i < n; i++) {
     const swarf_alarm *al = &told[i];
     json_t *o = json_pack("{ss sI si si so so}", "kind", alarm_kind(al->kind), "line",
-                          (json_int_t)al->line, "column", al->column, "tool", al->tool,
-                          "depth_mm", num(al->depth), "at", point(al->at));
+                          (json_int_t)al->line, "column", al->column, "tool", al->tool, "depth_mm",
+                          num(al->depth), "at", point(al->at));
     if (al->kind == SWARF_ALARM_FIXTURE) json_object_set_new(o, "fixture", json_integer(al->index));
     json_array_append_new(a, o);
   }
@@ -307,21 +307,23 @@ static json_t *summary_json(swarf_report *r, const swarf_sim_report *f) {
   double rate = 0;
   int tool = 0;
   long peak = swarf_report_peak_mrr(r, &rate, &tool);
-  for (int k = 0; k < 5; k++) json_object_set_new(counts, kinds[k], json_integer(f->alarm_count[k]));
+  for (int k = 0; k < 5; k++)
+    json_object_set_new(counts, kinds[k], json_integer(f->alarm_count[k]));
   s = json_pack("{sI sI sI sI sI sI so so so so so so so sI so}", "lines", (json_int_t)f->lines,
                 "moves", (json_int_t)f->moves, "cutting_moves", (json_int_t)f->cutting_moves,
                 "rapids", (json_int_t)f->rapids, "arcs", (json_int_t)f->arcs, "tool_changes",
                 (json_int_t)f->tool_changes, "path_mm", num(f->path_mm), "machining_s",
-                num(f->machining_s), "volume_before_mm3", num(f->volume_before),
-                "volume_after_mm3", num(f->volume_after), "removed_mm3",
-                num(f->volume_before - f->volume_after), "simulation_s", num(f->seconds),
-                "start", json_pack("{so sb}", "at", point(f->start), "default", f->start_default),
-                "alarms", (json_int_t)f->alarms, "alarm_counts", counts);
+                num(f->machining_s), "volume_before_mm3", num(f->volume_before), "volume_after_mm3",
+                num(f->volume_after), "removed_mm3", num(f->volume_before - f->volume_after),
+                "simulation_s", num(f->seconds), "start",
+                json_pack("{so sb}", "at", point(f->start), "default", f->start_default), "alarms",
+                (json_int_t)f->alarms, "alarm_counts", counts);
   json_object_set_new(s, "peak_mrr",
                       peak > 0 ? json_pack("{sI si sf}", "line", (json_int_t)peak, "tool", tool,
                                            "mm3_per_min", rate)
                                : json_null());
-  json_object_set_new(s, "units_line", f->units_line > 0 ? json_integer(f->units_line) : json_null());
+  json_object_set_new(s, "units_line",
+                      f->units_line > 0 ? json_integer(f->units_line) : json_null());
   json_object_set_new(s, "units_warning_line",
                       f->units_missing_line > 0 ? json_integer(f->units_missing_line)
                                                 : json_null());
@@ -335,15 +337,15 @@ static json_t *str_or_null(const char *s) {
 
 static json_t *inputs_json(const swarf_report_inputs *in) {
   json_t *tools = json_array();
-  for (int i = 0; i < in->ntools; i++) json_array_append_new(tools, json_string(in->tools[i]));
-  return json_pack("{so so so so so so so so so so so ss}", "program", str_or_null(in->program),
-                   "stock", str_or_null(in->stock), "tools", tools, "voxel", num(in->voxel),
-                   "machine", str_or_null(in->machine ? in->machine : "xyz"), "offsets",
-                   str_or_null(in->offsets), "g54", in->g54 ? point(in->g54) : json_null(),
-                   "start", in->start ? point(in->start) : json_null(), "units",
-                   str_or_null(in->units), "design", str_or_null(in->design), "tolerance",
-                   in->design && in->tolerance > 0 ? num(in->tolerance) : json_null(), "version",
-                   SWARF_VERSION);
+  for (int i = 0; i < in->ntools; i++)
+    json_array_append_new(tools, json_string(in->tools[i]));
+  return json_pack(
+      "{so so so so so so so so so so so ss}", "program", str_or_null(in->program), "stock",
+      str_or_null(in->stock), "tools", tools, "voxel", num(in->voxel), "machine",
+      str_or_null(in->machine ? in->machine : "xyz"), "offsets", str_or_null(in->offsets), "g54",
+      in->g54 ? point(in->g54) : json_null(), "start", in->start ? point(in->start) : json_null(),
+      "units", str_or_null(in->units), "design", str_or_null(in->design), "tolerance",
+      in->design && in->tolerance > 0 ? num(in->tolerance) : json_null(), "version", SWARF_VERSION);
 }
 
 /* Writes doc to path through a synced temporary file in the same folder. */
@@ -362,8 +364,10 @@ static swarf_status write_atomic(const json_t *doc, const char *path, swarf_erro
   }
   ok = f != NULL && json_dumpf(doc, f, JSON_INDENT(1) | JSON_REAL_PRECISION(12)) == 0 &&
        fputc('\n', f) != EOF && fflush(f) == 0 && fsync(fileno(f)) == 0;
-  if (f != NULL) ok = fclose(f) == 0 && ok;
-  else if (fd >= 0) close(fd);
+  if (f != NULL)
+    ok = fclose(f) == 0 && ok;
+  else if (fd >= 0)
+    close(fd);
   ok = ok && rename(tmp, path) == 0;
   if (!ok) {
     int e = errno;
@@ -381,9 +385,9 @@ swarf_status swarf_report_write(swarf_report *r, const swarf_sim_report *final,
   json_t *doc;
   swarf_status s;
   if (r->oom) return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");
-  doc = json_pack("{si so so so so so}", "swarf_report", 1, "summary",
-                  summary_json(r, final), "lines", lines_json(r), "tools",
-                  tools_json(r), "alarms", alarms_json(r), "inputs", inputs_json(in));
+  doc = json_pack("{si so so so so so}", "swarf_report", 1, "summary", summary_json(r, final),
+                  "lines", lines_json(r), "tools", tools_json(r), "alarms", alarms_json(r),
+                  "inputs", inputs_json(in));
   if (doc == NULL || r->oom) {
     json_decref(doc);
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");

@@ -38,9 +38,9 @@ typedef struct {
   const char *program, *stock, *machine, *offsets, *units, *design;
   const char *const *tools; /* --tool specs */
   int ntools;
-  double voxel;       /* of the stock, mm */
-  double tolerance;   /* as given (<= 0: the default) */
-  const double *g54;  /* [3], mm, or NULL */
+  double voxel;        /* of the stock, mm */
+  double tolerance;    /* as given (<= 0: the default) */
+  const double *g54;   /* [3], mm, or NULL */
   const double *start; /* [3], mm, or NULL (the default) */
 } swarf_report_inputs;
 

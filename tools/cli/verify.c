@@ -50,7 +50,8 @@ static int read_triple(const char *flag, const char *val, double out[3]) {
   for (int k = 0; k < 3; k++) {
     errno = 0;
     out[k] = strtod(p, &end);
-    if (end == p || errno || !isfinite(out[k]) || fabs(out[k]) > 1e6 || *end != (k < 2 ? ',' : '\0'))
+    if (end == p || errno || !isfinite(out[k]) || fabs(out[k]) > 1e6 ||
+        *end != (k < 2 ? ',' : '\0'))
       return option_error(flag, "give X,Y,Z in mm, e.g. 0,0,25", val);
     p = end + 1;
   }
@@ -81,14 +82,15 @@ static int value_option(swarf_verify *v, const char *flag, const char *val) {
 }
 
 int swarf_verify_option(swarf_verify *v, const char *flag, const char *val, int *i) {
-  static const char *mine[] = {"--report", "--design", "--offsets", "--start",   "--g54",
+  static const char *mine[] = {"--report", "--design",  "--offsets",   "--start", "--g54",
                                "--units",  "--fail-on", "--tolerance", NULL};
   int k = 0;
   if (val != NULL && !strcmp(flag, "--stock")) v->stock_spec = val;
   if (val != NULL && !strcmp(flag, "--machine")) v->machine_spec = val;
   if (val != NULL && !strcmp(flag, "--tool") && v->ntools < SWARF_SIM_MAX_TOOLS)
     v->tool_specs[v->ntools++] = val;
-  while (mine[k] != NULL && strcmp(mine[k], flag)) k++;
+  while (mine[k] != NULL && strcmp(mine[k], flag))
+    k++;
   if (mine[k] == NULL) return -1;
   if (val == NULL) return option_error(flag, "needs a value", NULL);
   (*i)++;
@@ -120,7 +122,7 @@ int swarf_verify_prepare(swarf_verify *v, swarf_sim_config *cfg) {
   if (v->fail_on_gouge && v->design_path == NULL)
     return option_error("--fail-on gouge", "needs --design", NULL);
   if (v->design_path != NULL && read_design(v, cfg->voxel)) return 2;
-  cfg->units = v->units == NULL         ? 0
+  cfg->units = v->units == NULL          ? 0
                : !strcmp(v->units, "in") ? SWARF_GCODE_UNITS_INCH
                                          : SWARF_GCODE_UNITS_MM;
   cfg->offsets_file = v->offsets;

@@ -37,8 +37,8 @@ static void default_start(const swarf_sim *s, double w[3]) {
  * machine's unit). */
 static swarf_status setup_offsets(swarf_sim *s, swarf_error *err) {
   swarf_gcode_parser *p = s->parser;
-  swarf_gcode_units u = s->cfg.units == SWARF_GCODE_UNITS_INCH ? SWARF_GCODE_UNITS_INCH
-                                                                 : SWARF_GCODE_UNITS_MM;
+  swarf_gcode_units u =
+      s->cfg.units == SWARF_GCODE_UNITS_INCH ? SWARF_GCODE_UNITS_INCH : SWARF_GCODE_UNITS_MM;
   double unit = u == SWARF_GCODE_UNITS_INCH ? 25.4 : 1.0;
   swarf_status st = swarf_gcode_parser_set_units(p, u, err);
   if (st == SWARF_OK && s->cfg.offsets_file != NULL)

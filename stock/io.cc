@@ -16,8 +16,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -119,8 +121,21 @@ size_t reader_address_space(const std::string &path) {
   return pages * size_t(::sysconf(_SC_PAGESIZE)) + (size_t(2) << 30) + 64 * file;
 }
 
-/// Read the stock grid of `path` in a child process (see the file comment).
+/// Whether reads run in a child: -1 follow SWARF_VDB_ISOLATE (default on),
+/// 0 off, 1 on (swarf_stock_set_read_isolation).
+std::atomic<int> read_isolation{-1};
+
+bool isolate_reads() {
+  const int set = read_isolation.load();
+  if (set >= 0) return set != 0;
+  const char *env = std::getenv("SWARF_VDB_ISOLATE");
+  return env == nullptr || std::strcmp(env, "0") != 0;
+}
+
+/// Read the stock grid of `path` in a child process (see the file comment),
+/// unless the embedding program turned that off.
 openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
+  if (!isolate_reads()) return read_grid_here(path);
   const IsolateLimits limits = {120, reader_address_space(path)};
   std::string bytes;
   run_isolated("reading " + path, limits, [&] {
@@ -231,6 +246,10 @@ extern "C" swarf_status swarf_stock_read(const char *path, swarf_stock **out, sw
     *out = swarf::wrap_grid(swarf::read_grid(path));
   });
 }
+
+extern "C" void swarf_stock_set_read_isolation(int on) { swarf::read_isolation.store(on ? 1 : 0); }
+
+extern "C" int swarf_stock_read_isolation(void) { return swarf::isolate_reads() ? 1 : 0; }
 
 extern "C" swarf_status swarf_stock_write_vdb(const swarf_stock *s, const char *path,
                                               swarf_error *err) {

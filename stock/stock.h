@@ -51,8 +51,20 @@ SWARF_API swarf_status swarf_stock_new_cylinder(int axis, double radius, double 
 
 /* Read the grid named "stock" (or the first float level set) of a .vdb file
  * into *out: SWARF_ERR_OPEN when it cannot be opened, SWARF_ERR_FORMAT when
- * it is not a usable level set (err->file is the path). */
+ * it is not a usable level set (err->file is the path). OpenVDB's reader is
+ * not hardened against damaged files, so the file is read in a forked child
+ * process (stock/isolate.cc) that sends the grid back: a crash, a hang or a
+ * runaway allocation there becomes an error here. */
 SWARF_API swarf_status swarf_stock_read(const char *path, swarf_stock **out, swarf_error *err);
+
+/* An embedding program that must not fork (or reads only files it wrote)
+ * turns the child off with swarf_stock_set_read_isolation(0), or with the
+ * environment variable SWARF_VDB_ISOLATE=0; the file is then read in the
+ * calling process. The call wins over the variable; 1 turns the child back
+ * on. Process-wide, for the reads that start after it; any thread. */
+SWARF_API void swarf_stock_set_read_isolation(int on);
+/* 1 when reads run in a child process (the call's setting, else the variable's). */
+SWARF_API int swarf_stock_read_isolation(void);
 
 SWARF_API void swarf_stock_free(swarf_stock *s);
 

@@ -20,6 +20,9 @@
  *   sweep_rigid.c   motions with rotation: time steps, characteristic
  *                   refinement, certification; sweep_rigid_setup.c its
  *                   per-move constants and bounds.
+ *   sweep_profile.c profile cutters: the union of convex pieces, each swept
+ *                   by the closed forms or the searches above.
+ *   sweep_general.c a non-convex QSS piece under any motion.
  *
  * Nothing here allocates; every function works on caller-owned values.
  */
@@ -122,7 +125,14 @@ void swarf_profile_hull_extent(swarf_profile_piece *pc);
 double swarf_profile_hull_sdf(const swarf_profile_piece *pc, double r, double z, double dz,
                               double g[2]);
 double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
+/* The same, with the nearest point of the profile curve in near; and the
+ * curve's point at parameter s = n_z in [-1, 1]. */
+double swarf_profile_qss_sdf_near(const swarf_profile_piece *pc, double r, double z, double g[2],
+                                  double near[2]);
+void swarf_profile_qss_point(const swarf_profile_piece *pc, double s, double y[2]);
 double swarf_profile_piece_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
+/* The same at a 3-D point q of the cutter frame, with the 3-D gradient. */
+double swarf_profile_piece_sdf_grad(const swarf_profile_piece *pc, const double q[3], double g[3]);
 
 /* swarf_cutter_add_hull cut flat at height top (above the widest part). */
 swarf_status swarf_cutter_add_hull_clipped(swarf_cutter *c, const double (*circles)[3], int n,
@@ -238,7 +248,14 @@ enum {
   SWARF_SWEEP_ARC,        /* planar arc about a vertical axis, angle < 2 pi */
   SWARF_SWEEP_RING,       /* planar full circle about a vertical axis */
   SWARF_SWEEP_HELIX,      /* any other helix: sampling and refinement */
-  SWARF_SWEEP_RIGID       /* motion with rotation (rotary machines) */
+  SWARF_SWEEP_RIGID,      /* motion with rotation (rotary machines) */
+  /* profile cutters (fast = 0; sweep_profile.c), convex pieces each: */
+  SWARF_SWEEP_P_SLOT,     /* horizontal line: the profile at the horizontal distance */
+  SWARF_SWEEP_P_PLUNGE,   /* vertical line: hulls stretched, QSS pieces minimised */
+  SWARF_SWEEP_P_RAMP,     /* other line: convex 1-D minimum per piece */
+  SWARF_SWEEP_P_HELIX,    /* helix: sweep_sampled.c per piece */
+  SWARF_SWEEP_P_RIGID,    /* rotation: sweep_rigid.c per piece */
+  SWARF_SWEEP_P_GENERAL   /* a non-convex QSS piece: sweep_general.c, any motion */
 };
 
 /* ---- The sweep's per-method data (swarf_sweep.internal_) ----------------- */
@@ -300,9 +317,16 @@ typedef struct {
   int n;
 } swarf_sweep_rigid;
 
+/* P_SLOT, P_PLUNGE, P_RAMP (profile cutters): the line p0 + alpha d. */
+typedef struct {
+  double p0[3], d[3];
+  double inv_h2; /* 1 / |d_xy|^2, 0 for a plunge */
+} swarf_sweep_pline;
+
 typedef struct {
   int method; /* SWARF_SWEEP_* */
   union {
+    swarf_sweep_pline pline;
     swarf_sweep_plunge plunge;
     swarf_sweep_slot slot;
     swarf_sweep_ramp ramp;
@@ -332,11 +356,31 @@ double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double
 double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
 void swarf_sweep_helix_init(swarf_sweep *s);
+/* The helix search of sweep_sampled.c for a convex body (gradient callback),
+ * pruned by upper: returns the minimum if below upper - 1e-9, else a value
+ * >= upper - 1e-9 (nothing below it). */
+double swarf_sweep_helix_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                  const double p[3], double upper, double *alpha);
 double swarf_sweep_arc_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ring_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
 void swarf_sweep_rigid_init(swarf_sweep *s, double voxel);
+/* swarf_sweep_rigid_body_sdf pruned by upper: the minimum if it is below
+ * upper - 1e-6, else a value >= upper - 1e-6. Any motion kind. */
+double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                    const double p[3], double upper, double *alpha);
+
+/* Profile cutters (sweep_profile.c): init for any motion, bounds, sdf. */
+void swarf_sweep_profile_init(swarf_sweep *s, double voxel);
+double swarf_sweep_profile_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+/* Cutters with a non-convex QSS piece, any motion (sweep_general.c). */
+double swarf_sweep_general_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+/* The cutter's 2-D sdf at horizontal distance r and height z: the closed
+ * form of flat/ball/bull, or the minimum over the profile's pieces. */
+static inline double swarf_cutter_rz(const swarf_cutter *c, double r, double z) {
+  return c->fast ? swarf_cutter_sdf_rz(c, r, z) : swarf_cutter_sdf2(c, r, z, NULL);
+}
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 

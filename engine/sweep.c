@@ -21,8 +21,9 @@ void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_m
   s->cutter = c;
   s->motion = m;
   if (c == NULL || m == NULL) return;
-  /* Profile cutters: the certified time search for now (closed forms to come). */
-  if (m->kind == SWARF_MOTION_RIGID || !c->fast)
+  if (!c->fast)
+    swarf_sweep_profile_init(s, voxel > 0 ? voxel : 0.1);
+  else if (m->kind == SWARF_MOTION_RIGID)
     swarf_sweep_rigid_init(s, voxel > 0 ? voxel : 0.1);
   else if (m->kind == SWARF_MOTION_LINE)
     swarf_sweep_line_init(s, m->p0, m->p1);
@@ -32,7 +33,9 @@ void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_m
 
 void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
   double r = 0.5 * s->cutter->diameter;
-  if (swarf_sweep_cdata(s)->method == SWARF_SWEEP_RIGID) {
+  int method = swarf_sweep_cdata(s)->method;
+  if (method == SWARF_SWEEP_RIGID || method == SWARF_SWEEP_P_RIGID ||
+      method == SWARF_SWEEP_P_GENERAL) {
     swarf_sweep_rigid_bounds(s, lo, hi);
     return;
   }
@@ -41,11 +44,14 @@ void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
     lo[k] -= r;
     hi[k] += r;
   }
+  lo[2] += s->cutter->zmin;
   hi[2] += s->cutter->length;
 }
 
 double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  switch (swarf_sweep_cdata(s)->method) {
+  int method = swarf_sweep_cdata(s)->method;
+  if (method >= SWARF_SWEEP_P_SLOT) return swarf_sweep_profile_sdf(s, p, alpha);
+  switch (method) {
   case SWARF_SWEEP_SLOT:
     return swarf_sweep_slot_sdf(s, p, alpha);
   case SWARF_SWEEP_RAMP_BALL:

@@ -42,7 +42,7 @@ static void arc_init(swarf_sweep *s, const double e1[3], const double e2[3]) {
 /* Sample spacing along the path, mm: a fraction of the cutter, finer on tight
  * helices (whose curvature makes g non-convex over shorter spans). */
 static double helix_step(const swarf_cutter *c, double radius) {
-  double d = 0.125 * c->diameter, bend = fmax(0.25 * radius, 0.02 * c->diameter);
+  double d = 0.125 * (c->fast ? c->diameter : fmin(c->diameter, c->length - c->zmin)), bend = fmax(0.25 * radius, 0.02 * c->diameter);
   d = fmin(d, bend);
   return fmin(d, 0.5);
 }
@@ -105,7 +105,7 @@ double swarf_sweep_arc_sdf(const swarf_sweep *s, const double p[3], double *alph
   double d0x, d0y, d1x, d1y, d0, d1;
   if (arc_in_range(x, x1, x2)) {
     if (alpha != NULL) *alpha = arc_alpha(x, x1, x2);
-    return swarf_cutter_sdf_rz(s->cutter, fabs(sqrt(x1 * x1 + x2 * x2) - x->radius), z);
+    return swarf_cutter_rz(s->cutter, fabs(sqrt(x1 * x1 + x2 * x2) - x->radius), z);
   }
   d0x = qx - x->radius * x->e1[0];
   d0y = qy - x->radius * x->e1[1];
@@ -114,7 +114,7 @@ double swarf_sweep_arc_sdf(const swarf_sweep *s, const double p[3], double *alph
   d0 = sqrt(d0x * d0x + d0y * d0y);
   d1 = sqrt(d1x * d1x + d1y * d1y);
   if (alpha != NULL) *alpha = d0 <= d1 ? 0.0 : 1.0;
-  return swarf_cutter_sdf_rz(s->cutter, d0 <= d1 ? d0 : d1, z);
+  return swarf_cutter_rz(s->cutter, d0 <= d1 ? d0 : d1, z);
 }
 
 double swarf_sweep_ring_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
@@ -122,6 +122,11 @@ double swarf_sweep_ring_sdf(const swarf_sweep *s, const double p[3], double *alp
   const swarf_cutter *c = s->cutter;
   double qx = p[0] - x->cx, qy = p[1] - x->cy, z = p[2] - x->z0;
   double rho = sqrt(qx * qx + qy * qy), a = swarf_cutter_core(c), dr;
+  if (!c->fast) { /* a profile's convex pieces: the nearest instance is at p's angle */
+    if (alpha != NULL)
+      *alpha = arc_alpha(x, qx * x->e1[0] + qy * x->e1[1], qx * x->e2[0] + qy * x->e2[1]);
+    return swarf_cutter_sdf2(c, fabs(rho - x->radius), z, NULL);
+  }
   /* A ring no wider than the core is a solid cylinder of radius radius + a. */
   dr = x->radius <= a ? rho - x->radius - a : fabs(rho - x->radius) - a;
   if (alpha != NULL)

@@ -224,26 +224,31 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
   return m - 1;
 }
 
-double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
-                                  const double p[3], double *alpha) {
+double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                    const double p[3], double upper, double *alpha) {
   rsample smp[MAXN + 1];
   const swarf_pose *table;
   rctx h;
   int n;
   double lb;
-  if (s == NULL || swarf_sweep_cdata(s)->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL)
-    return NAN;
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
-  h.best.a = 0.0, h.best.g = INFINITY, h.best.dg = 0.0, h.best.dist = 0.0;
+  h.best.a = 0.0, h.best.g = upper, h.best.dg = 0.0, h.best.dist = 0.0;
   n = swarf_sweep_cdata(s)->u.rigid.n;
   swarf_motion_pose_table(s->motion, n, &table); /* NULL when out of memory: poses computed */
   n = rsteps(&h, table, n, smp, &lb);
   if (alpha != NULL) *alpha = h.best.a;
-  if (n < 0) return lb;
+  if (n < 0) return fmin(lb, upper);
   h.evals = 0;
   rcertify(&h, smp, n);
   if (alpha != NULL) *alpha = h.best.a;
   return h.best.g;
+}
+
+double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                  const double p[3], double *alpha) {
+  if (s == NULL || swarf_sweep_cdata(s)->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL)
+    return NAN;
+  return swarf_sweep_rigid_body_below(s, body, ctx, p, INFINITY, alpha);
 }
 
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha) {

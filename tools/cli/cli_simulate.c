@@ -19,7 +19,7 @@
 
 static const char help[] =
     "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
-    "                      --tool T<n>=<shape>,D<diameter>[,R<corner>][,L<length>] ...\n"
+    "                      --tool T<n>=<family>,<fields> ...\n"
     "                      --out FILE.vdb [--mesh FILE.stl] [--image FILE.png]\n"
     "                      [--voxel MM] [--band VOXELS] [--machine NAME[,k=v...]] [--quiet]\n"
     "\n"
@@ -33,11 +33,27 @@ static const char help[] =
     "  --machine NAME   xyz (default); xyza[,pivot=Y,Z] (rotary table about X);\n"
     "                   xyzac-trt or xyzbc-trt[,mode=tcp|joint][,pivot=X,Y,Z] (5-axis\n"
     "                   table-rotary-tilting, tool-centre-point mode by default)\n"
-    "  --tool T1=ball,D3.175,L25   a cutter: shape ball, flat or bull; D diameter,\n"
-    "                   R corner radius (bull), L cutting length above the tip\n"
-    "                   (default 4*D). Repeat for several tools; a single tool is\n"
-    "                   loaded at the start, otherwise T<n> M6 selects one.\n"
-    "                   The controlled point is the tool tip (bottom centre).\n"
+    "  --tool T1=ball,D3.175,L25   a cutter: T number = family, fields (mm, angles in\n"
+    "                   degrees; L is the cutting length above the tip, default 4*D):\n"
+    "     flat|ball|bull,D<d>[,R<corner>][,L]   end mills (bull needs R; flutes may be\n"
+    "                   shorter than D)\n"
+    "     vee,D<d>,A<included angle>[,L]        V-bit / engraver, sharp tip\n"
+    "     drill,D<d>[,A<point angle, 118>][,L]  twist drill\n"
+    "     spot,D<d>[,A<point angle, 90>][,L]    spot drill\n"
+    "     chamfer,D<d>,A<included angle>[,T<tip diameter, 0>][,L]   chamfer mill\n"
+    "     taper,D<tip diameter>,A<half-angle>[,R<tip radius>][,L]  tapered flat/ball\n"
+    "     apt,D,R,E,F,A<alpha>,B<beta>,H        APT 7-parameter cutter: corner circle\n"
+    "                   (E, F, R), bottom at alpha through the tip (F = (R + E sin A)/\n"
+    "                   cos A), side at beta from the axis (D = 2 (E + R/cos B)) to H\n"
+    "     lollipop,D<sphere>,K<neck diameter>[,L]       undercut ball (non-convex)\n"
+    "     dovetail,D<bottom>,A<flank to base>,H<flank height>[,K<neck>][,L]\n"
+    "     tslot,D<d>,H<disk thickness>,K<neck diameter>[,L]\n"
+    "     qss,a,b,e,f   the paper's QSS of revolution h = a(x^2+y^2) + b z^2 + e z + f\n"
+    "                   (mm), its lowest point at the tip (convex or not, e.g. 2,3,0,0\n"
+    "                   or 3,-3,0,0)\n"
+    "                   Repeat for several tools; a single tool is loaded at the start,\n"
+    "                   otherwise T<n> M6 selects one. The controlled point is the\n"
+    "                   tool tip (bottom centre).\n"
     "  --voxel MM       voxel edge (default 0.2); halving it takes ~4x the time\n"
     "  --band N         narrow band half width in voxels (default 3, at least 3)\n"
     "  --out FILE.vdb   remaining material: OpenVDB float level set named \"stock\"\n"
@@ -195,12 +211,12 @@ static int check_size(const swarf_sim_config *cfg) {
 }
 
 static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
-  char msg[512];
-  int rc = swarf_stock_write_vdb(stock, o->out, msg, sizeof msg);
-  if (rc == 0 && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, msg, sizeof msg);
-  if (rc == 0 && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, msg, sizeof msg);
-  if (rc != 0) fprintf(stderr, "swarf simulate: %s\n", msg);
-  return rc == 0 ? 0 : 1;
+  swarf_error err;
+  swarf_status rc = swarf_stock_write_vdb(stock, o->out, &err);
+  if (rc == SWARF_OK && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, &err);
+  if (rc == SWARF_OK && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, &err);
+  if (rc != SWARF_OK) fprintf(stderr, "swarf simulate: %s\n", err.message);
+  return rc == SWARF_OK ? 0 : 1;
 }
 
 /* Each alarm (up to the report's record of them) as a located warning. */

@@ -107,13 +107,13 @@ static int flush_measured(swarf_sim *s) {
 }
 
 int swarf_sim_batch_flush(swarf_sim *s) {
-  char msg[512];
+  swarf_error e;
   if (s->n > 0 && s->measured) {
     if (flush_measured(s) != 0) return 1;
     s->n = 0;
   } else if (s->n > 0) {
-    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, msg, sizeof msg) != 0) {
-      swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", msg);
+    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, &e) != SWARF_OK) {
+      swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
       return 1;
     }
     s->n = 0;
@@ -139,11 +139,11 @@ static int boxes_overlap(const double alo[3], const double ahi[3], const double 
 
 /* The rapid in slot 0 against the stock as it stands. */
 static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *c) {
-  char msg[512];
+  swarf_error e;
   int hit = 0;
   double where[3];
-  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, msg, sizeof msg) != 0) {
-    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", msg);
+  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, &e) != SWARF_OK) {
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", e.message);
     return 1;
   }
   if (hit) {

@@ -134,14 +134,15 @@ static void set_tool_table(swarf_sim *s) {
 
 static swarf_stock *build_stock(const swarf_sim_config *cfg, swarf_error *err) {
   const swarf_sim_stock_spec *k = &cfg->stock;
-  char msg[512] = "";
-  swarf_stock *st;
+  swarf_error e = {0};
+  swarf_stock *st = NULL;
+  swarf_status rc;
   if (k->kind == SWARF_SIM_STOCK_CYLINDER)
-    st = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
-                                  cfg->half_width, msg, sizeof msg);
+    rc = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
+                                  cfg->half_width, &st, &e);
   else
-    st = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, msg, sizeof msg);
-  if (st == NULL) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", msg);
+    rc = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, &st, &e);
+  if (rc != SWARF_OK) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", e.message);
   return st;
 }
 

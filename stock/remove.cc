@@ -263,7 +263,50 @@ bool block_overlap(const Pass &p, ConstAcc &acc, const Coord &o, double depth, V
   return false;
 }
 
+/// First voxel of the block at o whose score -v - sdf (v: the stock value,
+/// below +band) exceeds depth (see stock.h); false if none. A voxel scores at
+/// most -v + (r - dc) (r: its distance to the block centre, dc: the cut's sdf
+/// there), so blocks and voxels the Lipschitz bound keeps below depth are
+/// passed over without evaluating the cut.
+bool block_penetrates(const Pass &p, ConstAcc &acc, const Coord &o, double depth, Vec3d &where) {
+  const swarf_stock_cut &cut = p.cuts[0];
+  const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
+  const double dc = cut.sdf(cut.ctx, c.x(), c.y(), c.z()), r = p.reach - p.bgf;
+  if (p.bgf + r - dc <= depth) return false;
+  const Leaf *leaf = acc.probeConstLeaf(o);
+  const float tile = leaf == nullptr ? acc.getValue(o) : 0.0f;
+  if (leaf == nullptr && !(tile < p.bgf)) return false;  // an outside tile
+  const float *v = leaf != nullptr ? leaf->buffer().data() : nullptr;
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        const double val = v != nullptr ? v[n] : tile;
+        if (!(val < p.bgf) || -val + p.radius[n] - dc <= depth) continue;
+        const Vec3d q = block_point(p, o, x, y, z);
+        if (-val - cut.sdf(cut.ctx, q.x(), q.y(), q.z()) > depth) {
+          where = q;
+          return true;
+        }
+      }
+  return false;
+}
+
 }  // namespace
+
+/// True if the cut penetrates the material by more than depth (see stock.h).
+bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  init_pass(p);
+  Coord a, b;
+  if (!cut_blocks(p, cut, a, b)) return false;
+  ConstAcc acc(s.grid->constTree());
+  for (int x = a.x(); x <= b.x(); x += 8)
+    for (int y = a.y(); y <= b.y(); y += 8)
+      for (int z = a.z(); z <= b.z(); z += 8)
+        if (block_penetrates(p, acc, Coord(x, y, z), depth, where)) return true;
+  return false;
+}
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
@@ -348,6 +391,23 @@ extern "C" int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut 
       throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be >= 0 and below the band half-width");
     openvdb::Vec3d q;
     *hit = swarf::cut_overlaps(*s, *cut, depth, q) ? 1 : 0;
+    if (*hit && where != nullptr)
+      for (int k = 0; k < 3; k++) where[k] = q[k];
+  });
+}
+
+extern "C" int swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
+                                      double depth, int *hit, double where[3], char *msg,
+                                      size_t msglen) {
+  return swarf::guard(msg, msglen, [&] {
+    if (s == nullptr || cut == nullptr || hit == nullptr)
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, cut or hit is NULL");
+    *hit = 0;
+    check_cut(*cut, 0);
+    if (!(depth >= 0.0 && std::isfinite(depth)))
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be finite and >= 0");
+    openvdb::Vec3d q;
+    *hit = swarf::cut_penetrates(*s, *cut, depth, q) ? 1 : 0;
     if (*hit && where != nullptr)
       for (int k = 0; k < 3; k++) where[k] = q[k];
   });

@@ -81,6 +81,21 @@ int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts, size_t
 int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut, double depth, int *hit,
                          double where[3], char *msg, size_t msglen);
 
+/* Whether the volume {sdf < 0} of `cut` penetrates the material by more than
+ * `depth` mm (>= 0): at some voxel centre p the two signed depths add up to
+ * more, -v - sdf(p) > depth (v: the stock value; voxels outside the band, at
+ * +band, are not looked at). This is max over points of "how deep p lies in
+ * the material plus how deep in the body": negative (minus the gap) for
+ * bodies apart, the thickness of the overlap where the two surfaces are
+ * parallel (a holder's face entering a flat face: the same at every point
+ * between them, so no voxel centre needs to fall inside a thin overlap), a
+ * lower bound of the depth elsewhere; deeper than the band, v is -band and
+ * the sum a lower bound again. Read-only; *hit gets 1 or 0, where (may be
+ * NULL) the first such voxel centre found. For the non-cutting parts of a
+ * tool (tools/sim/collide.c). */
+int swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut, double depth,
+                           int *hit, double where[3], char *msg, size_t msglen);
+
 /* Facts about the grid. */
 double swarf_stock_voxel(const swarf_stock *s);
 int swarf_stock_half_width(const swarf_stock *s);

@@ -16,6 +16,7 @@
 #include <stddef.h>
 
 #include "toolpath.h"
+#include "swarf_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -45,22 +46,22 @@ typedef struct {
 /* Validate and fill a cutter. corner_radius is ignored for flat and ball.
  * length <= 0 selects the default, 4 * diameter. Returns 0, or -1 with a
  * reason in `why` (if not NULL) when the dimensions are impossible. */
-int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
-                      double corner_radius, double length, const char **why);
+SWARF_API int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
+                                double corner_radius, double length, const char **why);
 
 /* Support function on the unit sphere, h(n), and its profile phi(z), phi'(z)
  * (phi' is one-sided at the kinks z = 0 and unbounded at z = +-1 when a > 0;
  * the value returned there is the limit from inside (-1, 1)). */
-double swarf_cutter_support(const swarf_cutter *c, const double n[3]);
-void swarf_cutter_profile(const swarf_cutter *c, double z, double *phi, double *dphi);
+SWARF_API double swarf_cutter_support(const swarf_cutter *c, const double n[3]);
+SWARF_API void swarf_cutter_profile(const swarf_cutter *c, double z, double *phi, double *dphi);
 
 /* Surface point x_h(n) = h(n) n + grad_S h(n) for a unit normal n (paper eq. 1-2).
  * Where the support function has a kink (a flat face or a ruling), returns the
  * point of that face given by continuity from n_z -> 0+ / n_z -> +-1. */
-void swarf_cutter_point(const swarf_cutter *c, const double n[3], double x[3]);
+SWARF_API void swarf_cutter_point(const swarf_cutter *c, const double n[3], double x[3]);
 
 /* Signed distance from p (cutter frame) to the cutter: < 0 inside. Exact. */
-double swarf_cutter_sdf(const swarf_cutter *c, const double p[3]);
+SWARF_API double swarf_cutter_sdf(const swarf_cutter *c, const double p[3]);
 
 /* ---- Characteristic curves ---------------------------------------------- */
 
@@ -80,17 +81,17 @@ typedef struct {
   size_t ncomp, start_cap;
 } swarf_char_curve;
 
-void swarf_char_curve_init(swarf_char_curve *cc);
-void swarf_char_curve_clear(swarf_char_curve *cc);
+SWARF_API void swarf_char_curve_init(swarf_char_curve *cc);
+SWARF_API void swarf_char_curve_clear(swarf_char_curve *cc);
 
 /* The characteristic curve of cutter c at the pose (t, U) with moving-frame
  * velocity v and angular velocity omega (ENVELOPE.md, Fact 2), sampled so
  * that the chord error on the surface stays under `tol` mm. Replaces the
  * contents of cc. Returns the number of components (0 when the cutter does
  * not move, or only turns about its own axis), or -1 when out of memory. */
-int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c, const double t[3],
-                             const double U[9], const double v[3], const double omega[3],
-                             double tol);
+SWARF_API int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c,
+                                       const double t[3], const double U[9], const double v[3],
+                                       const double omega[3], double tol);
 
 /* Layout of the result of the compute functions: each component is a CLOSED
  * polyline that repeats its first point at its end. A component runs along
@@ -113,9 +114,9 @@ typedef struct {
 } swarf_qss;
 
 /* swarf_char_curve_compute for a QSS of revolution instead of a cutter. */
-int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q, const double t[3],
-                                 const double U[9], const double v[3], const double omega[3],
-                                 double tol);
+SWARF_API int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q,
+                                           const double t[3], const double U[9], const double v[3],
+                                           const double omega[3], double tol);
 
 /* A general trivariate QSS: h(n) = n^T Q n + b . n + c on the unit sphere
  * (Q row-major; only its symmetric part counts). Its surface point is
@@ -130,32 +131,33 @@ typedef struct {
  * components; 0 when f vanishes identically (still, or the whole sphere is
  * characteristic), when the curve is empty or only isolated points; -1 when
  * out of memory or when the sweep finds an inconsistent topology. */
-int swarf_char_curve_compute_qss_general(swarf_char_curve *cc, const swarf_qss_general *q,
-                                         const double t[3], const double U[9], const double v[3],
-                                         const double omega[3], double tol);
+SWARF_API int swarf_char_curve_compute_qss_general(swarf_char_curve *cc, const swarf_qss_general *q,
+                                                   const double t[3], const double U[9],
+                                                   const double v[3], const double omega[3],
+                                                   double tol);
 
 /* The same for the full revolution form of eq. 12, coef = a, b, c, d, e, f:
  * h = a (n_x^2 + n_y^2) + b n_z^2 + c n_x + d n_y + e n_z + f (its axis passes
  * through (c, d, 0)). Same contract; the exact counterpart is envelope_exact.h. */
-int swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6], const double t[3],
-                                   const double U[9], const double v[3], const double omega[3],
-                                   double tol);
+SWARF_API int swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6],
+                                             const double t[3], const double U[9],
+                                             const double v[3], const double omega[3], double tol);
 
 /* The real branch points of the characteristic curve: the z in [-1, 1] where
  * Fact 2's Delta changes sign, sorted, to full double precision (branch
  * points on a cutter's side ruling are reported as z = 0). Writes at most max
  * of them and returns how many there are. */
-int swarf_char_branch_points(const swarf_cutter *c, const double v[3], const double omega[3],
-                             double *z, int max);
-int swarf_char_branch_points_qss(const swarf_qss *q, const double v[3], const double omega[3],
-                                 double *z, int max);
+SWARF_API int swarf_char_branch_points(const swarf_cutter *c, const double v[3],
+                                       const double omega[3], double *z, int max);
+SWARF_API int swarf_char_branch_points_qss(const swarf_qss *q, const double v[3],
+                                           const double omega[3], double *z, int max);
 
 /* The Gauss points at one slice n_z = z of any profile of revolution with
  * phi'(z) = dphi (Fact 2): n[0] for s = +1, n[1] for s = -1. Returns 2, 1 when
  * the slice touches the curve (Delta = 0), 0 when it misses it or when
  * A = B = 0 (the whole latitude circle, or none, is characteristic). */
-int swarf_char_gauss_slice(double dphi, const double v[3], const double omega[3], double z,
-                           double n[2][3]);
+SWARF_API int swarf_char_gauss_slice(double dphi, const double v[3], const double omega[3],
+                                     double z, double n[2][3]);
 
 /* ---- Swept volume of one move ------------------------------------------- */
 
@@ -168,14 +170,14 @@ typedef struct {
   double aux[16];   /* internal: precomputed per-move constants */
 } swarf_sweep;
 
-void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m);
+SWARF_API void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m);
 
 /* The same for a stock of voxel edge `voxel` (mm): RIGID motions (rotary
  * machines) choose their time steps from it (swarf_sweep_init assumes 0.1 mm).
  * Their sdf is certified to 1e-6 mm within 72 voxels of the volume (within the
  * work caps; see sweep_rigid.c), a lower bound beyond. */
-void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m,
-                            double voxel);
+SWARF_API void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m,
+                                      double voxel);
 
 /* A convex body's signed distance at q (body frame) and its unit gradient. */
 typedef double (*swarf_body_sdf_fn)(const void *ctx, const double q[3], double grad[3]);
@@ -184,24 +186,25 @@ typedef double (*swarf_body_sdf_fn)(const void *ctx, const double q[3], double g
  * `body` in place of the cutter, which then only gives the sizes the time
  * steps and bounds are chosen from (its radius and length must enclose the
  * body). For tests of other bodies (QSS). NaN for a non-RIGID sweep. */
-double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
-                                  const double p[3], double *alpha);
+SWARF_API double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body,
+                                            const void *ctx, const double p[3], double *alpha);
 
 /* Axis-aligned bounds of the swept volume, workpiece frame, mm. */
-void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
+SWARF_API void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
 
 /* Signed distance from p (workpiece frame) to the swept volume: < 0 inside.
  * Exact outside the volume; inside, exact for the closed-form cases and never
  * larger in magnitude than the true depth otherwise. 1-Lipschitz. If alpha is
  * not NULL it receives the time of the nearest cutter instance. */
-double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+SWARF_API double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
 /* The characteristic curve of the sweep at time alpha in [0, 1]: the cutter
  * at the pose of the motion, moving with its velocity d/dalpha (for the xyz
  * machine U = I, omega = 0 and v = dt/dalpha). The union over alpha of these
  * curves (world points w) is the envelope whose inside swarf_sweep_sdf
  * measures. Same contract as swarf_char_curve_compute. */
-int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol, swarf_char_curve *cc);
+SWARF_API int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,
+                                     swarf_char_curve *cc);
 
 #ifdef __cplusplus
 }

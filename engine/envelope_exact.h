@@ -24,6 +24,8 @@
 
 #include <arb.h>
 
+#include "swarf_status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -34,48 +36,48 @@ typedef struct {
   fmpq_t a, b;
 } swarf_qr;
 
-void swarf_qr_init(swarf_qr *x);
-void swarf_qr_clear(swarf_qr *x);
-void swarf_qr_set(swarf_qr *z, const swarf_qr *x);
-void swarf_qr_set_fmpq(swarf_qr *z, const fmpq_t a);
-void swarf_qr_add(swarf_qr *z, const swarf_qr *x, const swarf_qr *y);
-void swarf_qr_sub(swarf_qr *z, const swarf_qr *x, const swarf_qr *y);
-void swarf_qr_mul(swarf_qr *z, const swarf_qr *x, const swarf_qr *y, const fmpz_t r);
-void swarf_qr_mul_fmpq(swarf_qr *z, const swarf_qr *x, const fmpq_t c);
+SWARF_API void swarf_qr_init(swarf_qr *x);
+SWARF_API void swarf_qr_clear(swarf_qr *x);
+SWARF_API void swarf_qr_set(swarf_qr *z, const swarf_qr *x);
+SWARF_API void swarf_qr_set_fmpq(swarf_qr *z, const fmpq_t a);
+SWARF_API void swarf_qr_add(swarf_qr *z, const swarf_qr *x, const swarf_qr *y);
+SWARF_API void swarf_qr_sub(swarf_qr *z, const swarf_qr *x, const swarf_qr *y);
+SWARF_API void swarf_qr_mul(swarf_qr *z, const swarf_qr *x, const swarf_qr *y, const fmpz_t r);
+SWARF_API void swarf_qr_mul_fmpq(swarf_qr *z, const swarf_qr *x, const fmpq_t c);
 /* z = 1 / x; returns -1 (z unchanged) when x = 0. */
-int swarf_qr_inv(swarf_qr *z, const swarf_qr *x, const fmpz_t r);
-int swarf_qr_is_zero(const swarf_qr *x);
+SWARF_API int swarf_qr_inv(swarf_qr *z, const swarf_qr *x, const fmpz_t r);
+SWARF_API int swarf_qr_is_zero(const swarf_qr *x);
 /* Sign of a + b sqrt(r), decided exactly. */
-int swarf_qr_sgn(const swarf_qr *x, const fmpz_t r);
-double swarf_qr_get_d(const swarf_qr *x, const fmpz_t r);
+SWARF_API int swarf_qr_sgn(const swarf_qr *x, const fmpz_t r);
+SWARF_API double swarf_qr_get_d(const swarf_qr *x, const fmpz_t r);
 /* "a + b*sqrt(r)" (or "a" when b = 0); free() the result. */
-char *swarf_qr_get_str(const swarf_qr *x, const fmpz_t r);
+SWARF_API char *swarf_qr_get_str(const swarf_qr *x, const fmpz_t r);
 
 /* Polynomials over Q(sqrt r): A(s) + B(s) sqrt(r). */
 typedef struct {
   fmpq_poly_t a, b;
 } swarf_qr_poly;
 
-void swarf_qr_poly_init(swarf_qr_poly *p);
-void swarf_qr_poly_clear(swarf_qr_poly *p);
-void swarf_qr_poly_set(swarf_qr_poly *z, const swarf_qr_poly *p);
-void swarf_qr_poly_add(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr_poly *q);
-void swarf_qr_poly_sub(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr_poly *q);
-void swarf_qr_poly_mul(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr_poly *q,
-                       const fmpz_t r);
-void swarf_qr_poly_scale(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr *c,
-                         const fmpz_t r);
-void swarf_qr_poly_get_coeff(swarf_qr *c, const swarf_qr_poly *p, slong i);
-void swarf_qr_poly_set_coeff(swarf_qr_poly *p, slong i, const swarf_qr *c);
-slong swarf_qr_poly_degree(const swarf_qr_poly *p);
-int swarf_qr_poly_is_zero(const swarf_qr_poly *p);
-double swarf_qr_poly_evaluate_d(const swarf_qr_poly *p, const fmpz_t r, double s);
+SWARF_API void swarf_qr_poly_init(swarf_qr_poly *p);
+SWARF_API void swarf_qr_poly_clear(swarf_qr_poly *p);
+SWARF_API void swarf_qr_poly_set(swarf_qr_poly *z, const swarf_qr_poly *p);
+SWARF_API void swarf_qr_poly_add(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr_poly *q);
+SWARF_API void swarf_qr_poly_sub(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr_poly *q);
+SWARF_API void swarf_qr_poly_mul(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr_poly *q,
+                                 const fmpz_t r);
+SWARF_API void swarf_qr_poly_scale(swarf_qr_poly *z, const swarf_qr_poly *p, const swarf_qr *c,
+                                   const fmpz_t r);
+SWARF_API void swarf_qr_poly_get_coeff(swarf_qr *c, const swarf_qr_poly *p, slong i);
+SWARF_API void swarf_qr_poly_set_coeff(swarf_qr_poly *p, slong i, const swarf_qr *c);
+SWARF_API slong swarf_qr_poly_degree(const swarf_qr_poly *p);
+SWARF_API int swarf_qr_poly_is_zero(const swarf_qr_poly *p);
+SWARF_API double swarf_qr_poly_evaluate_d(const swarf_qr_poly *p, const fmpz_t r, double s);
 /* Scale by a nonzero rational so that all coefficients lie in Z[sqrt r] with
  * content 1 and the leading coefficient's rational part (or, if 0, its sqrt r
  * part) is positive. */
-void swarf_qr_poly_primitive(swarf_qr_poly *z, const swarf_qr_poly *p);
+SWARF_API void swarf_qr_poly_primitive(swarf_qr_poly *z, const swarf_qr_poly *p);
 /* "c3*s^3 + (a + b*sqrt(r))*s^2 + ..." in the variable `var`; free() it. */
-char *swarf_qr_poly_get_str(const swarf_qr_poly *p, const fmpz_t r, const char *var);
+SWARF_API char *swarf_qr_poly_get_str(const swarf_qr_poly *p, const fmpz_t r, const char *var);
 
 /* ---- Quadratic polynomials in n = (x, y, z) over Q ---------------------- */
 
@@ -98,22 +100,24 @@ typedef struct {
   fmpq c[SWARF_QUAD_TERMS];
 } swarf_xquad;
 
-void swarf_xquad_init(swarf_xquad *q);
-void swarf_xquad_clear(swarf_xquad *q);
+SWARF_API void swarf_xquad_init(swarf_xquad *q);
+SWARF_API void swarf_xquad_clear(swarf_xquad *q);
 /* QSS of revolution, eq. 12: a (x^2 + y^2) + b z^2 + c x + d y + e z + f. */
-void swarf_xquad_set_revolution(swarf_xquad *q, const fmpq *abcdef);
+SWARF_API void swarf_xquad_set_revolution(swarf_xquad *q, const fmpq *abcdef);
 /* Value at a point of Q(sqrt r)^3. */
-void swarf_xquad_eval(swarf_qr *out, const swarf_xquad *q, const swarf_qr *n, const fmpz_t r);
+SWARF_API void swarf_xquad_eval(swarf_qr *out, const swarf_xquad *q, const swarf_qr *n,
+                                const fmpz_t r);
 /* "15*x - 20*x*z + ..." (FLINT's pretty form); free() it. */
-char *swarf_xquad_get_str(const swarf_xquad *q);
+SWARF_API char *swarf_xquad_get_str(const swarf_xquad *q);
 /* The QSS point x_h(n) = h n + grad h - (grad h . n) n (eq. 1-2) as three
  * cubic polynomials in x, y, z (ctx: 3 variables), without using n.n = 1. */
-void swarf_xquad_point_mpoly(fmpq_mpoly_t X[3], const swarf_xquad *h, const fmpq_mpoly_ctx_t ctx);
+SWARF_API void swarf_xquad_point_mpoly(fmpq_mpoly_t X[3], const swarf_xquad *h,
+                                       const fmpq_mpoly_ctx_t ctx);
 /* Convexity of the QSS (principal radii h + Hess_S h >= 0 on the sphere),
  * decided exactly for a QSS of revolution: 2 min(a, b) - max(a, b) + f >= 0.
  * Returns 1 convex, 0 not, -1 when h is not of revolution (xy, xz, yz, or
  * unequal x^2, y^2 terms). */
-int swarf_xquad_is_convex_revolution(const swarf_xquad *h);
+SWARF_API int swarf_xquad_is_convex_revolution(const swarf_xquad *h);
 
 /* ---- Rational rigid motions -------------------------------------------- */
 
@@ -126,13 +130,14 @@ typedef struct {
   fmpq_t B;
 } swarf_xmotion;
 
-void swarf_xmotion_init(swarf_xmotion *m);
-void swarf_xmotion_clear(swarf_xmotion *m);
+SWARF_API void swarf_xmotion_init(swarf_xmotion *m);
+SWARF_API void swarf_xmotion_clear(swarf_xmotion *m);
 /* Returns 0, or -1 when w = 0 or |w| is irrational. */
-int swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot, const fmpq_t B);
+SWARF_API int swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot, const fmpq_t B);
 
 /* f(n) = (v + omega x grad h(n)) . n, eq. 11 (ENVELOPE.md: grad h x n order). */
-void swarf_xquad_char(swarf_xquad *f, const swarf_xquad *h, const fmpq *v, const fmpq *omega);
+SWARF_API void swarf_xquad_char(swarf_xquad *f, const swarf_xquad *h, const fmpq *v,
+                                const fmpq *omega);
 
 /* ---- The exact characteristic curve ------------------------------------- */
 
@@ -182,35 +187,36 @@ typedef struct {
   swarf_qr_poly D;       /* m in the paper's normalization (eq. 22) */
 } swarf_envelope_exact;
 
-void swarf_envelope_exact_init(swarf_envelope_exact *E);
-void swarf_envelope_exact_clear(swarf_envelope_exact *E);
+SWARF_API void swarf_envelope_exact_init(swarf_envelope_exact *E);
+SWARF_API void swarf_envelope_exact_clear(swarf_envelope_exact *E);
 
 /* Compute f, Delta and its roots, and (for a curve) the ELM steps, for the
  * support function h moving with v and omega (rational). Returns 0, or -1
  * when out of memory; E->kind names the case. */
-int swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h, const fmpq *v,
-                                 const fmpq *omega);
+SWARF_API int swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h,
+                                           const fmpq *v, const fmpq *omega);
 
 /* The slice z (rational): the Gauss points in Q(sqrt r_z) (r_z returned in
  * rz), n[0] on branch s = +1, n[1] on s = -1 (Fact 2's formula). Returns 2,
  * 1 (tangent slice, Delta = 0), 0 (no real point, or A = B = 0). */
-int swarf_envelope_exact_slice(const swarf_envelope_exact *E, const fmpq_t z, fmpz_t rz,
-                               swarf_qr n[2][3]);
+SWARF_API int swarf_envelope_exact_slice(const swarf_envelope_exact *E, const fmpq_t z, fmpz_t rz,
+                                         swarf_qr n[2][3]);
 
 /* A point of the ELM parameterization (double precision from the exact
  * coefficients): pencil parameter s, root sign (+1/-1). Returns 0, or -1
  * where l(s) < 0 or m(s) = 0. */
-int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign, double n[3]);
+SWARF_API int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign,
+                                             double n[3]);
 
 /* The back-projection of Theorem 2 checked as polynomial identities in
  * Q(sqrt r)[s, w] / (w^2 - l(s)): with Q(s) = R + (k + w)/m (1 - R_xi, s - R_eta),
  * n = N / Den (stereographic inverse from P), checks f_hom(N, Den) = 0 and
  * N.N = Den^2. Returns 1 when both hold, 0 when not, -1 when no ELM. */
-int swarf_envelope_exact_check_elm(const swarf_envelope_exact *E);
+SWARF_API int swarf_envelope_exact_check_elm(const swarf_envelope_exact *E);
 
 /* A text report of everything above, as a person would check it against the
  * paper: one "name: value" per line. free() it. */
-char *swarf_envelope_exact_report(const swarf_envelope_exact *E);
+SWARF_API char *swarf_envelope_exact_report(const swarf_envelope_exact *E);
 
 #ifdef __cplusplus
 }

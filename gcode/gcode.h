@@ -22,6 +22,8 @@
 
 #include <stddef.h>
 
+#include "swarf_status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -88,8 +90,8 @@ typedef struct swarf_gcode_parser swarf_gcode_parser;
 /* A new parser for a program called `filename` (used in error messages; it is
  * not opened). The machine starts at 0,0,0 (all axes), G17 G21 G90 G91.1 G94,
  * feed 0, spindle off, no tool. Returns NULL when out of memory. */
-swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
-                                           void *user);
+SWARF_API swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
+                                                     void *user);
 
 /* Called with each canonical call, formatted as `rs274 -g` prints it (a
  * sequence number, the N field, the call; no newline), in program
@@ -99,13 +101,14 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
 typedef void (*swarf_gcode_canon_fn)(const char *call, void *user);
 
 /* Sets the canon listener; call before the first feed. */
-int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn, void *user);
+SWARF_API int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
+                                           void *user);
 
 /* Loads a LinuxCNC tool table (lines "T1 P1 Z0.511 D0.125 ;comment"; values
  * in inches, as rs274 reads a table without an INI file). Call before the
  * first feed. Returns a status; *err says why it failed. */
-int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                  swarf_gcode_error *err);
+SWARF_API int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                            swarf_gcode_error *err);
 
 /* Empties the tool table (the built-in one of rs274 too: without a table,
  * tools 1-3 have rs274's lengths 0.511, 0.1 and 1.273 in), so that only tools
@@ -113,30 +116,91 @@ int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
  * (1..999): its length offset (mm, what G43 H<tool> applies) and diameter
  * (mm). Call before the first feed. The simulator gives every cutter length
  * 0: it follows the tool tip, so G43 with the right H changes nothing. */
-int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
-int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length, double diameter);
+SWARF_API int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
+SWARF_API int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length,
+                                          double diameter);
 
 /* Feed `len` bytes of program text (any split, CRLF or LF). Complete lines are
  * interpreted at once. Returns SWARF_GCODE_OK or an error; after an error the
  * parser refuses further input and swarf_gcode_parser_error says why. */
-int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
+SWARF_API int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
 
 /* Interpret the last, unterminated line if any, and end the program. */
-int swarf_gcode_parser_finish(swarf_gcode_parser *p);
+SWARF_API int swarf_gcode_parser_finish(swarf_gcode_parser *p);
 
 /* The error that stopped the parser, or NULL if none. Owned by the parser. */
-const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
+SWARF_API const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
 
 /* Number of lines read so far and whether the program ended (M2/M30/%). */
-long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
-int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
+SWARF_API long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
+SWARF_API int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
 
-void swarf_gcode_parser_free(swarf_gcode_parser *p);
+SWARF_API void swarf_gcode_parser_free(swarf_gcode_parser *p);
+
+/* ---- The machine's setup (call before the first feed) ----------------------
+ * Without these calls a parser starts as rs274 without an INI file: the
+ * controlled point at machine 0,0,0 (all axes), G21, every offset zero, and
+ * the parameters that back offsets (#5161-#5189, #5211-#5219, #5221-#5399,
+ * #5401-#5409) read in inches. These calls describe the machine a program
+ * runs on instead, as LinuxCNC's INI and parameter file do. Each returns
+ * SWARF_ERR_ARG for a NULL parser or a value out of range and
+ * SWARF_ERR_STATE once the first byte was fed; err (may be NULL) says why. */
+
+typedef enum {
+  SWARF_GCODE_UNITS_MM = 1,  /* G21 */
+  SWARF_GCODE_UNITS_INCH = 2 /* G20 */
+} swarf_gcode_units;
+
+/* The machine's length unit (LinuxCNC's [TRAJ]LINEAR_UNITS): the program
+ * starts in it (G21 or G20 until it gives its own), and the parameters that
+ * back offsets hold values in it, as the machine's parameter file does.
+ * Call it first: SWARF_ERR_STATE once a parameter was set. */
+SWARF_API swarf_status swarf_gcode_parser_set_units(swarf_gcode_parser *p, swarf_gcode_units u,
+                                                    swarf_error *err);
+
+/* Sets numbered parameter `index` (1..5601) as `#index = value` would just
+ * before the first line: #5221-#5223 move G54's origin (values in the
+ * machine's length unit), #5161 G28's home, and so on. Two follow LinuxCNC's
+ * start-up: #5220 (1..9) selects the work system in force (G54..G59.3), and
+ * #5210 = 1 puts the G92 offset #5211-#5216 in force. The parameters the
+ * interpreter computes (#5021-#5029, #5400, #5420-#5428) are refused
+ * (SWARF_ERR_ARG), as is a value that is not finite. */
+SWARF_API swarf_status swarf_gcode_parser_set_param(swarf_gcode_parser *p, int index,
+                                                    double value, swarf_error *err);
+
+/* Reads LinuxCNC's parameter file (the machine's .var: one parameter a line,
+ * "NUMBER VALUE", e.g. "5221 10.000000" for G54's X origin) and sets each
+ * as swarf_gcode_parser_set_param does. Strict: every line that is not blank
+ * must be an integer, blanks and a number and nothing else; a number twice,
+ * a value out of range or a parameter that cannot be set is an error too
+ * (SWARF_ERR_FORMAT, err->file and err->line say where); SWARF_ERR_OPEN when
+ * the file cannot be read. On failure the parser is unchanged. */
+SWARF_API swarf_status swarf_gcode_parser_load_params(swarf_gcode_parser *p, const char *path,
+                                                      swarf_error *err);
+
+/* Where the controlled point is when the program starts, in machine
+ * coordinates (mm, degrees; before any offset). The program's current point
+ * (what G91 adds to, what #5420 reads) follows from the offsets set up, in
+ * any order with the calls above. Default: all zero. */
+SWARF_API swarf_status swarf_gcode_parser_set_start(swarf_gcode_parser *p,
+                                                    const double machine[SWARF_NAXES],
+                                                    swarf_error *err);
+
+/* Work system `system` (1 = G54 ... 9 = G59.3) as it stands: its origin
+ * (machine mm, degrees) and XY rotation (degrees). SWARF_ERR_ARG when
+ * system is out of range. */
+SWARF_API swarf_status swarf_gcode_parser_work_system(const swarf_gcode_parser *p, int system,
+                                                      double origin[SWARF_NAXES],
+                                                      double *rotation);
+
+/* The source line of the first G20 or G21 the program ran; 0 while none
+ * (the program then runs in the machine's unit). */
+SWARF_API long swarf_gcode_parser_units_line(const swarf_gcode_parser *p);
 
 /* Convenience: stream a whole file through a parser. Returns a status code;
  * on error *err (if not NULL) is filled. */
-int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
-                           swarf_gcode_error *err);
+SWARF_API int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
+                                     swarf_gcode_error *err);
 
 #ifdef __cplusplus
 }

@@ -90,6 +90,7 @@ typedef struct {
   int tool;                                           /* in the spindle */
   int selected_tool;                                  /* last T */
   int ended;                                          /* M2 or M30 was executed */
+  long units_line;                                    /* first G20/G21 run, 0: none */
   double cycle_r, cycle_q, cycle_p, cycle_k, cycle_z; /* sticky cycle words, mm */
   double cycle_clear;                                 /* G98 clearance of the running cycle */
   int cycle_r_set, cycle_q_set;
@@ -126,6 +127,7 @@ typedef struct {
   const swarf_gc_state *state;  /* for the parameters that mirror it */
   double value;                 /* #<_value>: last sub return */
   int value_returned;
+  double length_unit; /* mm per unit of the parameters backing offsets (25.4: rs274's inches) */
 } swarf_gc_params;
 
 void swarf_gc_params_init(swarf_gc_params *ps);
@@ -463,5 +465,39 @@ int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long lin
                        swarf_gc_fault *f);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
+
+/* ---- parser.c: the parser itself (setup.c sets up its machine) ----------- */
+
+#define SWARF_GC_NTOOLS 1000 /* tool numbers 1..999 */
+
+struct swarf_gcode_parser {
+  swarf_gcode_move_fn fn;
+  void *user;
+  swarf_gcode_canon_fn canon;
+  void *canon_user;
+  long seq;                 /* rs274's call counter */
+  int canon_started;        /* the preamble was printed */
+  swarf_gc_state states[2]; /* the committed state and the next block's copy */
+  swarf_gc_state *state;    /* the committed one */
+  swarf_gc_params params;
+  swarf_gc_flow *flow;
+  swarf_gc_out out;
+  swarf_gc_out held; /* calls held back at the end of the last block (ccomp.c) */
+  double tools[SWARF_GC_NTOOLS][2];
+  long cur_line;           /* line of the block being run (stored lines too) */
+  swarf_gcode_error error; /* .file holds the program's name from the start */
+  int status;              /* first error, sticky */
+  long lines;              /* lines read so far */
+  int seen_code;           /* a non-blank line was read */
+  int percent_open;        /* the program opened with a `%` line */
+  int ended;               /* M2, M30 or a closing `%` */
+  int finished;            /* swarf_gcode_parser_finish was called */
+  char *partial;           /* the unterminated line so far */
+  size_t partial_len, partial_cap;
+  /* The machine's setup (swarf_gcode_parser_set_*): */
+  double start[SWARF_NAXES]; /* controlled point at the start, machine mm, degrees */
+  int params_set;            /* a parameter was set (the unit can no longer change) */
+  int g92_restore;           /* #5210 = 1: the G92 offset #5211-#5216 is in force */
+};
 
 #endif

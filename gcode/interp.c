@@ -167,6 +167,7 @@ static void run_plane_units(const swarf_gc_block *b, swarf_gc_state *st, swarf_g
   }
   if (units >= 0) {
     st->modal.units = units;
+    if (st->units_line == 0) st->units_line = ex->out->line;
     swarf_gc_out_text_now(ex->out, "USE_LENGTH_UNITS(CANON_UNITS_%s)",
                           units == 200 ? "INCHES" : "MM");
   }

@@ -5,8 +5,9 @@
  * #5181-#5189 (G30 home), #5210-#5219 (G92 on, offsets), #5220 (active
  * system), #5221-#5399 (G54..G59.3 origins, rotation at +9), #5400-#5410
  * (tool, its offsets, diameter), #5420-#5428 (current position, read only).
- * Offsets are shown in inches, as rs274 without an INI file does (its "user
- * units"); the current position in the active unit.
+ * Offsets are shown in the machine's length unit (`length_unit` mm each):
+ * inches unless the machine's unit was set, as rs274 without an INI file
+ * does (its "user units"); the current position in the active unit.
  *
  * Named parameters live in small lists owned by the store: `_`-names are
  * global, others belong to the running sub (main program included). The
@@ -26,6 +27,7 @@ struct swarf_gc_named {
 
 void swarf_gc_params_init(swarf_gc_params *ps) {
   memset(ps, 0, sizeof *ps);
+  ps->length_unit = SWARF_GC_MM_PER_INCH;
 }
 
 void swarf_gc_named_free(swarf_gc_named *list) {
@@ -55,7 +57,7 @@ typedef struct {
   int read_only;
 } mirror;
 
-static mirror axis_slot(double *axes, int axis) {
+static mirror axis_slot(double *axes, int axis, double unit) {
   mirror m = {NULL, 1.0, 0};
   if (axis < 0 || axis > 8) return m;
   if (axis >= SWARF_NAXES) { /* U V W: always zero here */
@@ -63,25 +65,26 @@ static mirror axis_slot(double *axes, int axis) {
     return m;
   }
   m.slot = &axes[axis];
-  m.scale = axis < 3 ? SWARF_GC_MM_PER_INCH : 1.0;
+  m.scale = axis < 3 ? unit : 1.0;
   return m;
 }
 
-static mirror mirror_of(swarf_gc_state *st, int i) {
+static mirror mirror_of(const swarf_gc_params *ps, swarf_gc_state *st, int i) {
   mirror none = {NULL, 1.0, 0};
+  double u = ps->length_unit;
   if (st == NULL) return none;
-  if (i >= 5161 && i <= 5169) return axis_slot(st->g28, i - 5161);
-  if (i >= 5181 && i <= 5189) return axis_slot(st->g30, i - 5181);
-  if (i >= 5211 && i <= 5219) return axis_slot(st->g92_saved, i - 5211);
+  if (i >= 5161 && i <= 5169) return axis_slot(st->g28, i - 5161, u);
+  if (i >= 5181 && i <= 5189) return axis_slot(st->g30, i - 5181, u);
+  if (i >= 5211 && i <= 5219) return axis_slot(st->g92_saved, i - 5211, u);
   if (i >= 5221 && i <= 5399) {
     int k = (i - 5221) / 20, a = (i - 5221) % 20;
     if (k < SWARF_GC_NSYSTEMS && a == 9) {
       mirror m = {&st->rotations[k], 1.0, 0};
       return m;
     }
-    if (k < SWARF_GC_NSYSTEMS && a < 9) return axis_slot(st->systems[k], a);
+    if (k < SWARF_GC_NSYSTEMS && a < 9) return axis_slot(st->systems[k], a, u);
   }
-  if (i >= 5401 && i <= 5409) return axis_slot(st->tlo, i - 5401);
+  if (i >= 5401 && i <= 5409) return axis_slot(st->tlo, i - 5401, u);
   return none;
 }
 
@@ -124,7 +127,7 @@ double swarf_gc_param_get(const swarf_gc_params *ps, int i) {
   double v;
   if (i <= 0 || i >= SWARF_GC_NPARAMS) return 0;
   if (ps->state != NULL) {
-    mirror m = mirror_of((swarf_gc_state *)ps->state, i);
+    mirror m = mirror_of(ps, (swarf_gc_state *)ps->state, i);
     if (m.slot != NULL) return *m.slot / m.scale;
     v = computed(ps->state, i, &found);
     if (found) return v;
@@ -135,7 +138,7 @@ double swarf_gc_param_get(const swarf_gc_params *ps, int i) {
 void swarf_gc_param_set(swarf_gc_params *ps, swarf_gc_state *st, int i, double v) {
   mirror m;
   if (i <= 0 || i >= SWARF_GC_NPARAMS) return;
-  m = mirror_of(st, i);
+  m = mirror_of(ps, st, i);
   if (m.slot != NULL && !m.read_only) *m.slot = v * m.scale;
   ps->num[i] = v;
 }

@@ -24,34 +24,6 @@
 
 #define READ_CHUNK (64 * 1024)
 
-#define NTOOLS 1000 /* tool numbers 1..999 */
-
-struct swarf_gcode_parser {
-  swarf_gcode_move_fn fn;
-  void *user;
-  swarf_gcode_canon_fn canon;
-  void *canon_user;
-  long seq;                 /* rs274's call counter */
-  int canon_started;        /* the preamble was printed */
-  swarf_gc_state states[2]; /* the committed state and the next block's copy */
-  swarf_gc_state *state;    /* the committed one */
-  swarf_gc_params params;
-  swarf_gc_flow *flow;
-  swarf_gc_out out;
-  swarf_gc_out held; /* calls held back at the end of the last block (ccomp.c) */
-  double tools[NTOOLS][2];
-  long cur_line;           /* line of the block being run (stored lines too) */
-  swarf_gcode_error error; /* .file holds the program's name from the start */
-  int status;              /* first error, sticky */
-  long lines;              /* lines read so far */
-  int seen_code;           /* a non-blank line was read */
-  int percent_open;        /* the program opened with a `%` line */
-  int ended;               /* M2, M30 or a closing `%` */
-  int finished;            /* swarf_gcode_parser_finish was called */
-  char *partial;           /* the unterminated line so far */
-  size_t partial_len, partial_cap;
-};
-
 static int set_error(swarf_gcode_parser *p, int status, int column, const char *message) {
   p->status = status;
   p->error.line = p->cur_line;
@@ -202,7 +174,7 @@ static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   swarf_gc_block b;
   swarf_gc_fault f;
   swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
-  swarf_gc_exec ex = {&p->params, &p->out, p->tools, NTOOLS};
+  swarf_gc_exec ex = {&p->params, &p->out, p->tools, SWARF_GC_NTOOLS};
   int status;
   *next = *p->state;
   out_start(p);
@@ -313,7 +285,7 @@ static int complete_line(swarf_gcode_parser *p, const char *s, size_t n) {
 /* Without a table, rs274's built-in one: tools 1-3 (inches). */
 static void default_tools(swarf_gcode_parser *p) {
   static const double z[3] = {0.511, 0.1, 1.273};
-  for (int t = 0; t < NTOOLS; t++)
+  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
   for (int t = 1; t <= 3; t++)
     p->tools[t][0] = z[t - 1] * SWARF_GC_MM_PER_INCH;
@@ -391,7 +363,7 @@ static void tool_line(swarf_gcode_parser *p, const char *line) {
     if (c == 'Z') z = atof(s + 1);
     if (c == 'D') d = atof(s + 1);
   }
-  if (t > 0 && t < NTOOLS) {
+  if (t > 0 && t < SWARF_GC_NTOOLS) {
     p->tools[t][0] = z * SWARF_GC_MM_PER_INCH;
     p->tools[t][1] = d * SWARF_GC_MM_PER_INCH;
   }
@@ -410,7 +382,7 @@ int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path, swarf
     }
     return SWARF_GCODE_ERR_ARG;
   }
-  for (int t = 0; t < NTOOLS; t++)
+  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
   while (fgets(line, sizeof line, in) != NULL)
     tool_line(p, line);
@@ -420,13 +392,13 @@ int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path, swarf
 
 int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
   if (p == NULL || p->lines > 0) return SWARF_GCODE_ERR_ARG;
-  for (int t = 0; t < NTOOLS; t++)
+  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
   return SWARF_GCODE_OK;
 }
 
 int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length, double diameter) {
-  if (p == NULL || p->lines > 0 || tool < 1 || tool >= NTOOLS) return SWARF_GCODE_ERR_ARG;
+  if (p == NULL || p->lines > 0 || tool < 1 || tool >= SWARF_GC_NTOOLS) return SWARF_GCODE_ERR_ARG;
   if (!isfinite(length) || !isfinite(diameter) || diameter < 0) return SWARF_GCODE_ERR_ARG;
   p->tools[tool][0] = length;
   p->tools[tool][1] = diameter;

@@ -22,6 +22,8 @@
 
 #include <stddef.h>
 
+#include "swarf_status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -44,24 +46,25 @@ typedef double (*swarf_stock_sdf_fn)(const void *ctx, double x, double y, double
 
 /* A box stock [lo, hi] (mm), lo < hi componentwise. `msg` (may be NULL)
  * receives a reason on failure, `msglen` bytes at most. NULL on failure. */
-swarf_stock *swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
-                                 int half_width, char *msg, size_t msglen);
+SWARF_API swarf_stock *swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
+                                           int half_width, char *msg, size_t msglen);
 
 /* A cylinder stock about the x, y or z axis (axis 0, 1, 2) through the origin:
  * radius (mm) > 0, from start to end (mm, start < end) along the axis. For
  * rotary work. Exact signed distance near its surface, like the box. */
-swarf_stock *swarf_stock_new_cylinder(int axis, double radius, double start, double end,
-                                      double voxel, int half_width, char *msg, size_t msglen);
+SWARF_API swarf_stock *swarf_stock_new_cylinder(int axis, double radius, double start, double end,
+                                                double voxel, int half_width, char *msg,
+                                                size_t msglen);
 
 /* Read the grid named "stock" (or the first float level set) of a .vdb file. */
-swarf_stock *swarf_stock_read(const char *path, char *msg, size_t msglen);
+SWARF_API swarf_stock *swarf_stock_read(const char *path, char *msg, size_t msglen);
 
-void swarf_stock_free(swarf_stock *s);
+SWARF_API void swarf_stock_free(swarf_stock *s);
 
 /* Remove the volume {sdf < 0} inside the bounds [lo, hi] (mm, the volume's
  * own bounds; the stock pads them by the narrow band): stock = max(stock, -sdf). */
-int swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
-                       swarf_stock_sdf_fn sdf, const void *ctx, char *msg, size_t msglen);
+SWARF_API int swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
+                                 swarf_stock_sdf_fn sdf, const void *ctx, char *msg, size_t msglen);
 
 /* Remove a batch of volumes at once (one TBB pass over the union of their
  * bounds); equivalent to calling swarf_stock_remove for each. */
@@ -70,16 +73,16 @@ typedef struct {
   swarf_stock_sdf_fn sdf;
   const void *ctx;
 } swarf_stock_cut;
-int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts, size_t ncuts,
-                             char *msg, size_t msglen);
+SWARF_API int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts, size_t ncuts,
+                                       char *msg, size_t msglen);
 
 /* Whether the volume {sdf < 0} of `cut` overlaps the material by more than
  * `depth` mm: some voxel centre lies deeper than `depth` inside both (stock
  * value < -depth and sdf < -depth; 0 <= depth < the band half-width in mm).
  * Read-only: the stock is not changed. *hit gets 1 or 0; where (may be NULL)
  * the first such voxel centre found (mm). For a rapid move that would cut. */
-int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut, double depth, int *hit,
-                         double where[3], char *msg, size_t msglen);
+SWARF_API int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut, double depth,
+                                   int *hit, double where[3], char *msg, size_t msglen);
 
 /* Whether the volume {sdf < 0} of `cut` penetrates the material by more than
  * `depth` mm (>= 0): at some voxel centre p the two signed depths add up to
@@ -97,25 +100,26 @@ int swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut, dou
                            int *hit, double where[3], char *msg, size_t msglen);
 
 /* Facts about the grid. */
-double swarf_stock_voxel(const swarf_stock *s);
-int swarf_stock_half_width(const swarf_stock *s);
+SWARF_API double swarf_stock_voxel(const swarf_stock *s);
+SWARF_API int swarf_stock_half_width(const swarf_stock *s);
 /* Enclosed volume, mm^3: voxel^3 times the sum over all voxels of the inside
  * fraction clamp(1/2 - value/voxel, 0, 1) (exact for faces parallel to voxel
  * faces; about 0.1 % on the removed volume of a 2 mm ball at 0.1 mm voxels).
  * NaN for a NULL stock. */
-double swarf_stock_volume(const swarf_stock *s);
-unsigned long long swarf_stock_active_voxels(const swarf_stock *s);
-void swarf_stock_bounds(const swarf_stock *s, double lo[3], double hi[3]); /* active bbox, mm */
+SWARF_API double swarf_stock_volume(const swarf_stock *s);
+SWARF_API unsigned long long swarf_stock_active_voxels(const swarf_stock *s);
+/* Bounding box of the active voxels, mm. */
+SWARF_API void swarf_stock_bounds(const swarf_stock *s, double lo[3], double hi[3]);
 
 /* Interpolated value of the level set at a world point (mm). */
-double swarf_stock_sample(const swarf_stock *s, double x, double y, double z);
+SWARF_API double swarf_stock_sample(const swarf_stock *s, double x, double y, double z);
 /* Value stored at the voxel nearest to a world point, and its centre. */
-double swarf_stock_voxel_value(const swarf_stock *s, double x, double y, double z,
-                               double centre[3]);
+SWARF_API double swarf_stock_voxel_value(const swarf_stock *s, double x, double y, double z,
+                                         double centre[3]);
 
 /* Visit every active voxel: fn(ctx, centre, value). */
 typedef void (*swarf_stock_visit_fn)(void *ctx, const double centre[3], float value);
-void swarf_stock_visit_active(const swarf_stock *s, swarf_stock_visit_fn fn, void *ctx);
+SWARF_API void swarf_stock_visit_active(const swarf_stock *s, swarf_stock_visit_fn fn, void *ctx);
 
 /* OpenVDB's checkLevelSet: 0 if the grid is a valid narrow-band level set,
  * else -1 with the diagnosis in msg. Runs checks 1 to 8 (type, class, uniform
@@ -123,17 +127,209 @@ void swarf_stock_visit_active(const swarf_stock *s, swarf_stock_visit_fn fn, voi
  * band, inactive values at +-band); check 9 (Eikonal |grad| near 1 at zero
  * crossings) is left out: it fails at every sharp edge of an exact distance
  * field, OpenVDB's own createLevelSetBox included. */
-int swarf_stock_check(const swarf_stock *s, char *msg, size_t msglen);
+SWARF_API int swarf_stock_check(const swarf_stock *s, char *msg, size_t msglen);
 
 /* Outputs, each written atomically (temporary name, then rename). */
-int swarf_stock_write_vdb(const swarf_stock *s, const char *path, char *msg, size_t msglen);
+SWARF_API int swarf_stock_write_vdb(const swarf_stock *s, const char *path, char *msg,
+                                    size_t msglen);
 /* Binary STL of the zero isosurface; *ntri (may be NULL) gets the triangle count. */
-int swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri, char *msg,
-                          size_t msglen);
+SWARF_API int swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri, char *msg,
+                                    size_t msglen);
 /* Shaded picture (PNG, width x height) of the stock seen from above at an
  * angle, ray traced with OpenVDB's LevelSetRayTracer. */
-int swarf_stock_write_png(const swarf_stock *s, const char *path, int width, int height,
-                          char *msg, size_t msglen);
+SWARF_API int swarf_stock_write_png(const swarf_stock *s, const char *path, int width, int height,
+                                    char *msg, size_t msglen);
+
+/* ==== Stock from files, placement for a setup (issue 11) ====================
+ * The functions below return a swarf_status and fill `err` (may be NULL):
+ * SWARF_ERR_OPEN (the file cannot be opened), SWARF_ERR_FORMAT (it is not a
+ * usable mesh or grid: the message says what and, for meshes, where),
+ * SWARF_ERR_ARG (a bad argument), SWARF_ERR_IO (an output cannot be
+ * written), SWARF_ERR_MEMORY, SWARF_ERR_INTERNAL. err->file is the input
+ * file when there is one. On failure *out is NULL and nothing is written. */
+
+/* Where a stock is placed for the next setup: x' = R x + t with
+ * R = Rz(r[2]) Ry(r[1]) Rx(r[0]): rotations about the fixed machine axes
+ * through the origin, X first, then Y, then Z (right-hand rule), then the
+ * translation. t in mm, r in degrees. All zero: identity. */
+typedef struct {
+  double t[3]; /* tx, ty, tz, mm */
+  double r[3]; /* rx, ry, rz, degrees */
+} swarf_stock_placement;
+
+/* Parse "tx=..,ty=..,tz=..,rx=..,ry=..,rz=.." (any subset, any order, each at
+ * most once; missing ones are 0). SWARF_ERR_ARG with the bad key or number. */
+SWARF_API swarf_status swarf_stock_placement_parse(const char *spec, swarf_stock_placement *out,
+                                                   swarf_error *err);
+
+/* A stock from a triangle mesh in an STL file (binary or ASCII, mm), placed
+ * by `place` (NULL: as it is), as a level set of `voxel` mm with a band of
+ * `half_width` voxels (OpenVDB's meshToLevelSet). The mesh must be closed
+ * (every edge shared by exactly two triangles), manifold and consistently
+ * oriented, with finite coordinates; an empty mesh, an open one, a
+ * non-manifold or an inconsistently oriented one is refused with
+ * SWARF_ERR_FORMAT naming the first bad edge's end points. */
+SWARF_API swarf_status swarf_stock_read_stl(const char *path, const swarf_stock_placement *place,
+                                            double voxel, int half_width, swarf_stock **out,
+                                            swarf_error *err);
+
+/* A stock from a .vdb file (the float level set named "stock", or the first
+ * float level set): its own voxel size if `voxel` is 0 or equal to the
+ * file's (to 1e-9 relative; the grid is then used as it is), else rebuilt at
+ * `voxel` (through its zero isosurface, half_width voxels of band). Placed
+ * by `place` (NULL: as it is). A file without a float level set is
+ * SWARF_ERR_FORMAT. */
+SWARF_API swarf_status swarf_stock_read_vdb(const char *path, const swarf_stock_placement *place,
+                                            double voxel, int half_width, swarf_stock **out,
+                                            swarf_error *err);
+
+/* A new stock: `s` moved by `p`, same voxel and band. Rotations by
+ * multiples of 90 degrees with translations by whole voxels permute the
+ * voxels exactly; other placements resample the level set (trilinear, errs
+ * below ~0.05 voxel on faces, more at sharp edges). */
+SWARF_API swarf_status swarf_stock_place(const swarf_stock *s, const swarf_stock_placement *p,
+                                         swarf_stock **out, swarf_error *err);
+
+/* A new stock: `s` rebuilt at `voxel` mm with `half_width` voxels of band
+ * (1 to 64; wider bands measure larger deviations: see swarf_stock_compare),
+ * through its zero isosurface (volumeToMesh, then meshToLevelSet). */
+SWARF_API swarf_status swarf_stock_rebuild(const swarf_stock *s, double voxel, int half_width,
+                                           swarf_stock **out, swarf_error *err);
+
+/* ==== Comparison with a design (the part as designed) ========================
+ * A design is a swarf_stock too: a level set of the part, negative inside.
+ * Deviations are measured up to its band (its "reach", mm, = half_width *
+ * voxel): beyond it a deviation reads as the reach (the *_clamped flags say
+ * so). SWARF_STOCK_DESIGN_BAND is the band the readers below give a design. */
+#define SWARF_STOCK_DESIGN_BAND 10 /* voxels */
+
+/* A design from FILE.stl (a closed mesh, as swarf_stock_read_stl) or
+ * FILE.vdb (rebuilt with the design band), by the file name's extension
+ * (case-insensitive); at `voxel` mm (a .vdb: 0 keeps its own). */
+SWARF_API swarf_status swarf_stock_read_design(const char *path, double voxel, swarf_stock **out,
+                                               swarf_error *err);
+
+/* SWARF_ERR_ARG unless the design's interior and the stock's material
+ * overlap (their bounding boxes meet): a design in another frame or
+ * another place. Cheap: call it before a run. */
+SWARF_API swarf_status swarf_stock_check_design(const swarf_stock *s, const swarf_stock *design,
+                                                swarf_error *err);
+
+/* The deviation of a stock from a design. With tolerance t (mm):
+ *  gouge  = no material where the design is deeper than t inside it
+ *           (material removed from the part); with `initial` (the stock
+ *           before the run, may be NULL) only where `initial` had material,
+ *           the rest being `missing`;
+ *  excess = material farther than t outside the design (left to remove).
+ * Volumes are voxel estimates like swarf_stock_volume's (each voxel's inside
+ * fraction in one grid times its outside fraction in the other, shifted by
+ * t), exact for faces parallel to voxel faces. Depths: the deepest point of
+ * the gouge below the design's surface, the farthest point of the excess
+ * above it, each found at a voxel centre p as the distance in the design
+ * plus the radius of the ball around p that the region is known to hold
+ * (|stock value|): exact for flat floors and walls, within a voxel always. */
+typedef struct {
+  double tolerance;       /* mm, as used */
+  double reach;           /* mm: deviations beyond it read as it (the design's band) */
+  double stock_volume;    /* mm^3 of material */
+  double design_volume;   /* mm^3 of the design */
+  double gouge_volume;    /* mm^3 */
+  double gouge_depth;     /* mm, deepest gouge below the design's surface; 0 if none */
+  double gouge_at[3];     /* mm, where (NaN if none) */
+  int gouge_clamped;      /* 1: gouge_depth reached the reach: the gouge is deeper */
+  double excess_volume;   /* mm^3 */
+  double excess_height;   /* mm, largest excess above the design's surface; 0 if none */
+  double excess_at[3];    /* mm, where (NaN if none) */
+  int excess_clamped;     /* 1: excess_height reached the reach: the excess is larger */
+  double missing_volume;  /* mm^3 of design deeper than t where `initial` had no
+                           * material (0 without `initial`) */
+} swarf_stock_deviation;
+
+/* Tolerance <= 0: half the stock's voxel. The grids may have different
+ * voxels and origins (the design is sampled trilinearly at the stock's
+ * voxel centres). SWARF_ERR_ARG if they do not overlap (as
+ * swarf_stock_check_design). */
+SWARF_API swarf_status swarf_stock_compare(const swarf_stock *s, const swarf_stock *design,
+                                           const swarf_stock *initial, double tolerance,
+                                           swarf_stock_deviation *out, swarf_error *err);
+
+/* Per move, before it is removed: how deep the volume {sdf < 0} of `cut`
+ * reaches into the design where material is still there. *depth gets the
+ * deepest point of cut AND material AND design below the design's surface
+ * (mm; estimated as in swarf_stock_compare from the voxel centres inside
+ * both the cut and the material), or 0 when it is not deeper than
+ * `tolerance` (>= 0); where (may be NULL) its place (NaN when 0).
+ * Read-only. The cost is that of swarf_stock_overlaps over the cut's blocks
+ * holding material; swarf_stock_remove_batch_measured gives the same per
+ * cut of a batch, in order, in one pass. */
+SWARF_API swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stock *design,
+                                         const swarf_stock_cut *cut, double tolerance,
+                                         double *depth, double where[3], swarf_error *err);
+
+/* What one cut of a batch did (swarf_stock_remove_batch_measured). */
+typedef struct {
+  double removed;      /* mm^3 it removed from the stock as it stood */
+  double gouge_depth;  /* mm, as swarf_stock_gouge against the stock as it stood
+                        * (0: none deeper than the tolerance, or no design) */
+  double gouge_at[3];  /* mm, where (NaN when gouge_depth is 0) */
+} swarf_stock_cut_effect;
+
+/* swarf_stock_remove_batch, measuring each cut in order: cut i acts on the
+ * stock left by cuts 0..i-1, and each voxel's change of inside fraction
+ * (swarf_stock_volume's estimate) is attributed to the cuts that made it,
+ * so the `removed` of all cuts add up to the volume before minus the volume
+ * after (to rounding, ~1e-12 relative). design (may be NULL) and tolerance
+ * as in swarf_stock_gouge. effects[ncuts] is filled. The grid ends
+ * bit-identical to swarf_stock_remove_batch's. */
+SWARF_API swarf_status swarf_stock_remove_batch_measured(swarf_stock *s,
+                                                         const swarf_stock_cut *cuts, size_t ncuts,
+                                                         const swarf_stock *design,
+                                                         double tolerance,
+                                                         swarf_stock_cut_effect *effects,
+                                                         swarf_error *err);
+
+/* ==== Outputs with views and deviation colours ================================ */
+
+typedef enum {
+  SWARF_VIEW_ISO = 0, /* from (-1, -1.3, 1.6): above, front left (perspective) */
+  SWARF_VIEW_TOP,     /* looking down -Z, X to the right (orthographic, as the next five) */
+  SWARF_VIEW_FRONT,   /* looking along +Y (from the operator's side), Z up */
+  SWARF_VIEW_BACK,    /* looking along -Y */
+  SWARF_VIEW_LEFT,    /* looking along +X */
+  SWARF_VIEW_RIGHT,   /* looking along -X */
+  SWARF_VIEW_BOTTOM   /* looking up +Z */
+} swarf_stock_view;
+
+/* "iso", "top", "front", "back", "left", "right", "bottom". SWARF_ERR_ARG
+ * (with the names) otherwise. */
+SWARF_API swarf_status swarf_stock_view_parse(const char *name, swarf_stock_view *out,
+                                              swarf_error *err);
+
+/* Options of a picture or a mesh. Zero values: 1024 x 768, iso, no design. */
+typedef struct {
+  int width, height;           /* pixels (pictures only) */
+  swarf_stock_view view;
+  const swarf_stock *design;   /* non-NULL: colour by signed deviation from it */
+  double tolerance;            /* mm, within +-tolerance is green; <= 0: half a voxel */
+  double range;                /* mm, full blue (gouge) / red (excess) at -+range;
+                                * <= 0: 4 tolerances */
+} swarf_stock_output;
+
+/* A PNG ray traced with OpenVDB's LevelSetRayTracer from opt->view. With a
+ * design, the surface is coloured by its signed distance to the design
+ * (blue inside = gouge, green within tolerance, red outside = excess) and a
+ * legend with the scale in mm is drawn in the picture. */
+SWARF_API swarf_status swarf_stock_write_image(const swarf_stock *s, const char *path,
+                                               const swarf_stock_output *opt, swarf_error *err);
+
+/* The zero isosurface as a mesh, format by the file name's extension
+ * (case-insensitive): .stl (binary), .obj, .ply (binary little-endian; with
+ * a design each vertex gets its deviation colour, red green blue, and its
+ * signed deviation in mm, property "deviation"). Another extension is
+ * SWARF_ERR_ARG. *ntri (may be NULL) gets the triangle count. */
+SWARF_API swarf_status swarf_stock_write_mesh(const swarf_stock *s, const char *path,
+                                              const swarf_stock_output *opt, size_t *ntri,
+                                              swarf_error *err);
 
 #ifdef __cplusplus
 }

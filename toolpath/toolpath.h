@@ -16,6 +16,7 @@
 #include <stddef.h>
 
 #include "gcode.h"
+#include "swarf_status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -64,7 +65,7 @@ typedef struct {
 /* Fill `out` from a motion move (RAPID, LINE or ARC) of a 3-axis machine.
  * Returns 0, or -1 if the move has no motion (dwell, tool change) or a
  * rotary axis moves (not handled by the xyz machine). */
-int swarf_motion_from_move(const swarf_move *move, swarf_motion *out);
+SWARF_API int swarf_motion_from_move(const swarf_move *move, swarf_motion *out);
 
 /* ---- Machines ------------------------------------------------------------ */
 
@@ -84,22 +85,23 @@ typedef struct {
 /* Fill `m` from "NAME[,key=value...]": NAME xyz, xyza, xyzac-trt, xyzbc-trt;
  * keys pivot=Y,Z (xyza) or pivot=X,Y,Z (trt), mode=tcp|joint (trt).
  * Returns 0, or -1 with a reason (naming --machine) in msg. */
-int swarf_machine_parse(swarf_machine *m, const char *spec, char *msg, size_t msglen);
+SWARF_API int swarf_machine_parse(swarf_machine *m, const char *spec, char *msg, size_t msglen);
 
 /* The rigid motion of the cutter in the workpiece frame for `move` on machine
  * `mc`. Straight moves that turn a rotary axis become RIGID motions; the rest
  * as swarf_motion_from_move. Returns 0, -1 for moves without motion, -2 when
  * the machine does not have an axis the move turns (or an arc turns one). */
-int swarf_machine_motion(const swarf_machine *mc, const swarf_move *move, swarf_motion *out);
+SWARF_API int swarf_machine_motion(const swarf_machine *mc, const swarf_move *move,
+                                   swarf_motion *out);
 
 /* Pose at alpha: t (3) and U (3x3 row-major). */
-void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double U[9]);
+SWARF_API void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double U[9]);
 
 /* Velocities at alpha with respect to alpha: tdot (workpiece frame) and the
  * moving-frame quantities of the paper, v = U^T tdot and omega
  * (U^T Udot = [omega]_x). */
-void swarf_motion_velocity(const swarf_motion *m, double alpha, double tdot[3], double v[3],
-                           double omega[3]);
+SWARF_API void swarf_motion_velocity(const swarf_motion *m, double alpha, double tdot[3],
+                                     double v[3], double omega[3]);
 
 /* Pose and velocities at one alpha, as swarf_motion_eval and
  * swarf_motion_velocity give them (tdot omitted). */
@@ -110,20 +112,20 @@ typedef struct {
 
 /* swarf_motion_eval and swarf_motion_velocity in one evaluation (the table
  * rotation's sines and cosines once). */
-void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose *out);
+SWARF_API void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose *out);
 
 /* The poses at alpha = i / n, i = 0..n (n >= 1), from a per-thread cache of
  * the last motions asked for (keyed by the motion's contents, so a motion
  * changed in place is recomputed). The array belongs to the cache and stays
  * valid until the next call of this function on the same thread. Returns
  * NULL when out of memory. Thread-safe (each thread has its own cache). */
-const swarf_pose *swarf_motion_pose_table(const swarf_motion *m, int n);
+SWARF_API const swarf_pose *swarf_motion_pose_table(const swarf_motion *m, int n);
 
 /* Axis-aligned bounds of the tip path t([0,1]), mm. */
-void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]);
+SWARF_API void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]);
 
 /* True when the motion does not move the tip at all. */
-int swarf_motion_is_null(const swarf_motion *m);
+SWARF_API int swarf_motion_is_null(const swarf_motion *m);
 
 #ifdef __cplusplus
 }

@@ -396,10 +396,11 @@ extern "C" int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut 
   });
 }
 
-extern "C" int swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
-                                      double depth, int *hit, double where[3], char *msg,
-                                      size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
+                                               double depth, int *hit, double where[3],
+                                               swarf_error *err) {
+  char msg[256];
+  const int rc = swarf::guard(msg, sizeof msg, [&] {
     if (s == nullptr || cut == nullptr || hit == nullptr)
       throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, cut or hit is NULL");
     *hit = 0;
@@ -411,6 +412,11 @@ extern "C" int swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cu
     if (*hit && where != nullptr)
       for (int k = 0; k < 3; k++) where[k] = q[k];
   });
+  if (rc == SWARF_STOCK_OK) return SWARF_OK;
+  const swarf_status st = rc == SWARF_STOCK_ERR_ARG      ? SWARF_ERR_ARG
+                          : rc == SWARF_STOCK_ERR_MEMORY ? SWARF_ERR_MEMORY
+                                                         : SWARF_ERR_INTERNAL;
+  return swarf_error_set(err, st, "swarf_stock_penetrates: %s", msg);
 }
 
 extern "C" int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,

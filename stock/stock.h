@@ -96,8 +96,9 @@ SWARF_API int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *
  * the sum a lower bound again. Read-only; *hit gets 1 or 0, where (may be
  * NULL) the first such voxel centre found. For the non-cutting parts of a
  * tool (tools/sim/collide.c). */
-int swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut, double depth,
-                           int *hit, double where[3], char *msg, size_t msglen);
+SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
+                                             double depth, int *hit, double where[3],
+                                             swarf_error *err);
 
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);

@@ -22,10 +22,11 @@ static double box_cb(const void *ctx, double x, double y, double z) {
 }
 
 static int penetrates(const swarf_stock *s, const box_shape *b, double depth, double where[3]) {
-  char msg[256];
+  swarf_error err;
   int hit = -1;
   swarf_stock_cut cut = {{b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b};
-  CHECK(swarf_stock_penetrates(s, &cut, depth, &hit, where, msg, sizeof msg) == 0, "query: %s", msg);
+  CHECK(swarf_stock_penetrates(s, &cut, depth, &hit, where, &err) == SWARF_OK, "query: %s",
+        err.message);
   return hit;
 }
 
@@ -68,10 +69,12 @@ int main(void) {
   /* bad arguments */
   int hit;
   swarf_stock_cut cut = {{0, 0, 0}, {1, 1, 1}, box_cb, &inside};
-  CHECK(swarf_stock_penetrates(NULL, &cut, 0.0, &hit, NULL, msg, sizeof msg) == SWARF_STOCK_ERR_ARG,
+  swarf_error err;
+  CHECK(swarf_stock_penetrates(NULL, &cut, 0.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "NULL stock refused");
-  CHECK(swarf_stock_penetrates(s, &cut, -1.0, &hit, NULL, msg, sizeof msg) == SWARF_STOCK_ERR_ARG,
-        "negative depth refused: %s", msg);
+  CHECK(swarf_stock_penetrates(s, &cut, -1.0, &hit, NULL, &err) == SWARF_ERR_ARG,
+        "negative depth refused: %s", err.message);
+  CHECK(swarf_stock_penetrates(s, &cut, 0.0, &hit, NULL, NULL) == SWARF_OK, "err may be NULL");
   swarf_stock_free(s);
   return check_done();
 }

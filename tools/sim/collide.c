@@ -1,0 +1,301 @@
+/* collide.c -- collisions: the tool's non-cutting parts (shank, holder)
+ * entering the material, and any part (cutter included) entering a fixture.
+ *
+ * A part is a body of revolution at heights [z0, z1] above the tip. Its
+ * swept volume along a move is the same body's sweep along the motion
+ * shifted by z0 along the tool axis (swarf_sim_shift_motion). The material
+ * "still there when the move runs" is the stock of the last removal pass
+ * minus the sweeps queued since (not removed yet) and minus this move's own
+ * cutter sweep (the flutes clear the way of a shank that follows them into
+ * their hole): the part's distance is max(part, -those sweeps), so no batch
+ * is flushed for the check.
+ *
+ * A part collides when it penetrates by more than half a voxel
+ * (swarf_stock_penetrates: the two signed depths add up to more). The depth
+ * reported is how far the part would have to be lifted along the tool axis
+ * to clear the material (bisection on the lift, to voxel/32), plus that
+ * half voxel: for a holder face entering a flat face d mm, d.
+ *
+ * Cost: a part is only looked at when its sweep's bounds reach the material
+ * box (or the fixture's); the check of a move is one read-only pass over the
+ * blocks of the part's bounds, and the bisection runs only on a hit, once per
+ * source line and kind (the alarm is reported once per line).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sim_private.h"
+
+static double seconds_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+int swarf_sim_shift_motion(const swarf_motion *m, double dz, swarf_motion *out) {
+  *out = *m;
+  if (m->kind == SWARF_MOTION_RIGID && m->tcp) return -1; /* not a shift of the path */
+  out->p0[2] += dz;
+  out->p1[2] += dz;
+  out->center[2] += dz;
+  return 0;
+}
+
+/* ---- One part along one move ---------------------------------------------- */
+
+typedef struct {
+  swarf_cutter body;
+  swarf_motion motion;
+  swarf_sweep sweep;
+  double lo[3], hi[3];
+} part_sweep;
+
+/* The body of a part, tip at its bottom (z0). A cone is bounded by the
+ * cylinder of its larger diameter (until the engine sweeps cones). */
+static void part_body(const swarf_sim_part *p, swarf_cutter *body) {
+  memset(body, 0, sizeof *body);
+  body->shape = SWARF_CUTTER_FLAT;
+  body->diameter = fmax(p->d0, p->d1);
+  body->length = p->z1 - p->z0;
+}
+
+/* The sweep of the part (body, offset z0 + lift) along m; -1 if the machine's
+ * motion cannot carry it. */
+static int part_sweep_init(part_sweep *ps, const swarf_cutter *body, double z0, double lift,
+                           const swarf_motion *m, double voxel) {
+  ps->body = *body;
+  if (swarf_sim_shift_motion(m, z0 + lift, &ps->motion) != 0) return -1;
+  swarf_sweep_init_voxel(&ps->sweep, &ps->body, &ps->motion, voxel);
+  swarf_sweep_bounds(&ps->sweep, ps->lo, ps->hi);
+  return 0;
+}
+
+static int boxes_meet(const double alo[3], const double ahi[3], const double blo[3],
+                      const double bhi[3]) {
+  for (int k = 0; k < 3; k++)
+    if (ahi[k] < blo[k] || alo[k] > bhi[k]) return 0;
+  return 1;
+}
+
+/* The part's distance with the sweeps that clear material for it. */
+typedef struct {
+  const swarf_sweep *part;
+  const swarf_stock_cut *const *clear;
+  int nclear;
+} part_sdf_ctx;
+
+static double part_sdf(const void *ctx, double x, double y, double z) {
+  const part_sdf_ctx *c = ctx;
+  const double p[3] = {x, y, z};
+  double f = swarf_sweep_sdf(c->part, p, NULL);
+  for (int i = 0; i < c->nclear; i++) {
+    const double e = -c->clear[i]->sdf(c->clear[i]->ctx, x, y, z);
+    if (e > f) f = e;
+  }
+  return f;
+}
+
+/* What one check looks at: the body, where it starts, the grid it enters
+ * and the sweeps clearing that grid's material. */
+typedef struct {
+  swarf_sim *s;
+  const swarf_stock *grid;
+  const swarf_cutter *body;
+  double z0;
+  const swarf_motion *m;
+  const swarf_stock_cut *const *clear;
+  int nclear;
+  double lmax; /* a lift that certainly clears the grid's box */
+} part_check;
+
+/* Does the part, lifted by `lift`, penetrate the grid by more than half a
+ * voxel? 1 yes, 0 no, -1 failed (after swarf_sim_fail). */
+static int penetrates_at(const part_check *pc, double lift, double where[3]) {
+  part_sweep ps;
+  swarf_error err;
+  int hit = 0;
+  if (part_sweep_init(&ps, pc->body, pc->z0, lift, pc->m, pc->s->cfg.voxel) != 0) return 0;
+  part_sdf_ctx ctx = {&ps.sweep, pc->clear, pc->nclear};
+  swarf_stock_cut cut = {{ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, part_sdf,
+                         &ctx};
+  const double h = 0.5 * swarf_stock_voxel(pc->grid);
+  if (swarf_stock_penetrates(pc->grid, &cut, h, &hit, where, &err) != SWARF_OK) {
+    swarf_sim_fail(pc->s, err.status, pc->m->line, pc->m->column, "%s", err.message);
+    return -1;
+  }
+  return hit;
+}
+
+/* The lift that clears a part found penetrating at lift 0, plus half a voxel. */
+static double clearing_depth(const part_check *pc) {
+  const double v = swarf_stock_voxel(pc->grid), h = 0.5 * v;
+  double lo = 0, hi = h, where[3];
+  int r;
+  while ((r = penetrates_at(pc, hi, where)) == 1 && hi < pc->lmax) lo = hi, hi *= 2;
+  if (r < 0) return NAN;
+  if (r == 1) return hi + h; /* still in at lmax: a bound */
+  while (hi - lo > v / 32) {
+    const double mid = 0.5 * (lo + hi);
+    if ((r = penetrates_at(pc, mid, where)) < 0) return NAN;
+    if (r) lo = mid;
+    else hi = mid;
+  }
+  return 0.5 * (lo + hi) + h;
+}
+
+/* ---- The material --------------------------------------------------------- */
+
+static int already_told(long *last, long line) {
+  if (*last == line) return 1;
+  *last = line;
+  return 0;
+}
+
+/* The queued sweeps (and this move's) whose bounds meet [lo, hi]. */
+static int clearing_sweeps(swarf_sim *s, const swarf_stock_cut *own, const double lo[3],
+                           const double hi[3]) {
+  swarf_sim_collide *c = &s->col;
+  int n = 0;
+  for (int i = 0; i < s->n; i++)
+    if (boxes_meet(s->cuts[i].lo, s->cuts[i].hi, lo, hi)) c->clear[n++] = &s->cuts[i];
+  if (own != NULL && boxes_meet(own->lo, own->hi, lo, hi)) c->clear[n++] = own;
+  return n;
+}
+
+static double box_diagonal(const double lo[3], const double hi[3]) {
+  return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+              (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+static void raise_collision(swarf_sim *s, const swarf_motion *m, swarf_alarm_kind kind, int index,
+                            int part, double depth, const double where[3]) {
+  swarf_alarm a;
+  memset(&a, 0, sizeof a);
+  a.kind = kind;
+  a.line = m->line;
+  a.column = m->column;
+  a.tool = s->tool->number;
+  a.depth = depth;
+  memcpy(a.at, where, sizeof a.at);
+  a.index = index;
+  a.part = part;
+  s->rep.collisions++;
+  swarf_sim_raise(s, &a);
+}
+
+/* The shank or the holder's pieces (parts[0..n) of one kind) against the
+ * material; one alarm with the deepest piece. */
+static int material_kind(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *own,
+                         const swarf_sim_part *parts, int n, swarf_alarm_kind kind) {
+  swarf_sim_collide *c = &s->col;
+  double deepest = -1, at[3] = {NAN, NAN, NAN};
+  for (int i = 0; i < n; i++) {
+    swarf_cutter body;
+    part_sweep ps;
+    double where[3];
+    if (parts[i].kind != kind) continue;
+    part_body(&parts[i], &body);
+    if (part_sweep_init(&ps, &body, parts[i].z0, 0, m, s->cfg.voxel) != 0 ||
+        !boxes_meet(ps.lo, ps.hi, s->pad_lo, s->pad_hi))
+      continue;
+    c->checked++;
+    part_check pc = {s, s->stock, &body, parts[i].z0, m, (const swarf_stock_cut *const *)c->clear,
+                     clearing_sweeps(s, own, ps.lo, ps.hi),
+                     box_diagonal(s->pad_lo, s->pad_hi) + parts[i].z1 - parts[i].z0};
+    int r = penetrates_at(&pc, 0, where);
+    if (r < 0) return 1;
+    if (r == 0) continue;
+    double d = clearing_depth(&pc);
+    if (isnan(d)) return 1;
+    if (d > deepest) deepest = d, memcpy(at, where, sizeof at);
+  }
+  if (deepest < 0) return 0;
+  c->last_line[kind == SWARF_ALARM_SHANK ? 0 : 1] = m->line;
+  raise_collision(s, m, kind, 0, kind == SWARF_ALARM_SHANK ? 1 : 2, deepest, at);
+  return 0;
+}
+
+/* ---- Fixtures ------------------------------------------------------------- */
+
+/* Body `body` at z0 (part: 0 cutter, 1 shank, 2 holder) against fixture f. */
+static int fixture_part(swarf_sim *s, const swarf_motion *m, int f, const swarf_cutter *body,
+                        double z0, int part) {
+  swarf_sim_collide *c = &s->col;
+  const swarf_sim_fixture *fx = &s->cfg.fixtures[f];
+  part_sweep ps;
+  double where[3];
+  if (c->fixture_line[f][part] == m->line) return 0;
+  if (part_sweep_init(&ps, body, z0, 0, m, s->cfg.voxel) != 0 ||
+      !boxes_meet(ps.lo, ps.hi, fx->lo, fx->hi))
+    return 0;
+  c->checked++;
+  part_check pc = {s, c->fixture[f], body, z0, m, NULL, 0,
+                   box_diagonal(fx->lo, fx->hi) + ps.hi[2] - ps.lo[2]};
+  int r = penetrates_at(&pc, 0, where);
+  if (r <= 0) return r < 0;
+  double d = clearing_depth(&pc);
+  if (isnan(d)) return 1;
+  c->fixture_line[f][part] = m->line;
+  raise_collision(s, m, SWARF_ALARM_FIXTURE, f + 1, part, d, where);
+  return 0;
+}
+
+static int fixtures(swarf_sim *s, const swarf_motion *m, const swarf_sim_part *parts, int n) {
+  for (int f = 0; f < s->cfg.nfixtures; f++) {
+    if (fixture_part(s, m, f, &s->tool->cutter, 0, 0) != 0) return 1;
+    for (int i = 0; i < n; i++) {
+      swarf_cutter body;
+      part_body(&parts[i], &body);
+      if (fixture_part(s, m, f, &body, parts[i].z0, parts[i].kind == SWARF_ALARM_SHANK ? 1 : 2))
+        return 1;
+    }
+  }
+  return 0;
+}
+
+/* ---- The driver's calls --------------------------------------------------- */
+
+int swarf_sim_collide_init(swarf_sim *s) {
+  swarf_sim_collide *c = &s->col;
+  char msg[256];
+  memset(c, 0, sizeof *c);
+  c->last_line[0] = c->last_line[1] = -1;
+  for (int f = 0; f < SWARF_SIM_MAX_FIXTURES; f++)
+    for (int p = 0; p < 3; p++) c->fixture_line[f][p] = -1;
+  c->clear = malloc(sizeof *c->clear * (size_t)(s->cap + 1));
+  if (c->clear == NULL) return -1;
+  for (int f = 0; f < s->cfg.nfixtures; f++) {
+    const swarf_sim_fixture *fx = &s->cfg.fixtures[f];
+    c->fixture[f] = swarf_stock_new_box(fx->lo, fx->hi, swarf_stock_voxel(s->stock),
+                                        swarf_stock_half_width(s->stock), msg, sizeof msg);
+    if (c->fixture[f] == NULL) {
+      swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "fixture %d: %s", f + 1, msg);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+void swarf_sim_collide_clear(swarf_sim *s) {
+  free(s->col.clear);
+  for (int f = 0; f < SWARF_SIM_MAX_FIXTURES; f++) swarf_stock_free(s->col.fixture[f]);
+  memset(&s->col, 0, sizeof s->col);
+}
+
+int swarf_sim_collide_move(swarf_sim *s, const swarf_motion *m, const swarf_sweep *w,
+                           const swarf_stock_cut *own) {
+  swarf_sim_part parts[SWARF_SIM_MAX_PARTS];
+  const double t0 = seconds_now();
+  int n = swarf_sim_tool_parts(s->tool, parts), rc = 0;
+  (void)w;
+  if (n == 0 && s->cfg.nfixtures == 0) return 0;
+  if (n > 0 && s->col.last_line[0] != m->line)
+    rc = material_kind(s, m, own, parts, n, SWARF_ALARM_SHANK);
+  if (rc == 0 && n > 0 && s->col.last_line[1] != m->line)
+    rc = material_kind(s, m, own, parts, n, SWARF_ALARM_HOLDER);
+  if (rc == 0) rc = fixtures(s, m, parts, n);
+  s->rep.collision_s += seconds_now() - t0;
+  return rc;
+}

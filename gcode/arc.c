@@ -58,18 +58,15 @@ static int check_offsets(const swarf_gc_block *b, const swarf_gc_state *st, cons
                          swarf_gc_fault *f) {
   const swarf_gc_word *banned = swarf_gc_block_word(b, a->pl->banned);
   if (banned->present)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, banned->column,
-                         "%c word given for arc in %s plane: %s", a->pl->banned, a->pl->name,
-                         banned->text);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_PLANE_WORD, banned->column, a->pl->banned,
+                         a->pl->name, banned->text);
   if (st->modal.arc_distance == 901) {
     char missing = !swarf_gc_block_has(b, a->pl->off1)   ? a->pl->off1
                    : !swarf_gc_block_has(b, a->pl->off2) ? a->pl->off2
                                                          : 0;
-    if (missing)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column,
-                           "%c word missing in absolute center arc", missing);
+    if (missing) return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_CENTER_MISSING, a->column, missing);
   }
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* The word checks of LinuxCNC's convert_arc, in its order. */
@@ -77,33 +74,24 @@ static int check_words(const swarf_gc_block *b, const swarf_gc_state *st, const 
                        swarf_gc_fault *f) {
   int r = swarf_gc_block_has(b, 'R');
   int ijk = swarf_gc_block_has(b, 'I') || swarf_gc_block_has(b, 'J') || swarf_gc_block_has(b, 'K');
-  if (!r && !ijk)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column,
-                         "R, I, J and K words all missing for arc");
+  if (!r && !ijk) return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_WORDS_MISSING, a->column);
   if (r && ijk)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, swarf_gc_block_word(b, 'R')->column,
-                         "Mixed radius-ijk format for arc");
-  if (st->feed <= 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column,
-                         "Cannot make arc with zero feed rate");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_MIXED_FORMAT, swarf_gc_block_word(b, 'R')->column);
+  if (st->feed <= 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_ZERO_FEED, a->column);
   if (ijk) return check_offsets(b, st, a, f);
   if (!swarf_gc_block_has(b, a->pl->axis1) && !swarf_gc_block_has(b, a->pl->axis2))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column,
-                         "%c and %c words missing for arc in %s plane (R format)", a->pl->axis1,
-                         a->pl->axis2, a->pl->name);
-  return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_END_MISSING, a->column, a->pl->axis1, a->pl->axis2,
+                         a->pl->name);
+  return SWARF_OK;
 }
 
 static int radius_mismatch(const arc_data *a, double r1, double r2, double abs_err, double rel_err,
                            swarf_gc_fault *f) {
   double k = 1.0 / a->scale;
   char p = a->pl->axis1, q = a->pl->axis2;
-  return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column,
-                       "Radius to end of arc differs from radius to start: "
-                       "start=(%c%.4f,%c%.4f) center=(%c%.4f,%c%.4f) end=(%c%.4f,%c%.4f) "
-                       "r1=%.4f r2=%.4f abs_err=%.4g rel_err=%.4f%%",
-                       p, a->s1 * k, q, a->s2 * k, p, a->c1 * k, q, a->c2 * k, p, a->e1 * k, q,
-                       a->e2 * k, r1 * k, r2 * k, abs_err * k, rel_err * 100);
+  return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_RADIUS_MISMATCH, a->column, p, a->s1 * k, q, a->s2 * k,
+                       p, a->c1 * k, q, a->c2 * k, p, a->e1 * k, q, a->e2 * k, r1 * k, r2 * k,
+                       abs_err * k, rel_err * 100);
 }
 
 /* Centre format: the centre is given; the two radii must agree (LinuxCNC:
@@ -122,13 +110,12 @@ static int centre_ijk(const swarf_gc_block *b, const swarf_gc_state *st, arc_dat
   r1 = hypot(a->c1 - a->s1, a->c2 - a->s2);
   r2 = hypot(a->c1 - a->e1, a->c2 - a->e2);
   if (r1 < RADIUS_TOLERANCE_MM || r2 < RADIUS_TOLERANCE_MM)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column, "Zero-radius arc: r1=%.4f r2=%.4f",
-                         r1 / a->scale, r2 / a->scale);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_ZERO_RADIUS, a->column, r1 / a->scale, r2 / a->scale);
   abs_err = fabs(r1 - r2);
   rel_err = abs_err / fmax(r1, r2);
   if (abs_err > 100 * tol || (abs_err > tol && rel_err > SPIRAL_RELATIVE_TOLERANCE))
     return radius_mismatch(a, r1, r2, abs_err, rel_err, f);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Radius format: the centre lies on the perpendicular bisector of the chord,
@@ -137,21 +124,19 @@ static int centre_r(const swarf_gc_block *b, arc_data *a, swarf_gc_fault *f) {
   double r = swarf_gc_block_word(b, 'R')->value * a->scale;
   double abs_r = fabs(r), m1, m2, half, theta, offset;
   if (a->e1 == a->s1 && a->e2 == a->s2)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column,
-                         "Current point same as end point of arc (R format)");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_SAME_POINT, a->column);
   m1 = (a->s1 + a->e1) / 2;
   m2 = (a->s2 + a->e2) / 2;
   half = hypot(m1 - a->e1, m2 - a->e2);
   if (!(abs_r > 0) || half - abs_r > RADIUS_TOLERANCE_MM)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, a->column,
-                         "Arc radius too small to reach end point: R%.4f, chord %.4f", r / a->scale,
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_RADIUS_TOO_SMALL, a->column, r / a->scale,
                          2 * half / a->scale);
   if (half / abs_r > 1 - 1e-12) half = abs_r;
   theta = atan2(a->e2 - a->s2, a->e1 - a->s1) + ((!a->ccw) == (r > 0) ? -HALF_PI : HALF_PI);
   offset = abs_r * cos(asin(half / abs_r));
   a->c1 = m1 + offset * cos(theta);
   a->c2 = m2 + offset * sin(theta);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Sweep from start to end about the centre in the arc's sense, as LinuxCNC's
@@ -192,9 +177,9 @@ int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *
   a.ccw = b->motion == 30;
   a.column = b->motion_column;
   status = check_words(b, st, &a, f);
-  if (status == SWARF_GCODE_OK)
+  if (status == SWARF_OK)
     status = swarf_gc_block_has(b, 'R') ? centre_r(b, &a, f) : centre_ijk(b, st, &a, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   sign = a.ccw ? 1.0 : -1.0;
   mv->center[a.pl->a1] = a.c1;
   mv->center[a.pl->a2] = a.c2;
@@ -203,5 +188,5 @@ int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *
   mv->angle = sweep(&a) + TWO_PI * (turns_of(b) - 1);
   *turns = a.ccw ? turns_of(b) : -turns_of(b);
   mv->rise = sign * (mv->end[a.pl->a3] - mv->start[a.pl->a3]);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }

@@ -70,62 +70,47 @@ static void set_code_word(swarf_gc_code_word *cw, int code, const swarf_gc_token
 static int add_g(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
   int code = tenths_of(t->value);
   const swarf_gc_code *c = code < 0 ? NULL : swarf_gc_g_code(code);
-  if (c == NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "Unknown g code used: %s",
-                         t->word);
+  if (c == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNKNOWN_G_CODE, t->column, t->word);
   if (c->later != NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "%s (%s) is not supported yet",
-                         t->word, c->later);
-  if (code == G80 && b->g[c->group].code >= 0) return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CODE_NOT_SUPPORTED, t->column, t->word, c->later);
+  if (code == G80 && b->g[c->group].code >= 0) return SWARF_OK;
   if (b->g[c->group].code >= 0 && b->g[c->group].code != G80)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
-                         "Two G codes used from same modal group: %s and %s", b->g[c->group].text,
-                         t->word);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_G_MODAL_GROUP, t->column, b->g[c->group].text, t->word);
   set_code_word(&b->g[c->group], code, t);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int add_m(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
   int code = tenths_of(t->value);
   const swarf_gc_code *c = (code < 0 || code % 10 != 0) ? NULL : swarf_gc_m_code(code);
   if (t->value > 199.0 && !(t->value >= 400.0 && t->value < 500.0))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "M code greater than 199: %s",
-                         t->word);
-  if (c == NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "Unknown m code used: %s",
-                         t->word);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_M_CODE_RANGE, t->column, t->word);
+  if (c == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNKNOWN_M_CODE, t->column, t->word);
   if (c->later != NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "%s (%s) is not supported yet",
-                         t->word, c->later);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CODE_NOT_SUPPORTED, t->column, t->word, c->later);
   if (b->m[c->group].code >= 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
-                         "Two M codes used from same modal group: %s and %s", b->m[c->group].text,
-                         t->word);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_M_MODAL_GROUP, t->column, b->m[c->group].text, t->word);
   if (++b->m_count > SWARF_GC_MAX_M_PER_LINE)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
-                         "Too many m codes on line (%s is the %dth)", t->word, b->m_count);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOO_MANY_M_CODES, t->column, t->word, b->m_count);
   set_code_word(&b->m[c->group], code, t);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int add_other(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
   swarf_gc_word *w = &b->words[t->letter - 'A'];
   const char *later = later_letter(t->letter);
   if (later != NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column, "%s: %s is not supported yet",
-                         t->word, later);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_LETTER_NOT_SUPPORTED, t->column, t->word, later);
   if (t->letter == 'N' && b->word_count > 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, t->column,
-                         "Line number %s is not at the start of the line", t->word);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_LINE_NUMBER_NOT_FIRST, t->column, t->word);
   if (w->present)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
-                         "Multiple %c words on one line: %s and %s", t->letter, w->text, t->word);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_MULTIPLE_WORDS, t->column, t->letter, w->text, t->word);
   w->present = 1;
   b->letters |= SWARF_GC_LETTER(t->letter);
   w->value = t->value;
   w->column = t->column;
   memcpy(w->text, t->word, sizeof w->text);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int add_word(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
@@ -143,14 +128,12 @@ static int add_word(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *
 static int add_assign(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
   swarf_gc_assign *a;
   if (b->assign_count == SWARF_GC_MAX_ASSIGN)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, t->column,
-                         "Too many parameter settings on one line (more than %d)",
-                         SWARF_GC_MAX_ASSIGN);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOO_MANY_ASSIGNMENTS, t->column, SWARF_GC_MAX_ASSIGN);
   a = &b->assigns[b->assign_count++];
   a->index = t->index;
   memcpy(a->name, t->name, sizeof a->name);
   a->value = t->value;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
@@ -161,15 +144,15 @@ int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
   swarf_gc_lexer_init(&lx, line, len, ps);
   for (;;) {
     int status = swarf_gc_lexer_next(&lx, &t, f);
-    if (status != SWARF_GCODE_OK) return status;
-    if (t.kind == SWARF_GC_TOKEN_END) return SWARF_GCODE_OK;
+    if (status != SWARF_OK) return status;
+    if (t.kind == SWARF_GC_TOKEN_END) return SWARF_OK;
     if (t.kind == SWARF_GC_TOKEN_WORD) status = add_word(b, &t, f);
     if (t.kind == SWARF_GC_TOKEN_ASSIGN) status = add_assign(b, &t, f);
     if (t.kind == SWARF_GC_TOKEN_COMMENT) {
       b->comment = t.text;
       b->comment_len = t.text_len;
     }
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
   }
 }
 

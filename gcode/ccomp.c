@@ -40,29 +40,24 @@ static int comp_radius(const swarf_gc_block *b, const swarf_gc_state *st, const 
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_CUTTER_COMP];
   const swarf_gc_word *d = swarf_gc_block_word(b, 'D');
   int tool = st->tool;
-  char msg[80];
   if (cw->code == 411 || cw->code == 421) {
-    if (!d->present) {
-      snprintf(msg, sizeof msg, "G%s with no D word", cw->code == 411 ? "41.1" : "42.1");
-      return swarf_gc_cc_fail(f, cw->column, msg);
-    }
+    if (!d->present)
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_D_MISSING, cw->column,
+                           cw->code == 411 ? "41.1" : "42.1");
     *radius = d->value * swarf_gc_scale(st) / 2;
     if (*radius < 0) *radius = -*radius, *side = *side == LEFT ? RIGHT : LEFT;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   if (d->present) {
-    if (d->value < 0 || d->value != floor(d->value) || d->value >= ex->ntools) {
-      snprintf(msg, sizeof msg, "G%d requires D word to be a whole number", cw->code / 10);
-      return swarf_gc_cc_fail(f, d->column, msg);
-    }
+    if (d->value < 0 || d->value != floor(d->value) || d->value >= ex->ntools)
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_D_NOT_WHOLE, d->column, cw->code / 10);
     tool = (int)d->value;
   }
-  if (tool > 0 && (tool >= ex->ntools || isnan(ex->tools[tool][0]))) {
-    snprintf(msg, sizeof msg, "Requested tool %d not found in the tool table", tool);
-    return swarf_gc_cc_fail(f, d->present ? d->column : cw->column, msg);
-  }
+  if (tool > 0 && (tool >= ex->ntools || isnan(ex->tools[tool][0])))
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOOL_NOT_FOUND, d->present ? d->column : cw->column,
+                         tool);
   *radius = tool > 0 ? ex->tools[tool][1] / 2 : 0;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int comp_on(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
@@ -70,13 +65,10 @@ static int comp_on(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_CUTTER_COMP];
   int side = cw->code == 410 || cw->code == 411 ? LEFT : RIGHT, status;
   double radius = 0;
-  if (st->comp_side)
-    return swarf_gc_cc_fail(f, cw->column, "Cannot turn cutter radius comp on when on");
-  if (st->modal.plane == 190)
-    return swarf_gc_cc_fail(f, cw->column,
-                            "Cutter radius compensation allowed only in XY, XZ planes");
+  if (st->comp_side) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ON_WHEN_ON, cw->column);
+  if (st->modal.plane == 190) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_PLANE, cw->column);
   status = comp_radius(b, st, ex, &radius, &side, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   swarf_gc_out_text(ex->out, "COMMENT(\"interpreter: cutter radius compensation on %s\")",
                     side == LEFT ? "left" : "right");
   st->modal.cutter_comp = cw->code;
@@ -85,7 +77,7 @@ static int comp_on(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   st->comp_first = 1;
   st->comp_end_valid = 0; /* an entry arc records no end point: none is known */
   if (!st->comp_exit) memcpy(st->comp_pos, st->pos, sizeof st->comp_pos);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* G40: the held move goes out as it is; the tool stays at its end. */
@@ -95,7 +87,7 @@ static int comp_off(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
     int status = swarf_gc_cc_move_ends(st, ex, st->comp_pos[swarf_gc_cc_plane_of(st).a1],
                                        st->comp_pos[swarf_gc_cc_plane_of(st).a2],
                                        b->g[SWARF_GC_GROUP_CUTTER_COMP].column, f);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
     st->comp_exit = 1;
     st->arc_not_allowed = 1;
   }
@@ -103,13 +95,13 @@ static int comp_off(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
   st->comp_side = 0;
   st->comp_first = 1;
   swarf_gc_out_text(ex->out, "COMMENT(\"interpreter: cutter radius compensation off\")");
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_comp_set(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                       swarf_gc_fault *f) {
   int code = b->g[SWARF_GC_GROUP_CUTTER_COMP].code;
-  if (code < 0) return SWARF_GCODE_OK;
+  if (code < 0) return SWARF_OK;
   return code == 400 ? comp_off(b, st, ex, f) : comp_on(b, st, ex, f);
 }
 
@@ -120,46 +112,39 @@ static int refuse_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, sw
   const swarf_gc_word *l = swarf_gc_block_word(b, 'L'), *p = swarf_gc_block_word(b, 'P');
   switch (g0->code) {
   case 530:
-    if (swarf_gc_comp_active(st))
-      return swarf_gc_cc_fail(f, g0->column, "Cannot use g53 with cutter radius comp");
-    return SWARF_GCODE_OK;
+    if (swarf_gc_comp_active(st)) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_G53, g0->column);
+    return SWARF_OK;
   case 280:
   case 300:
-    return swarf_gc_cc_fail(f, g0->column, "Cannot use g28 or g30 with cutter radius comp");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_G28_G30, g0->column);
   case 520:
   case 920:
   case 921:
   case 922:
   case 923:
-    return swarf_gc_cc_fail(f, g0->column, "Cannot change axis offsets with cutter radius comp");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_AXIS_OFFSETS, g0->column);
   case 100:
     if (l->present && (l->value == 2 || l->value == 20) && p->present &&
         (p->value == 0 || (int)p->value == swarf_gc_system_index(st) + 1))
-      return swarf_gc_cc_fail(
-          f, g0->column,
-          "Cannot change the active coordinate system with cutter radius compensation on");
-    return SWARF_GCODE_OK;
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ACTIVE_SYSTEM, g0->column);
+    return SWARF_OK;
   default:
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
 }
 
 int swarf_gc_comp_check(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   const swarf_gc_code_word *g;
-  if (!st->comp_side) return SWARF_GCODE_OK;
+  if (!st->comp_side) return SWARF_OK;
   if ((g = &b->g[SWARF_GC_GROUP_PLANE])->code >= 0 && g->code != st->modal.plane)
-    return swarf_gc_cc_fail(f, g->column,
-                            "Cannot change planes with cutter radius compensation on");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_PLANE_CHANGE, g->column);
   if ((g = &b->g[SWARF_GC_GROUP_TOOL_LENGTH])->code >= 0)
-    return swarf_gc_cc_fail(f, g->column,
-                            "Cannot change tool offset with cutter radius compensation on");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_TOOL_OFFSET, g->column);
   if ((g = &b->g[SWARF_GC_GROUP_COORD_SYSTEM])->code >= 0)
-    return swarf_gc_cc_fail(f, g->column,
-                            "Cannot change coordinate systems with cutter radius compensation on");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_COORD_SYSTEM, g->column);
   if ((g = &b->g[SWARF_GC_GROUP_PATH_CONTROL])->code >= 0)
-    return swarf_gc_cc_fail(f, g->column,
-                            "Cannot change control mode with cutter radius compensation on");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_CONTROL_MODE, g->column);
   if ((g = &b->m[SWARF_GC_MGROUP_TOOL])->code == 60)
-    return swarf_gc_cc_fail(f, g->column, "Cannot change tools with cutter radius compensation on");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_TOOL_CHANGE, g->column);
   return refuse_nonmodal(b, st, f);
 }

@@ -20,8 +20,6 @@ typedef struct {
 } swarf_gc_cc_plane;
 
 swarf_gc_cc_plane swarf_gc_cc_plane_of(const swarf_gc_state *st);
-/* A semantic error with a fixed message; returns its status. */
-int swarf_gc_cc_fail(swarf_gc_fault *f, int column, const char *message);
 /* The tool is inside an arc turning this way (LinuxCNC's TOOL_INSIDE_ARC). */
 int swarf_gc_cc_inside(int side, int turns);
 /* Signed sweep from (x1, y1) to (x2, y2) about (cx, cy) with `turns` turns

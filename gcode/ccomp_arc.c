@@ -20,19 +20,16 @@ static int arc_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   double c1 = mv->center[pl.a1], c2 = mv->center[pl.a2];
   double x = mv->end[pl.a1], y = mv->end[pl.a2], gamma, half, ab, a;
   int col = b->motion_column, inside = swarf_gc_cc_inside(st->comp_side, turns);
-  if (hypot(x - cx, y - cy) <= r)
-    return swarf_gc_cc_fail(
-        f, col, "Radius of cutter compensation entry arc is not greater than the tool radius");
+  if (hypot(x - cx, y - cy) <= r) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ENTRY_ARC, col);
   if (inside && hypot(x - c1, y - c2) <= r)
-    return swarf_gc_cc_fail(f, col, "Tool radius not less than arc radius with comp");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_RADIUS, col);
   gamma = inside ? atan2(c2 - y, c1 - x) : atan2(y - c2, x - c1);
   x += r * cos(gamma);
   y += r * sin(gamma);
   half = hypot(cy - y, cx - x) / 2;
   ab = atan2(c2 - y, c1 - x);
   a = atan2(cy - y, cx - x) - ab;
-  if (fabs(cos(a)) < EQUAL)
-    return swarf_gc_cc_fail(f, col, "Tool radius not less than arc radius with comp");
+  if (fabs(cos(a)) < EQUAL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_RADIUS, col);
   c1 = x + half / cos(a) * cos(ab);
   c2 = y + half / cos(a) * sin(ab);
   swarf_gc_tool_pos(st, at);
@@ -40,7 +37,7 @@ static int arc_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
                        swarf_gc_cc_find_turn(cx, cy, c1, c2, turns, x, y), mv->end, col);
   st->comp_first = 0;
   swarf_gc_cc_set_current(st, &pl, x, y, mv->end[pl.a3]);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Where the held line's offset meets the new arc's offset circle. */
@@ -50,16 +47,14 @@ static int line_arc_corner(double beta, double theta, double c1, double c2, doub
   double cy = arc_r * sin(beta - HALF_PI);
   double dist = inside ? arc_r - r : arc_r + r;
   double l = (inside ? cy + r : cy - r) / dist, ang;
-  if (l > 1.0 || l < -1.0)
-    return swarf_gc_cc_fail(
-        f, column, "Arc move in concave corner cannot be reached by the tool without gouging");
+  if (l > 1.0 || l < -1.0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_GOUGE, column);
   if (inside)
     ang = turns > 0 ? theta + asin(l) : theta - asin(l);
   else
     ang = turns > 0 ? theta + PI - asin(l) : theta + PI + asin(l);
   *mx = c1 + dist * cos(ang);
   *my = c2 + dist * sin(ang);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Where the held arc (compensated) meets the new arc's offset circle. */
@@ -70,21 +65,15 @@ static int arc_arc_corner(const swarf_gc_call *prev, const swarf_gc_cc_plane *pl
   double pc1 = mv->center[pl->a1], pc2 = mv->center[pl->a2];
   double oldrad = hypot(pc1 - mv->end[pl->a1], pc2 - mv->end[pl->a2]);
   double cc = hypot(pc2 - c2, pc1 - c1), a, pull, dir, ccdir;
-  if (oldrad == 0 || cc == 0)
-    return swarf_gc_cc_fail(f, column,
-                            "Arc to arc motion is invalid because the arcs have the same center");
+  if (oldrad == 0 || cc == 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARCS_SAME_CENTER, column);
   a = (oldrad * oldrad + cc * cc - newrad * newrad) / (2 * oldrad * cc);
-  if (a > 1.0 || a < -1.0)
-    return swarf_gc_cc_fail(
-        f, column,
-        "Arc to arc motion makes a corner the compensated tool can't fit in without "
-        "gouging");
+  if (a > 1.0 || a < -1.0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_ARC_CORNER, column);
   pull = acos(a);
   ccdir = atan2(c2 - pc2, c1 - pc1);
   dir = (swarf_gc_cc_inside(side, prev->turns) == (turns > 0)) ? ccdir + pull : ccdir - pull;
   *mx = pc1 + oldrad * cos(dir);
   *my = pc2 + oldrad * sin(dir);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Corner geometry of an arc after another move. */
@@ -124,8 +113,8 @@ static int arc_concave(swarf_gc_state *st, swarf_gc_exec *ex, const swarf_gc_cc_
   else
     status = arc_arc_corner(prev, pl, st->comp_side, c1, c2, k->inside ? arc_r - r : arc_r + r,
                             turns, &mx, &my, column, f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_cc_move_ends(st, ex, mx, my, column, f);
-  if (status == SWARF_GCODE_OK && prev != NULL) at[pl->a1] = mx, at[pl->a2] = my;
+  if (status == SWARF_OK) status = swarf_gc_cc_move_ends(st, ex, mx, my, column, f);
+  if (status == SWARF_OK && prev != NULL) at[pl->a1] = mx, at[pl->a2] = my;
   return status;
 }
 
@@ -136,11 +125,10 @@ static int arc_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
   double opx = st->pos[pl.a1], opy = st->pos[pl.a2];
   double c1 = mv->center[pl.a1], c2 = mv->center[pl.a2];
   double ex1 = mv->end[pl.a1], ex2 = mv->end[pl.a2], arc_r = hypot(c1 - ex1, c2 - ex2), gamma;
-  int col = b->motion_column, status = SWARF_GCODE_OK;
+  int col = b->motion_column, status = SWARF_OK;
   arc_corner k = arc_corner_of(st->comp_side, b->motion == 30, st->comp_pos[pl.a1],
                                st->comp_pos[pl.a2], opx, opy, c1, c2);
-  if (k.inside && arc_r <= r)
-    return swarf_gc_cc_fail(f, col, "Tool radius not less than arc radius with comp");
+  if (k.inside && arc_r <= r) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_RADIUS, col);
   gamma = k.inside ? atan2(c2 - ex2, c1 - ex1) : atan2(ex2 - c2, ex1 - c1);
   swarf_gc_tool_pos(st, at);
   if (k.beta < -SMALL || k.beta > PI + SMALL || (fabs(k.beta - PI) < SMALL && !k.inside))
@@ -153,14 +141,14 @@ static int arc_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
     swarf_gc_cc_dequeue(st, ex);
     swarf_gc_cc_set_endpoint(st, st->comp_pos[pl.a1], st->comp_pos[pl.a2]);
   }
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   ex1 += r * cos(gamma);
   ex2 += r * sin(gamma);
   swarf_gc_cc_hold_arc(
       st, ex, &pl, at, ex1, ex2, mv->end[pl.a3], c1, c2, turns,
       swarf_gc_cc_find_turn(opx, opy, c1, c2, turns, mv->end[pl.a1], mv->end[pl.a2]), mv->end, col);
   swarf_gc_cc_set_current(st, &pl, ex1, ex2, mv->end[pl.a3]);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_comp_arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,

@@ -20,9 +20,7 @@ static int straight_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_
   double cx = st->comp_pos[pl.a1], cy = st->comp_pos[pl.a2], px = end[pl.a1], py = end[pl.a2];
   double alpha, x, y;
   if (hypot(px - cx, py - cy) <= r)
-    return swarf_gc_cc_fail(
-        f, b->motion_column,
-        "Length of cutter compensation entry move is not greater than the tool radius");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ENTRY_LINE, b->motion_column);
   alpha = atan2(py - cy, px - cx) + (st->comp_side == LEFT ? HALF_PI : -HALF_PI);
   x = px + r * cos(alpha);
   y = py + r * sin(alpha);
@@ -31,7 +29,7 @@ static int straight_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_
   swarf_gc_cc_hold_line(st, ex, &pl, kind, at, x, y, end, cos(alpha), sin(alpha), b->motion_column);
   st->comp_first = 0;
   swarf_gc_cc_set_current(st, &pl, x, y, end[pl.a3]);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Where a held arc (compensated) meets the next line's offset. */
@@ -45,15 +43,11 @@ static int arc_line_corner(const swarf_gc_call *prev, const swarf_gc_cc_plane *p
   double th = base_dir + (ccw ? HALF_PI : -HALF_PI), phi = atan2(pc2 - opy, pc1 - opx);
   double d = (inside ? oldrad + r : oldrad - r) * cos(th - phi);
   double l = (inside ? d - r : d + r) / oldrad, ang;
-  if (l > 1.0 || l < -1.0)
-    return swarf_gc_cc_fail(
-        f, column,
-        "Arc to straight motion makes a corner the compensated tool can't fit in without "
-        "gouging");
+  if (l > 1.0 || l < -1.0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_LINE_CORNER, column);
   ang = ((inside == ccw) ? -acos(l) : acos(l)) + th + PI;
   *mx = pc1 + oldrad * cos(ang);
   *my = pc2 + oldrad * sin(ang);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Corner geometry of a straight move after another move. */
@@ -90,18 +84,16 @@ static int line_concave(swarf_gc_state *st, swarf_gc_exec *ex, const swarf_gc_cc
   int status;
   if (prev == NULL || prev->kind != SWARF_GC_CALL_ARC) {
     double half = (k->beta + PI) / 2;
-    if (half == 0)
-      return swarf_gc_cc_fail(f, column,
-                              "Zero degree inside corner is invalid for cutter compensation");
+    if (half == 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ZERO_CORNER, column);
     mx = cx + r / tan(half) * cos(k->theta + k->gamma);
     my = cy + r / tan(half) * sin(k->theta + k->gamma);
   } else {
     status = arc_line_corner(prev, pl, st->comp_side, r, atan2(py - opy, px - opx), opx, opy, &mx,
                              &my, column, f);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
   }
   status = swarf_gc_cc_move_ends(st, ex, mx, my, column, f);
-  if (status == SWARF_GCODE_OK && prev != NULL) at[pl->a1] = mx, at[pl->a2] = my;
+  if (status == SWARF_OK && prev != NULL) at[pl->a1] = mx, at[pl->a2] = my;
   return status;
 }
 
@@ -113,14 +105,14 @@ static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
   double r = st->comp_radius, at[SWARF_NAXES], x, y;
   double cx = st->comp_pos[pl.a1], cy = st->comp_pos[pl.a2];
   double opx = st->pos[pl.a1], opy = st->pos[pl.a2], px = end[pl.a1], py = end[pl.a2];
-  int col = b->motion_column, status = SWARF_GCODE_OK, concave;
+  int col = b->motion_column, status = SWARF_OK, concave;
   swarf_gc_call *prev;
   corner k;
   swarf_gc_tool_pos(st, at);
   if (px == opx && py == opy) { /* no motion in the plane */
     swarf_gc_cc_hold_line(st, ex, &pl, kind, at, cx, cy, end, 0, 0, col);
     swarf_gc_cc_set_current(st, &pl, cx, cy, end[pl.a3]);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   prev = swarf_gc_cc_front(ex->out);
   k = line_corner(st->comp_side, cx, cy, opx, opy, px, py);
@@ -131,7 +123,7 @@ static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
              !swarf_gc_cc_inside(st->comp_side, prev->turns));
   if (!concave && k.beta > SMALL) {
     status = swarf_gc_cc_move_ends(st, ex, cx, cy, col, f);
-    if (status == SWARF_GCODE_OK)
+    if (status == SWARF_OK)
       swarf_gc_cc_corner_convex(st, ex, &pl, kind, opx + r * cos(k.alpha + k.gamma),
                                 opy + r * sin(k.alpha + k.gamma), end, at, col);
   } else if (concave)
@@ -140,10 +132,10 @@ static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
     swarf_gc_cc_dequeue(st, ex);
     swarf_gc_cc_set_endpoint(st, cx, cy);
   }
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   swarf_gc_cc_hold_line(st, ex, &pl, kind, at, x, y, end, px - opx, py - opy, col);
   swarf_gc_cc_set_current(st, &pl, x, y, end[pl.a3]);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_comp_straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,

@@ -7,11 +7,6 @@
 
 #include "ccomp.h"
 
-
-int swarf_gc_cc_fail(swarf_gc_fault *f, int column, const char *message) {
-  return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, column, "%s", message);
-}
-
 /* The tool is inside an arc turning this way (LinuxCNC's TOOL_INSIDE_ARC). */
 int swarf_gc_cc_inside(int side, int turns) {
   return (side == LEFT && turns > 0) || (side == RIGHT && turns < 0);
@@ -79,17 +74,13 @@ static int move_arc_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, const dou
   double r1 = hypot(mv->end[pl->a1] - c1, mv->end[pl->a2] - c2), r2 = hypot(x - c1, y - c2);
   double l2 = ep ? swarf_gc_cc_find_turn(ep[0], ep[1], c1, c2, c->turns, x, y) : 0;
   if (fabs(r1 - r2) / pl->s > .01)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, column,
-                         "BUG: cutter compensation has generated an invalid arc with mismatched "
-                         "radii r1 %f r2 %f",
-                         r1 / pl->s, r2 / pl->s);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_BUG, column, r1 / pl->s, r2 / pl->s);
   if (c->sweep != 0 && ep != NULL && fabs(l2) > fabs(c->sweep) + (pl->s == 1 ? .0254 : .001))
-    return swarf_gc_cc_fail(
-        f, column, "Arc move in concave corner cannot be reached by the tool without gouging");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_ARC_GOUGE, column);
   mv->end[pl->a1] = x;
   mv->end[pl->a2] = y;
   arc_angle(mv, pl, c->turns);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* A held line ends at (x, y): seen from `ep` (NULL: none), it must not
@@ -98,16 +89,12 @@ static int move_line_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, const do
                          double y, int column, swarf_gc_fault *f) {
   swarf_move *mv = &c->move;
   if (ep != NULL && c->dir[0] * (x - ep[0]) + c->dir[1] * (y - ep[1]) < 0)
-    return swarf_gc_cc_fail(
-        f, column,
-        c->kind == SWARF_GC_CALL_TRAVERSE
-            ? "Straight traverse in concave corner cannot be reached by the tool without "
-              "gouging"
-            : "Straight feed in concave corner cannot be reached by the tool without "
-              "gouging");
+    return c->kind == SWARF_GC_CALL_TRAVERSE
+               ? SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_TRAVERSE_GOUGE, column)
+               : SWARF_GC_FAIL(f, SWARF_GCODE_E_COMP_FEED_GOUGE, column);
   mv->end[pl->a1] = x;
   mv->end[pl->a2] = y;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 void swarf_gc_cc_dequeue(swarf_gc_state *st, swarf_gc_exec *ex) {
@@ -129,10 +116,10 @@ int swarf_gc_cc_move_ends(swarf_gc_state *st, swarf_gc_exec *ex, double x, doubl
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
   const double *prev = NULL, *ep = st->comp_end_valid ? st->comp_end : NULL;
   swarf_gc_out_take_held(o);
-  if (o->ready == o->count) return SWARF_GCODE_OK;
+  if (o->ready == o->count) return SWARF_OK;
   for (size_t i = o->ready; i < o->count; i++) {
     swarf_gc_call *c = &o->calls[i];
-    int status = SWARF_GCODE_OK;
+    int status = SWARF_OK;
     if (c->kind == SWARF_GC_CALL_TEXT) continue;
     if (prev != NULL) memcpy(c->move.start, prev, sizeof c->move.start);
     if (c->kind == SWARF_GC_CALL_ARC)
@@ -141,12 +128,12 @@ int swarf_gc_cc_move_ends(swarf_gc_state *st, swarf_gc_exec *ex, double x, doubl
       status = move_line_end(c, &pl, ep, x, y, column, f);
     else
       memcpy(c->move.end, c->move.start, sizeof c->move.end);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
     prev = c->move.end;
   }
   swarf_gc_cc_dequeue(st, ex);
   swarf_gc_cc_set_endpoint(st, x, y);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* ---- adding moves -------------------------------------------------------- */
@@ -199,5 +186,5 @@ int swarf_gc_cc_corner_convex(swarf_gc_state *st, swarf_gc_exec *ex, const swarf
   swarf_gc_cc_dequeue(st, ex);
   swarf_gc_cc_set_endpoint(st, mx, my);
   memcpy(at, e, sizeof e);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }

@@ -52,33 +52,29 @@ static int find_motion(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fau
   int ijk_column = first_column(b, OFFSETS);
   if (axis_user(b->g[SWARF_GC_GROUP_NONMODAL].code)) {
     if (g1->code >= 0 && g1->code != MOTION_G80 && axis_column)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g1->column,
-                           "Cannot use two G codes that both use axis values: %s and %s",
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_TWO_AXIS_CODES, g1->column,
                            b->g[SWARF_GC_GROUP_NONMODAL].text, g1->text);
     if (g1->code >= 0) {
       b->motion = g1->code;
       b->motion_column = g1->column;
     }
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   if (g1->code >= 0) {
     if (g1->code == MOTION_G80 && axis_column)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, axis_column,
-                           "Cannot use axis values with G80");
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_AXES_WITH_G80, axis_column);
     b->motion = g1->code;
     b->motion_column = g1->column;
   } else if (axis_column) {
     if (st->modal.motion == MOTION_G80)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, axis_column,
-                           "Cannot use axis values without a G code that uses them (G80 is "
-                           "active)");
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_AXES_WITHOUT_MOTION, axis_column);
     b->motion = st->modal.motion;
     b->motion_column = axis_column;
   } else if (ijk_column && is_arc(st->modal.motion)) {
     b->motion = st->modal.motion;
     b->motion_column = ijk_column;
   }
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int is_whole(double v, double tolerance) {
@@ -87,46 +83,38 @@ static int is_whole(double v, double tolerance) {
 
 static int check_values(const swarf_gc_block *b, swarf_gc_fault *f) {
   static const char nonnegative[] = "FSNTHL";
-  if (!(b->letters & (L('F') | L('S') | L('N') | L('T') | L('H') | L('L')))) return SWARF_GCODE_OK;
+  if (!(b->letters & (L('F') | L('S') | L('N') | L('T') | L('H') | L('L')))) return SWARF_OK;
   for (const char *l = nonnegative; *l; l++) {
     const swarf_gc_word *w = swarf_gc_block_word(b, *l);
     if (w->present && w->value < 0)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "Negative %c word used: %s", *l,
-                           w->text);
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_NEGATIVE_WORD, w->column, *l, w->text);
   }
   for (const char *l = "THL"; *l; l++) {
     const swarf_gc_word *w = swarf_gc_block_word(b, *l);
     if (w->present && !is_whole(w->value, 1e-4))
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
-                           "Non-integer value for integer: %s", w->text);
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_WORD_NOT_INTEGER, w->column, w->text);
   }
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int check_g4(const swarf_gc_block *b, swarf_gc_fault *f) {
   const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
   const swarf_gc_word *p = swarf_gc_block_word(b, 'P');
   int g1 = b->g[SWARF_GC_GROUP_MOTION].code;
-  if (!p->present)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column,
-                         "Dwell time P word missing with G4");
-  if (p->value < 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column, "Negative dwell time: %s",
-                         p->text);
-  if (is_arc(g1))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column,
-                         "G4 not allowed with G2 or G3 because they both use P");
-  return SWARF_GCODE_OK;
+  if (!p->present) return SWARF_GC_FAIL(f, SWARF_GCODE_E_DWELL_P_MISSING, g0->column);
+  if (p->value < 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NEGATIVE_DWELL, p->column, p->text);
+  if (is_arc(g1)) return SWARF_GC_FAIL(f, SWARF_GCODE_E_DWELL_WITH_ARC, g0->column);
+  return SWARF_OK;
 }
 
 static int check_g53(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
   int distance = b->g[SWARF_GC_GROUP_DISTANCE].code;
   if (b->motion != MOTION_G0 && b->motion != MOTION_G1)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column, "Must use G0 or G1 with G53");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_G53_MOTION, g0->column);
   if (distance == 910 || (distance < 0 && st->modal.distance == 910))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, g0->column, "Cannot use G53 incremental");
-  return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_G53_INCREMENTAL, g0->column);
+  return SWARF_OK;
 }
 
 static int check_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
@@ -136,27 +124,22 @@ static int check_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swa
   case 530:
     return check_g53(b, st, f);
   default:
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
 }
 
 static int unused(const swarf_gc_word *w, const char *users, swarf_gc_fault *f) {
-  return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "%c word with no %s to use it: %s",
-                       w->text[0], users, w->text);
+  return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNUSED_WORD, w->column, w->text[0], users, w->text);
 }
 
 static int check_arc_p(const swarf_gc_word *p, swarf_gc_fault *f) {
   if (!is_whole(p->value, 0.001))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column,
-                         "P value not an integer with G2 or G3: %s", p->text);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_P_NOT_INTEGER, p->column, p->text);
   if (floor(p->value + 0.5) < 1)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column,
-                         "P value should be 1 or greater with G2 or G3: %s", p->text);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_P_BELOW_ONE, p->column, p->text);
   if (p->value > MAX_ARC_TURNS)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, p->column,
-                         "P value too large with G2 or G3 (at most %d turns): %s", MAX_ARC_TURNS,
-                         p->text);
-  return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_P_TOO_LARGE, p->column, MAX_ARC_TURNS, p->text);
+  return SWARF_OK;
 }
 
 static int is_user_m(const swarf_gc_block *b) {
@@ -168,19 +151,15 @@ static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   int col = b->motion_column;
   for (const char *l = "ABC"; *l; l++)
     if ((w = swarf_gc_block_word(b, *l))->present)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
-                           "Cannot put %s in canned cycle: %s",
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_ROTARY_WORD, w->column,
                            *l == 'A'   ? "an a"
                            : *l == 'B' ? "a b"
                                        : "a c",
                            w->text);
-  if (st->comp_side != 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, col,
-                         "Cannot use canned cycles with cutter compensation on");
+  if (st->comp_side != 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_WITH_COMP, col);
   if ((w = swarf_gc_block_word(b, 'L'))->present && w->value < 1)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column, "Cannot do zero repeats: %s",
-                         w->text);
-  return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ZERO_REPEATS, w->column, w->text);
+  return SWARF_OK;
 }
 
 /* Words that need a code to use them (LinuxCNC's check_other_codes). */
@@ -197,8 +176,7 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   for (const char *l = "IJK"; (b->letters & OFFSETS) && *l; l++)
     if ((w = swarf_gc_block_word(b, *l))->present && !arc) return unused(w, "G2 or G3", f);
   if ((w = swarf_gc_block_word(b, 'R'))->present && !arc && !cycle && !g10)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, w->column,
-                         "R word with no g code that uses it: %s", w->text);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNUSED_R_WORD, w->column, w->text);
   if ((w = swarf_gc_block_word(b, 'L'))->present && !cycle && !g10)
     return unused(w, "G10 or canned cycle", f);
   if ((w = swarf_gc_block_word(b, 'D'))->present && !g10 &&
@@ -212,13 +190,13 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64 && !cycle && !user_m)
     return unused(w, "G64, G73, G83 or M code", f);
   if (cycle) return check_cycle(b, st, f);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   int status = check_values(b, f);
-  if (status == SWARF_GCODE_OK) status = find_motion(b, st, f);
-  if (status == SWARF_GCODE_OK) status = check_nonmodal(b, st, f);
-  if (status == SWARF_GCODE_OK) status = check_users(b, st, f);
+  if (status == SWARF_OK) status = find_motion(b, st, f);
+  if (status == SWARF_OK) status = check_nonmodal(b, st, f);
+  if (status == SWARF_OK) status = check_users(b, st, f);
   return status;
 }

@@ -149,22 +149,18 @@ static int cycle_words(cycle_run *c, swarf_gc_fault *f) {
   const swarf_gc_word *zw = swarf_gc_block_word(b, c->g.drill_letter);
   if (swarf_gc_block_has(b, 'R')) st->cycle_r = swarf_gc_block_word(b, 'R')->value * s;
   else if (!same)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "R clear plane missing with canned cycle");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_R_MISSING, b->motion_column);
   if (zw->present) st->cycle_z = zw->value * s;
   else if (!same)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "%c word missing with canned cycle", c->g.drill_letter);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_DEPTH_MISSING, b->motion_column, c->g.drill_letter);
   if (swarf_gc_block_has(b, 'P')) st->cycle_p = swarf_gc_block_word(b, 'P')->value;
   else if (!same) st->cycle_p = 0;
   if (swarf_gc_block_has(b, 'Q')) st->cycle_q = fabs(swarf_gc_block_word(b, 'Q')->value) * s;
   else if ((b->motion == 730 || b->motion == 830) && !same)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "Q word missing with G73 or G83");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_Q_MISSING, b->motion_column);
   if ((b->motion == 730 || b->motion == 830) && st->cycle_q <= 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "Q value must be positive with G73 or G83");
-  return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_Q_NOT_POSITIVE, b->motion_column);
+  return SWARF_OK;
 }
 
 static int cycle_heights(cycle_run *c, double old, swarf_gc_fault *f) {
@@ -177,11 +173,11 @@ static int cycle_heights(cycle_run *c, double old, swarf_gc_fault *f) {
     c->g.bottom = st->cycle_z;
   }
   if (c->g.r < c->g.bottom)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, c->b->motion_column,
-                         "R value less than %c value in canned cycle", c->g.drill_letter);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_R_BELOW_DEPTH, c->b->motion_column,
+                         c->g.drill_letter);
   c->g.q = st->cycle_q;
   c->g.p = st->cycle_p;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
@@ -191,20 +187,17 @@ int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   int repeats = lw->present ? (int)floor(lw->value + 0.5) : 1, status;
   double old, x, y, s = swarf_gc_scale(st);
   char l1, l2;
-  if (b->motion == 870)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "G87 (back boring) is not supported yet");
+  if (b->motion == 870) return SWARF_GC_FAIL(f, SWARF_GCODE_E_G87_NOT_SUPPORTED, b->motion_column);
   plane_of(st, &c.g);
   l1 = "XYZ"[c.g.a1], l2 = "XYZ"[c.g.a2];
   if (st->feed <= 0 && b->motion != 840)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "Cannot feed with zero feed rate in canned cycle");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_ZERO_FEED, b->motion_column);
   status = cycle_words(&c, f);
   old = st->pos[c.g.a3];
-  if (status == SWARF_GCODE_OK) status = cycle_heights(&c, old, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status == SWARF_OK) status = cycle_heights(&c, old, f);
+  if (status != SWARF_OK) return status;
   if (repeats > 100000)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, lw->column, "Too many repeats: %s", lw->text);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOO_MANY_REPEATS, lw->column, lw->text);
   if (old < c.g.r) {
     traverse(&c, c.g.r);
     old = c.g.r;
@@ -234,5 +227,5 @@ int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   else
     swarf_gc_out_text(ex->out, "SET_MOTION_CONTROL_MODE(CANON_EXACT_%s)",
                       st->modal.path_control == 611 ? "STOP" : "PATH");
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }

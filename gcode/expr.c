@@ -40,10 +40,11 @@ static int match(swarf_gc_lexer *lx, const char *word) {
   return 1;
 }
 
-static int expect(swarf_gc_lexer *lx, char c, const char *message, swarf_gc_fault *f) {
-  if (peek(lx) != c) return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "%s", message);
+/* The character c, or error `code` (its message takes no argument). */
+static int expect(swarf_gc_lexer *lx, char c, int code, swarf_gc_fault *f) {
+  if (peek(lx) != c) return swarf_gc_fail_code(f, code, col(lx));
   lx->pos++;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f);
@@ -56,16 +57,14 @@ int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_g
   for (; lx->pos < lx->len && lx->line[lx->pos] != '>'; lx->pos++) {
     char c = lx->line[lx->pos];
     if (c == ' ' || c == '\t' || c == '\r') continue;
-    if (n + 1 >= SWARF_GC_NAME_MAX)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Named parameter name too long");
+    if (n + 1 >= SWARF_GC_NAME_MAX) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NAME_TOO_LONG, at);
     name[n++] = (char)tolower((unsigned char)c);
   }
-  if (lx->pos >= lx->len)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Named parameter not terminated");
+  if (lx->pos >= lx->len) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NAME_NOT_TERMINATED, at);
   lx->pos++;
   name[n] = '\0';
-  if (n == 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Empty named parameter");
-  return SWARF_GCODE_OK;
+  if (n == 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NAME_EMPTY, at);
+  return SWARF_OK;
 }
 
 /* After '#': a name or an index value. */
@@ -77,13 +76,11 @@ static int param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX
   name[0] = '\0';
   if (peek(lx) == '<') return swarf_gc_expr_name(lx, name, f);
   status = value(lx, &v, depth + 1, f);
-  if (status != SWARF_GCODE_OK) return status;
-  if (fabs(v - floor(v + 0.5)) > 1e-4)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Non-integer value for integer");
-  if (v < 1 || v >= SWARF_GC_NPARAMS)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Parameter number out of range");
+  if (status != SWARF_OK) return status;
+  if (fabs(v - floor(v + 0.5)) > 1e-4) return SWARF_GC_FAIL(f, SWARF_GCODE_E_INDEX_NOT_INTEGER, at);
+  if (v < 1 || v >= SWARF_GC_NPARAMS) return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_RANGE, at);
   *index = (int)floor(v + 0.5);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX],
@@ -95,36 +92,33 @@ int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_N
 static int parameter(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
   char name[SWARF_GC_NAME_MAX];
   int index, at = col(lx), status;
-  if (lx->params == NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "parameters (#) are not allowed here");
+  if (lx->params == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_NOT_ALLOWED, at);
   lx->pos++;
   status = param_ref(lx, &index, name, depth, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   if (index > 0) {
     *v = swarf_gc_param_get(lx->params, index);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   if (swarf_gc_param_named(lx->params, name, v) != 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Named parameter #<%s> not defined",
-                         name);
-  return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_NAMED_UNDEFINED, at, name);
+  return SWARF_OK;
 }
 
 static int exists(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
   char name[SWARF_GC_NAME_MAX];
   double ignored;
-  int index, status = expect(lx, '[', "Left bracket missing after unary operation name", f);
-  if (status == SWARF_GCODE_OK && peek(lx) != '#')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Expected # reading parameter");
-  if (status == SWARF_GCODE_OK) {
+  int index, status = expect(lx, '[', SWARF_GCODE_E_LEFT_BRACKET_MISSING, f);
+  if (status == SWARF_OK && peek(lx) != '#')
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_HASH_EXPECTED, col(lx));
+  if (status == SWARF_OK) {
     lx->pos++;
     status = param_ref(lx, &index, name, 1, f);
   }
-  if (status == SWARF_GCODE_OK)
-    status = expect(lx, ']', "Expected ] reading bracketed parameter", f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status == SWARF_OK) status = expect(lx, ']', SWARF_GCODE_E_RIGHT_BRACKET_MISSING, f);
+  if (status != SWARF_OK) return status;
   *v = index > 0 || (lx->params && swarf_gc_param_named(lx->params, name, &ignored) == 0);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 typedef enum { F_ABS, F_ACOS, F_ASIN, F_COS, F_EXP, F_FIX, F_FUP, F_LN, F_ROUND, F_SIN,
@@ -146,8 +140,7 @@ static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
   case F_ACOS:
   case F_ASIN:
     if (x < -1 || x > 1)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Argument to %s out of range",
-                           id == F_ACOS ? "acos" : "asin");
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARGUMENT_RANGE, at, id == F_ACOS ? "acos" : "asin");
     *v = (id == F_ACOS ? acos(x) : asin(x)) / DEG;
     break;
   case F_COS: *v = cos(x * DEG); break;
@@ -155,20 +148,20 @@ static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
   case F_FIX: *v = floor(x); break;
   case F_FUP: *v = ceil(x); break;
   case F_LN:
-    if (x <= 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Zero or negative argument to ln");
+    if (x <= 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_LN_ARGUMENT, at);
     *v = log(x);
     break;
   case F_ROUND: *v = floor(x + 0.5); break;
   case F_SIN: *v = sin(x * DEG); break;
   case F_SQRT:
-    if (x < 0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Negative argument to sqrt");
+    if (x < 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_SQRT_ARGUMENT, at);
     *v = sqrt(x);
     break;
   case F_TAN: *v = tan(x * DEG); break;
   default: *v = x; break;
   }
-  if (!isfinite(*v)) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
-  return SWARF_GCODE_OK;
+  if (!isfinite(*v)) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NOT_A_NUMBER, at);
+  return SWARF_OK;
 }
 
 static int function(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
@@ -177,29 +170,23 @@ static int function(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f)
   func_id id = function_name(lx);
   char c = (char)peek(lx);
   if (id == F_NONE)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, at, "Unknown word starting with %c",
-                         (char)tolower((unsigned char)c));
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNKNOWN_WORD_START, at, (char)tolower((unsigned char)c));
   if (id == F_EXISTS) return exists(lx, v, f);
-  if (peek(lx) != '[')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx),
-                         "Left bracket missing after unary operation name");
+  if (peek(lx) != '[') return SWARF_GC_FAIL(f, SWARF_GCODE_E_LEFT_BRACKET_MISSING, col(lx));
   status = expression(lx, &x, depth + 1, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   if (id != F_ATAN) return apply(id, x, at, v, f);
-  if (peek(lx) != '/')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Slash missing after first ATAN argument");
+  if (peek(lx) != '/') return SWARF_GC_FAIL(f, SWARF_GCODE_E_ATAN_SLASH_MISSING, col(lx));
   lx->pos++;
-  if (peek(lx) != '[')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Left bracket missing after slash with ATAN");
+  if (peek(lx) != '[') return SWARF_GC_FAIL(f, SWARF_GCODE_E_ATAN_BRACKET_MISSING, col(lx));
   status = expression(lx, &y, depth + 1, f);
-  if (status == SWARF_GCODE_OK) *v = atan2(x, y) / DEG;
+  if (status == SWARF_OK) *v = atan2(x, y) / DEG;
   return status;
 }
 
 static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
   int c = peek(lx);
-  if (depth > MAX_DEPTH)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx), "Expression nested too deeply");
+  if (depth > MAX_DEPTH) return SWARF_GC_FAIL(f, SWARF_GCODE_E_EXPRESSION_TOO_DEEP, col(lx));
   if (c == '[') return expression(lx, v, depth, f);
   if (c == '#') return parameter(lx, v, depth, f);
   if (c == '+' || c == '-') {
@@ -244,15 +231,13 @@ static int read_op(swarf_gc_lexer *lx) {
 static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault *f) {
   switch (op) {
   case OP_POW:
-    if (a < 0 && floor(b) != b)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at,
-                           "Attempt to raise negative to non-integer power");
+    if (a < 0 && floor(b) != b) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NEGATIVE_POWER, at);
     *v = pow(a, b);
     break;
   case OP_MUL: *v = a * b; break;
   case OP_DIV:
   case OP_MOD:
-    if (b == 0.0) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Attempt to divide by zero");
+    if (b == 0.0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_DIVIDE_BY_ZERO, at);
     if (op == OP_DIV) *v = a / b;
     else {
       *v = fmod(a, b);
@@ -271,8 +256,8 @@ static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault 
   case OP_OR: *v = a != 0 || b != 0; break;
   default: *v = (a != 0) != (b != 0); break;
   }
-  if (!isfinite(*v)) return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, at, "Result is not a number");
-  return SWARF_GCODE_OK;
+  if (!isfinite(*v)) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NOT_A_NUMBER, at);
+  return SWARF_OK;
 }
 
 /* Precedence climbing: operands of operators binding at least `min`. */
@@ -286,12 +271,12 @@ static int climb(swarf_gc_lexer *lx, double *lhs, int min, int depth, swarf_gc_f
     double rhs;
     if (op == OP_NONE || precedence(op) < min) {
       lx->pos = save;
-      return SWARF_GCODE_OK;
+      return SWARF_OK;
     }
     status = value(lx, &rhs, depth + 1, f);
-    if (status == SWARF_GCODE_OK) status = climb(lx, &rhs, precedence(op) + 1, depth + 1, f);
-    if (status == SWARF_GCODE_OK) status = binary(op, *lhs, rhs, at, lhs, f);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status == SWARF_OK) status = climb(lx, &rhs, precedence(op) + 1, depth + 1, f);
+    if (status == SWARF_OK) status = binary(op, *lhs, rhs, at, lhs, f);
+    if (status != SWARF_OK) return status;
   }
 }
 
@@ -299,14 +284,13 @@ static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *
   int status;
   lx->pos++; /* '[' */
   status = value(lx, v, depth + 1, f);
-  if (status == SWARF_GCODE_OK) status = climb(lx, v, 2, depth, f);
-  if (status == SWARF_GCODE_OK && peek(lx) != ']') {
+  if (status == SWARF_OK) status = climb(lx, v, 2, depth, f);
+  if (status == SWARF_OK && peek(lx) != ']') {
     int c = peek(lx);
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, col(lx),
-                         c == -1 ? "Unclosed expression" : "Unknown operation name starting with %c",
-                         (char)c);
+    return c == -1 ? SWARF_GC_FAIL(f, SWARF_GCODE_E_UNCLOSED_EXPRESSION, col(lx))
+                   : SWARF_GC_FAIL(f, SWARF_GCODE_E_UNKNOWN_OPERATION, col(lx), (char)c);
   }
-  if (status == SWARF_GCODE_OK) lx->pos++;
+  if (status == SWARF_OK) lx->pos++;
   return status;
 }
 

@@ -14,8 +14,14 @@
  * The canon listener (swarf_gcode_parser_set_canon) sees program
  * coordinates instead, as `rs274 -g` prints them.
  *
+ * Errors: every call that can fail returns a swarf_status (swarf_status.h).
+ * A program the front end rejects leaves a swarf_error with the file, line,
+ * column and word, the message the user reads and, in .code, the error's
+ * identity: one of the SWARF_GCODE_E_* of errors.def, one per distinct error
+ * (like LinuxCNC's NCE_ codes), so callers and tests can match identities.
+ *
  * Thread safety: a parser is used by one thread at a time; distinct parsers
- * are independent.
+ * are independent. The error table is constant.
  */
 #ifndef SWARF_GCODE_H
 #define SWARF_GCODE_H
@@ -62,36 +68,38 @@ typedef struct {
   int column;                /* 1-based column of the block's motion word */
 } swarf_move;
 
-/* Where and why a program was rejected. */
-typedef struct {
-  char file[256];
-  long line;    /* 1-based; 0 when not tied to a line */
-  int column;   /* 1-based */
-  char message[256];
-} swarf_gcode_error;
-
-/* Status codes of the front end. */
+/* The identities of the front end's errors (errors.def), the .code of its
+ * swarf_errors: SWARF_GCODE_E_NESTED_COMMENT, SWARF_GCODE_E_ARC_RADIUS_MISMATCH, ...
+ * Values follow the table (new identities are added at its end). */
 typedef enum {
-  SWARF_GCODE_OK = 0,
-  SWARF_GCODE_ERR_SYNTAX = 1,   /* malformed word, number, comment */
-  SWARF_GCODE_ERR_SEMANTIC = 2, /* valid words that make no sense together */
-  SWARF_GCODE_ERR_STOPPED = 3,  /* the move callback asked to stop */
-  SWARF_GCODE_ERR_ARG = 4,      /* NULL or invalid argument */
-  SWARF_GCODE_ERR_MEMORY = 5
-} swarf_gcode_status;
+  SWARF_GCODE_E_NONE = 0,
+#define X(id, status, format) SWARF_GCODE_E_##id,
+#include "errors.def"
+#undef X
+  SWARF_GCODE_E_END_
+} swarf_gcode_error_code;
+
+/* "SWARF_GCODE_E_NESTED_COMMENT"; NULL for a value that is no identity. */
+SWARF_API const char *swarf_gcode_error_name(int code);
+/* The status an identity fails with (SWARF_ERR_SYNTAX, ...); SWARF_ERR_INTERNAL
+ * for a value that is no identity. */
+SWARF_API swarf_status swarf_gcode_error_status(int code);
+/* Its message's printf format (errors.def); NULL for a value that is no identity. */
+SWARF_API const char *swarf_gcode_error_format(int code);
 
 /* Called for every move, in program order. Return 0 to go on, non-zero to
- * stop the parser (feed/finish then return SWARF_GCODE_ERR_STOPPED). The move
- * is only valid during the call. */
+ * stop the parser (feed/finish then return SWARF_ERR_ABORTED, identity
+ * SWARF_GCODE_E_STOPPED). The move is only valid during the call. */
 typedef int (*swarf_gcode_move_fn)(const swarf_move *move, void *user);
 
 typedef struct swarf_gcode_parser swarf_gcode_parser;
 
 /* A new parser for a program called `filename` (used in error messages; it is
- * not opened). The machine starts at 0,0,0 (all axes), G17 G21 G90 G91.1 G94,
- * feed 0, spindle off, no tool. Returns NULL when out of memory. */
-SWARF_API swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
-                                                     void *user);
+ * not opened) into *out. The machine starts at 0,0,0 (all axes), G17 G21 G90
+ * G91.1 G94, feed 0, spindle off, no tool. SWARF_ERR_MEMORY (*out = NULL)
+ * when out of memory, SWARF_ERR_ARG when out is NULL. */
+SWARF_API swarf_status swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
+                                              void *user, swarf_gcode_parser **out);
 
 /* Called with each canonical call, formatted as `rs274 -g` prints it (a
  * sequence number, the N field, the call; no newline), in program
@@ -100,15 +108,16 @@ SWARF_API swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf
  * and message calls around them. The text is only valid during the call. */
 typedef void (*swarf_gcode_canon_fn)(const char *call, void *user);
 
-/* Sets the canon listener; call before the first feed. */
-SWARF_API int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
-                                           void *user);
+/* Sets the canon listener; call before the first feed (SWARF_ERR_STATE after). */
+SWARF_API swarf_status swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
+                                                    void *user);
 
 /* Loads a LinuxCNC tool table (lines "T1 P1 Z0.511 D0.125 ;comment"; values
  * in inches, as rs274 reads a table without an INI file). Call before the
- * first feed. Returns a status; *err says why it failed. */
-SWARF_API int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                            swarf_gcode_error *err);
+ * first feed. SWARF_ERR_OPEN (identity SWARF_GCODE_E_TOOL_TABLE_OPEN) when it
+ * cannot be read; *err (may be NULL) says why. */
+SWARF_API swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                                     swarf_error *err);
 
 /* Empties the tool table (the built-in one of rs274 too: without a table,
  * tools 1-3 have rs274's lengths 0.511, 0.1 and 1.273 in), so that only tools
@@ -116,20 +125,22 @@ SWARF_API int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *p
  * (1..999): its length offset (mm, what G43 H<tool> applies) and diameter
  * (mm). Call before the first feed. The simulator gives every cutter length
  * 0: it follows the tool tip, so G43 with the right H changes nothing. */
-SWARF_API int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
-SWARF_API int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length,
-                                          double diameter);
+SWARF_API swarf_status swarf_gcode_parser_clear_tools(swarf_gcode_parser *p);
+SWARF_API swarf_status swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length,
+                                                   double diameter);
 
 /* Feed `len` bytes of program text (any split, CRLF or LF). Complete lines are
- * interpreted at once. Returns SWARF_GCODE_OK or an error; after an error the
- * parser refuses further input and swarf_gcode_parser_error says why. */
-SWARF_API int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
+ * interpreted at once. Returns SWARF_OK or the status of the first error;
+ * after an error the parser refuses further input (returning that status
+ * again) and swarf_gcode_parser_error says what and where. Feeding after
+ * finish is SWARF_ERR_STATE. */
+SWARF_API swarf_status swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len);
 
 /* Interpret the last, unterminated line if any, and end the program. */
-SWARF_API int swarf_gcode_parser_finish(swarf_gcode_parser *p);
+SWARF_API swarf_status swarf_gcode_parser_finish(swarf_gcode_parser *p);
 
 /* The error that stopped the parser, or NULL if none. Owned by the parser. */
-SWARF_API const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
+SWARF_API const swarf_error *swarf_gcode_parser_error(const swarf_gcode_parser *p);
 
 /* Number of lines read so far and whether the program ended (M2/M30/%). */
 SWARF_API long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
@@ -197,10 +208,11 @@ SWARF_API swarf_status swarf_gcode_parser_work_system(const swarf_gcode_parser *
  * (the program then runs in the machine's unit). */
 SWARF_API long swarf_gcode_parser_units_line(const swarf_gcode_parser *p);
 
-/* Convenience: stream a whole file through a parser. Returns a status code;
- * on error *err (if not NULL) is filled. */
-SWARF_API int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
-                                     swarf_gcode_error *err);
+/* Convenience: stream a whole file through a parser. On error *err (if not
+ * NULL) is filled: the parser's error, or the file's (SWARF_ERR_OPEN,
+ * identity SWARF_GCODE_E_FILE_OPEN or _FILE_READ, line 0). */
+SWARF_API swarf_status swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
+                                              swarf_error *err);
 
 #ifdef __cplusplus
 }

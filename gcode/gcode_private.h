@@ -45,15 +45,39 @@
 /* ---- fault.c: what went wrong, and where on the line -------------------- */
 
 typedef struct {
-  int status; /* a swarf_gcode_status */
-  int column; /* 1-based column on the current line */
-  char message[256];
+  swarf_status status; /* the identity's status (errors.def) */
+  int code;            /* SWARF_GCODE_E_* */
+  int column;          /* 1-based column on the current line */
+  char message[512];
 } swarf_gc_fault;
 
-/* Fills `f` and returns `status`, so callers can `return swarf_gc_fail(...)`. */
-int swarf_gc_fail(swarf_gc_fault *f, int status, int column, const char *fmt, ...)
+/* The message formats of errors.def, one array an identity, named after it
+ * (swarf_gc_fmt_SWARF_GCODE_E_NESTED_COMMENT), so that SWARF_GC_FAIL finds
+ * the format from the identity and the compiler checks the arguments. */
+#define X(id, status, format) static const char swarf_gc_fmt_SWARF_GCODE_E_##id[] = format;
+#include "errors.def"
+#undef X
+
+/* Fails with identity `code`, written out (SWARF_GCODE_E_NESTED_COMMENT), at
+ * `column`: SWARF_GC_FAIL(f, code, column, format arguments...). Fills `f`
+ * and returns the identity's status, so callers can `return SWARF_GC_FAIL(...)`. */
+#define SWARF_GC_FAIL(f, code, ...) swarf_gc_fail((f), (code), swarf_gc_fmt_##code, __VA_ARGS__)
+swarf_status swarf_gc_fail(swarf_gc_fault *f, int code, const char *format, int column, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
+    __attribute__((format(printf, 3, 5)))
+#endif
+    ;
+/* The same for an identity held in a variable; its message takes no argument. */
+swarf_status swarf_gc_fail_code(swarf_gc_fault *f, int code, int column);
+
+/* Fails a call of the public API with identity `code`, written out, into the
+ * caller's record: SWARF_GC_ERROR(code, err, format arguments...) sets
+ * err's status, code and message (err may be NULL; its file, line, column
+ * and word stay: swarf_error_at sets them) and returns the status. */
+#define SWARF_GC_ERROR(code, ...) swarf_gc_error((code), swarf_gc_fmt_##code, __VA_ARGS__)
+swarf_status swarf_gc_error(int code, const char *format, swarf_error *err, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 4)))
 #endif
     ;
 
@@ -173,7 +197,7 @@ typedef struct {
 
 void swarf_gc_lexer_init(swarf_gc_lexer *lx, const char *line, size_t len,
                          const swarf_gc_params *params);
-/* The next token; SWARF_GCODE_OK or a syntax error in `f`. */
+/* The next token; SWARF_OK or a syntax error in `f`. */
 int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f);
 void swarf_gc_lexer_skip_blanks(swarf_gc_lexer *lx);
 int swarf_gc_lexer_peek(swarf_gc_lexer *lx); /* next non-blank char, -1 at end */
@@ -484,15 +508,15 @@ struct swarf_gcode_parser {
   swarf_gc_out out;
   swarf_gc_out held; /* calls held back at the end of the last block (ccomp.c) */
   double tools[SWARF_GC_NTOOLS][2];
-  long cur_line;           /* line of the block being run (stored lines too) */
-  swarf_gcode_error error; /* .file holds the program's name from the start */
-  int status;              /* first error, sticky */
-  long lines;              /* lines read so far */
-  int seen_code;           /* a non-blank line was read */
-  int percent_open;        /* the program opened with a `%` line */
-  int ended;               /* M2, M30 or a closing `%` */
-  int finished;            /* swarf_gcode_parser_finish was called */
-  char *partial;           /* the unterminated line so far */
+  long cur_line;       /* line of the block being run (stored lines too) */
+  swarf_error error;   /* .file holds the program's name from the start */
+  swarf_status status; /* first error, sticky */
+  long lines;          /* lines read so far */
+  int seen_code;       /* a non-blank line was read */
+  int percent_open;    /* the program opened with a `%` line */
+  int ended;           /* M2, M30 or a closing `%` */
+  int finished;        /* swarf_gcode_parser_finish was called */
+  char *partial;       /* the unterminated line so far */
   size_t partial_len, partial_cap;
   /* The machine's setup (swarf_gcode_parser_set_*): */
   double start[SWARF_NAXES]; /* controlled point at the start, machine mm, degrees */

@@ -59,7 +59,7 @@ static void substitute(const char *t, size_t n, const swarf_gc_params *ps, char 
       double v;
       swarf_gc_lexer_init(&lx, t, n, ps);
       lx.pos = i;
-      if (swarf_gc_expr_value(&lx, &v, &f) == SWARF_GCODE_OK) {
+      if (swarf_gc_expr_value(&lx, &v, &f) == SWARF_OK) {
         o += (size_t)snprintf(out + o, cap - o, "%f", v);
         while (lx.pos > i + 1 && (t[lx.pos - 1] == ' ' || t[lx.pos - 1] == '\t'))
           lx.pos--; /* the blanks after the number are text */
@@ -235,7 +235,7 @@ int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exe
   int status, system = code_of(b, SWARF_GC_GROUP_COORD_SYSTEM);
   size_t moves;
   status = swarf_gc_comp_check(b, next, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   run_comment(b, ex);
   run_feed_mode(b, next, ex);
   set_values(b, next, ex);
@@ -243,19 +243,17 @@ int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exe
   run_dwell(b, next, ex);
   run_plane_units(b, next, ex);
   status = swarf_gc_comp_set(b, next, ex, f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_tool_length(b, next, ex, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status == SWARF_OK) status = swarf_gc_tool_length(b, next, ex, f);
+  if (status != SWARF_OK) return status;
   if (system >= 0) swarf_gc_select_system(system, next, ex);
   run_path_control(b, next, ex);
   set_modes(b, &next->modal);
   moves = swarf_gc_out_size(ex->out);
   status = swarf_gc_offsets(b, next, ex, f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_motion(b, next, ex, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status == SWARF_OK) status = swarf_gc_motion(b, next, ex, f);
+  if (status != SWARF_OK) return status;
   if (swarf_gc_out_size(ex->out) > moves && !swarf_gc_comp_active(next)) next->comp_exit = 0;
   run_stop(b, next, ex);
-  if (ex->out->overflow)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1,
-                         "out of memory (too many moves on one line)");
-  return SWARF_GCODE_OK;
+  if (ex->out->overflow) return SWARF_GC_FAIL(f, SWARF_GCODE_E_MOVES_MEMORY, 1);
+  return SWARF_OK;
 }

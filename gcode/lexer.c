@@ -81,12 +81,11 @@ static int lex_paren_comment(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_f
       tok->text = lx->line + open + 1;
       tok->text_len = i - open - 1;
       lx->pos = i + 1;
-      return SWARF_GCODE_OK;
+      return SWARF_OK;
     }
-    if (lx->line[i] == '(')
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column_of(i), "Nested comment found");
+    if (lx->line[i] == '(') return SWARF_GC_FAIL(f, SWARF_GCODE_E_NESTED_COMMENT, column_of(i));
   }
-  return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column_of(open), "Unclosed comment found");
+  return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNCLOSED_COMMENT, column_of(open));
 }
 
 static void lex_semicolon_comment(swarf_gc_lexer *lx, swarf_gc_token *tok) {
@@ -171,14 +170,11 @@ static void word_text(char *out, char letter, const char *num, size_t len) {
 static int number_status(int status, int column, const char *word, swarf_gc_fault *f) {
   switch (status) {
   case NUMBER_BAD:
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "bad number format in word \"%s\"",
-                         word);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_BAD_NUMBER, column, word);
   case NUMBER_RANGE:
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
-                         "number out of range in word \"%s\" (magnitude above %g)", word,
-                         SWARF_GC_NUMBER_MAX);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_NUMBER_RANGE, column, word, SWARF_GC_NUMBER_MAX);
   }
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* A number inside an expression: a sign only first, then digits and one
@@ -205,11 +201,8 @@ int swarf_gc_lexer_number(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
   int column = column_of(lx->pos);
   total = gather_operand(lx, buf, &len);
   word_text(word, ' ', buf, len);
-  if (total == 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
-                         "bad number format (conversion failed) parsing '%s'", word + 1);
-  if (total > NUMBER_TEXT_MAX)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "number too long");
+  if (total == 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NUMBER_CONVERSION, column, word + 1);
+  if (total > NUMBER_TEXT_MAX) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NUMBER_TOO_LONG, column);
   return number_status(number_value(buf, len, v), column, word + 1, f);
 }
 
@@ -232,16 +225,14 @@ static int is_value_start(int c) {
 static int lex_expr_word(swarf_gc_lexer *lx, swarf_gc_token *tok, size_t from, char letter,
                          int column, swarf_gc_fault *f) {
   int status = swarf_gc_expr_value(lx, &tok->value, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   raw_text(lx, from, tok->word);
   if (!isfinite(tok->value) || fabs(tok->value) > SWARF_GC_NUMBER_MAX)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
-                         "number out of range in word \"%s\" (magnitude above %g)", tok->word,
-                         SWARF_GC_NUMBER_MAX);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_NUMBER_RANGE, column, tok->word, SWARF_GC_NUMBER_MAX);
   tok->kind = SWARF_GC_TOKEN_WORD;
   tok->letter = letter;
   tok->column = column;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
@@ -249,9 +240,7 @@ static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) 
   size_t len, total, from = lx->pos;
   int column = column_of(lx->pos), next;
   char letter = upper(lx->line[lx->pos++]);
-  if (letter == 'O')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column,
-                         "O word must come first on its line (after an N word)");
+  if (letter == 'O') return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORD_NOT_FIRST, column);
   next = swarf_gc_lexer_peek(lx);
   if (next != -1 && is_value_start(next)) return lex_expr_word(lx, tok, from, letter, column, f);
   if (next == '-' || next == '+') {
@@ -266,42 +255,38 @@ static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) 
   total = gather_number(lx, buf, &len);
   word_text(tok->word, letter, buf, len);
   if (total > NUMBER_TEXT_MAX)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "number too long in word \"%s\"",
-                         tok->word);
-  if (number_status(number_value(buf, len, &tok->value), column, tok->word, f) != SWARF_GCODE_OK)
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_WORD_NUMBER_TOO_LONG, column, tok->word);
+  if (number_status(number_value(buf, len, &tok->value), column, tok->word, f) != SWARF_OK)
     return f->status;
   tok->kind = SWARF_GC_TOKEN_WORD;
   tok->letter = letter;
   tok->column = column;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* #n = value or #<name> = value. */
 static int lex_assign(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
   int column = column_of(lx->pos), status;
-  if (lx->params == NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "parameters (#) are not allowed here");
+  if (lx->params == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_NOT_ALLOWED, column);
   status = swarf_gc_expr_param_ref(lx, &tok->index, tok->name, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   if (swarf_gc_lexer_peek(lx) != '=')
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column_of(lx->pos),
-                         "Equal sign missing in parameter setting");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_EQUAL_SIGN_MISSING, column_of(lx->pos));
   lx->pos++;
   status = swarf_gc_expr_value(lx, &tok->value, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   if (tok->index >= 5400 && tok->index <= 5428)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, column, "Parameter #%d is read-only",
-                         tok->index);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_READ_ONLY, column, tok->index);
   tok->kind = SWARF_GC_TOKEN_ASSIGN;
   tok->column = column;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int lex_bad_char(swarf_gc_lexer *lx, swarf_gc_fault *f) {
   char c = lx->line[lx->pos], shown[8];
   int column = column_of(lx->pos);
   describe_char(c, shown, sizeof shown);
-  return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, column, "Bad character %s used", shown);
+  return SWARF_GC_FAIL(f, SWARF_GCODE_E_BAD_CHARACTER, column, shown);
 }
 
 int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
@@ -313,13 +298,13 @@ int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault 
   if (lx->pos >= lx->len) {
     tok->kind = SWARF_GC_TOKEN_END;
     tok->column = column_of(lx->pos);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   c = lx->line[lx->pos];
   if (c == '(') return lex_paren_comment(lx, tok, f);
   if (c == ';') {
     lex_semicolon_comment(lx, tok);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   if (is_letter(c)) return lex_word(lx, tok, f);
   if (c == '#') return lex_assign(lx, tok, f);

@@ -60,15 +60,14 @@ static double inverse_length(const swarf_gc_state *st, const double *end, const 
 static int inverse_feed(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                         const double *end, const swarf_move *arc, swarf_gc_fault *f) {
   double len, rate;
-  if (st->modal.feed_mode != 930) return SWARF_GCODE_OK;
+  if (st->modal.feed_mode != 930) return SWARF_OK;
   if (!swarf_gc_block_has(b, 'F'))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "F word missing with inverse time %s move",
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_INVERSE_FEED_MISSING, b->motion_column,
                          b->motion == 10 ? "G1" : "arc");
   len = inverse_length(st, end, arc);
   rate = len * st->feed;
   swarf_gc_out_text(ex->out, "SET_FEED_RATE(%.4f)", rate);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* Under G93, the feed (mm/min) of the block's moves from call `first` on
@@ -92,14 +91,13 @@ static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
                     swarf_gc_fault *f) {
   double end[SWARF_NAXES];
   size_t first = swarf_gc_out_size(ex->out);
-  int status = SWARF_GCODE_OK;
+  int status = SWARF_OK;
   swarf_gc_find_end(b, st, end);
   if (b->motion == 10) {
     if (st->feed <= 0 && st->modal.feed_mode != 930)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                           "Cannot do G1 with zero feed rate");
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_G1_ZERO_FEED, b->motion_column);
     status = inverse_feed(b, st, ex, end, NULL, f);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
     first = swarf_gc_out_size(ex->out);
   }
   if (swarf_gc_comp_active(st))
@@ -107,12 +105,12 @@ static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
   else
     swarf_gc_out_straight(ex->out, st, b->motion == 0 ? SWARF_GC_CALL_TRAVERSE : SWARF_GC_CALL_FEED,
                           end, b->motion_column);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   if (b->motion == 10) fix_inverse(ex, st, end, NULL, first);
   memcpy(st->pos, end, sizeof st->pos);
   st->comp_exit = 0;
   st->arc_not_allowed = 0;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_gc_fault *f) {
@@ -120,40 +118,37 @@ static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, s
   size_t first;
   int turns, status;
   if (st->arc_not_allowed)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "The move just after exiting cutter compensation mode must be straight, "
-                         "not an arc");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_AFTER_COMP_OFF, b->motion_column);
   memset(&mv, 0, sizeof mv);
   memcpy(mv.start, st->pos, sizeof mv.start);
   swarf_gc_find_end(b, st, mv.end);
   if (st->modal.feed_mode == 930 && st->feed <= 0 && !swarf_gc_block_has(b, 'F'))
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->motion_column,
-                         "F word missing with inverse time arc move");
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_INVERSE_FEED_MISSING, b->motion_column, "arc");
   status = swarf_gc_arc(b, st, &mv, &turns, f);
-  if (status == SWARF_GCODE_OK) status = inverse_feed(b, st, ex, mv.end, &mv, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status == SWARF_OK) status = inverse_feed(b, st, ex, mv.end, &mv, f);
+  if (status != SWARF_OK) return status;
   first = swarf_gc_out_size(ex->out);
   if (swarf_gc_comp_active(st))
     status = swarf_gc_comp_arc(b, st, ex, &mv, turns, f);
   else
     swarf_gc_out_arc(ex->out, st, &mv, turns, b->motion_column);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   fix_inverse(ex, st, mv.end, &mv, first);
   memcpy(st->pos, mv.end, sizeof st->pos);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 int swarf_gc_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                     swarf_gc_fault *f) {
   int m = b->motion;
-  if (m < 0) return SWARF_GCODE_OK;
+  if (m < 0) return SWARF_OK;
   if (m == 800) {
     st->modal.motion = 800;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   if (m == 730 || (m >= 810 && m <= 890)) {
     int status = swarf_gc_cycle(b, st, ex, f);
-    if (status == SWARF_GCODE_OK) st->modal.motion = m;
+    if (status == SWARF_OK) st->modal.motion = m;
     return status;
   }
   st->modal.motion = m;

@@ -42,7 +42,7 @@ int swarf_gc_select_system(int code, swarf_gc_state *st, swarf_gc_exec *ex) {
   keep_machine(st, m);
   swarf_gc_out_g5x(ex->out, st);
   swarf_gc_out_g92(ex->out, st);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* A tool's length offset; -1 if the table has no such tool (tool 0: none). */
@@ -58,12 +58,11 @@ int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
                          swarf_gc_fault *f) {
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_TOOL_LENGTH];
   double m[SWARF_NAXES], z = 0;
-  if (cw->code < 0) return SWARF_GCODE_OK;
+  if (cw->code < 0) return SWARF_OK;
   if (cw->code == 430) {
     int h = swarf_gc_block_has(b, 'H') ? (int)(swarf_gc_block_word(b, 'H')->value + 0.5) : st->tool;
     if (tool_z(ex, h, &z) != 0)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, cw->column,
-                           "Requested tool %d not found in the tool table", h);
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOOL_NOT_FOUND, cw->column, h);
   }
   swarf_gc_to_machine(st, st->pos, m);
   memset(st->tlo, 0, sizeof st->tlo);
@@ -76,7 +75,7 @@ int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
   st->modal.tool_length = cw->code;
   keep_machine(st, m);
   swarf_gc_out_tlo(ex->out, st);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* G10 L2 / L20: a work system's origin (and rotation). */
@@ -86,8 +85,7 @@ static int set_system(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec
   int active = swarf_gc_system_index(st), k;
   double m[SWARF_NAXES];
   if (!pw->present || pw->value < 0 || pw->value > 9)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->g[0].column,
-                         "P value out of range with G10 L%d (0 to 9)", l20 ? 20 : 2);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_G10_P_RANGE, b->g[0].column, l20 ? 20 : 2);
   k = pw->value < 0.5 ? active : (int)(pw->value + 0.5) - 1;
   swarf_gc_to_machine(st, st->pos, m);
   if (swarf_gc_block_has(b, 'R')) st->rotations[k] = swarf_gc_block_word(b, 'R')->value;
@@ -111,7 +109,7 @@ static int set_system(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec
     keep_machine(st, m);
     swarf_gc_out_g5x(ex->out, st);
   }
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* G10 L1 / L10 / L11: a tool table entry. */
@@ -121,15 +119,14 @@ static int set_tool(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
   int t = (int)(pw->value + 0.5);
   double m[SWARF_NAXES];
   if (!pw->present || t < 1 || ex->tools == NULL || t >= ex->ntools)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, b->g[0].column,
-                         "Tool number out of range with G10 L%d", l);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_G10_TOOL_RANGE, b->g[0].column, l);
   if (swarf_gc_block_has(b, 'R'))
     ex->tools[t][1] = 2 * swarf_gc_block_word(b, 'R')->value * swarf_gc_scale(st);
   if (isnan(ex->tools[t][0])) ex->tools[t][0] = 0;
-  if (!has(b, 2)) return SWARF_GCODE_OK;
+  if (!has(b, 2)) return SWARF_OK;
   if (l == 1) {
     ex->tools[t][0] = word_mm(b, st, 2);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   swarf_gc_to_machine(st, st->pos, m);
   /* L10: Z is where the current point is in the active system with the
@@ -139,7 +136,7 @@ static int set_tool(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
     double base = m[2] - st->tlo[2] - st->systems[k][2] - (l == 11 ? 0 : st->g92[2]);
     ex->tools[t][0] = base - word_mm(b, st, 2);
   }
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static int run_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
@@ -148,8 +145,7 @@ static int run_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   int l = lw->present ? (int)(lw->value + 0.5) : -1;
   if (l == 2 || l == 20) return set_system(b, st, ex, l == 20, f);
   if (l == 1 || l == 10 || l == 11) return set_tool(b, st, ex, l, f);
-  return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, lw->present ? lw->column : b->g[0].column,
-                       "Line with G10 does not have L1, L2, L10, L11 or L20");
+  return SWARF_GC_FAIL(f, SWARF_GCODE_E_G10_L_MISSING, lw->present ? lw->column : b->g[0].column);
 }
 
 /* G92 family and G52. */
@@ -204,19 +200,19 @@ int swarf_gc_offsets(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   case 280:
   case 300:
     run_home(b, st, ex, code);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   case 281:
   case 301:
     store_home(st, code);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   case 520:
   case 920:
   case 921:
   case 922:
   case 923:
     run_g92(b, st, ex, code);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   default:
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
 }

@@ -115,12 +115,10 @@ static int read_name(swarf_gc_lexer *lx, char *name, swarf_gc_fault *f) {
   while (swarf_gc_lexer_peek(lx) != -1 && isdigit(lx->line[lx->pos]) && n + 1 < SWARF_GC_NAME_MAX)
     name[n++] = lx->line[lx->pos++];
   name[n] = '\0';
-  if (n == 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, (int)lx->pos + 1,
-                         "O word needs a number or a <name>");
+  if (n == 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_NAME_MISSING, (int)lx->pos + 1);
   while (n > 1 && name[0] == '0')
     memmove(name, name + 1, n--);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* The keyword after the name: all letters up to the next non-letter
@@ -156,20 +154,16 @@ static int read_ctl(const char *text, size_t len, octl *c, swarf_gc_fault *f) {
       lx.pos++;
     ch = swarf_gc_lexer_peek(&lx);
   }
-  if (ch != 'O' && ch != 'o') return SWARF_GCODE_OK;
+  if (ch != 'O' && ch != 'o') return SWARF_OK;
   c->column = (int)lx.pos + 1;
   lx.pos++;
   status = read_name(&lx, c->name, f);
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   c->kind = read_keyword(&lx);
   if (c->kind == O_NONE)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, (int)lx.pos + 1,
-                         "Unknown word after O%s: expected sub, endsub, call, return, do, "
-                         "while, endwhile, if, elseif, else, endif, repeat, endrepeat, break "
-                         "or continue",
-                         c->name);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_UNKNOWN_KEYWORD, (int)lx.pos + 1, c->name);
   c->args = lx.pos;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* One [expression] after the keyword; `*v` unchanged (and 0 returned as
@@ -181,7 +175,7 @@ static int read_arg(swarf_gc_lexer *lx, double *v, int *present, swarf_gc_fault 
       lx->pos++;
     if (lx->pos < lx->len) lx->pos++;
   }
-  if (swarf_gc_lexer_peek(lx) != '[') return SWARF_GCODE_OK;
+  if (swarf_gc_lexer_peek(lx) != '[') return SWARF_OK;
   *present = 1;
   return swarf_gc_expr_value(lx, v, f);
 }
@@ -194,9 +188,8 @@ static int eval_arg(swarf_gc_flow *fl, const stored *s, double *v, int required,
   lx.pos = s->ctl.args;
   *v = 0;
   status = read_arg(&lx, v, &present, f);
-  if (status == SWARF_GCODE_OK && required && !present)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SYNTAX, s->ctl.column,
-                         "Expression missing after O%s", s->ctl.name);
+  if (status == SWARF_OK && required && !present)
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_EXPRESSION_MISSING, s->ctl.column, s->ctl.name);
   return status;
 }
 
@@ -243,11 +236,9 @@ static int track(swarf_gc_flow *fl, stored *s, swarf_gc_fault *f) {
   }
   if (opens(k)) {
     if (k == O_SUB && fl->nopen > 0)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                           "Nested subroutine definition"), -1;
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_NESTED_SUB, s->ctl.column), -1;
     if (fl->nopen == MAX_NEST)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                           "Control structures nested too deeply"), -1;
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_NESTING_TOO_DEEP, s->ctl.column), -1;
     fl->open[fl->nopen].kind = k;
     strcpy(fl->open[fl->nopen++].name, s->ctl.name);
     return 0;
@@ -256,8 +247,7 @@ static int track(swarf_gc_flow *fl, stored *s, swarf_gc_fault *f) {
     static const okind opener[] = {[O_ENDSUB] = O_SUB, [O_ENDWHILE] = O_WHILE,
                                    [O_ENDIF] = O_IF, [O_ENDREPEAT] = O_REPEAT};
     if (top == NULL || top->kind != opener[k] || strcmp(top->name, s->ctl.name) != 0)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                           "O%s does not close the open construct", s->ctl.name), -1;
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_CLOSE_MISMATCH, s->ctl.column, s->ctl.name), -1;
     fl->nopen--;
     return fl->nopen == 0;
   }
@@ -279,22 +269,18 @@ static int call(swarf_gc_flow *fl, const stored *s, swarf_gc_fault *f) {
   swarf_gc_lexer lx;
   swarf_gc_named *locals;
   sub_def *sub = find_sub(fl, s->ctl.name);
-  int n = 0, present = 1, status = SWARF_GCODE_OK;
-  if (sub == NULL)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                         "Unknown subroutine O%s (subs must be defined before they are called)",
-                         s->ctl.name);
+  int n = 0, present = 1, status = SWARF_OK;
+  if (sub == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_UNKNOWN_SUB, s->ctl.column, s->ctl.name);
   if (fl->depth >= MAX_CALL_DEPTH)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                         "Subroutine calls nested too deeply (more than %d)", MAX_CALL_DEPTH);
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_CALLS_TOO_DEEP, s->ctl.column, MAX_CALL_DEPTH);
   swarf_gc_lexer_init(&lx, s->text, s->len, fl->ps);
   lx.pos = s->ctl.args;
-  while (status == SWARF_GCODE_OK && present) {
+  while (status == SWARF_OK && present) {
     double v = 0;
     status = read_arg(&lx, &v, &present, f);
     if (present && n < MAX_ARGS) args[n++] = v;
   }
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   for (int i = 0; i < MAX_ARGS; i++) {
     saved[i] = fl->ps->num[i + 1];
     fl->ps->num[i + 1] = args[i];
@@ -329,10 +315,8 @@ static size_t find_back(const line_list *l, size_t from, const char *name, okind
 
 static int count_turn(swarf_gc_flow *fl, const stored *s, swarf_gc_fault *f) {
   if (++fl->iterations > SWARF_GC_MAX_ITERATIONS)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                         "Loop limit reached (%ld turns in all): the program does not end",
-                         SWARF_GC_MAX_ITERATIONS);
-  return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_LOOP_LIMIT, s->ctl.column, SWARF_GC_MAX_ITERATIONS);
+  return SWARF_OK;
 }
 
 enum { DONE_END = 100 }; /* run_lines status: a return/endsub ended the sub */
@@ -345,14 +329,14 @@ static int next_branch(swarf_gc_flow *fl, line_list *l, size_t *pc, swarf_gc_fau
     int status;
     if (j >= l->n || l->v[j].ctl.kind != O_ELSEIF) {
       *pc = j + 1;
-      return SWARF_GCODE_OK;
+      return SWARF_OK;
     }
     status = eval_arg(fl, &l->v[j], &v, 1, f);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
     *pc = j;
     if (v != 0) {
       *pc = j + 1;
-      return SWARF_GCODE_OK;
+      return SWARF_OK;
     }
   }
 }
@@ -368,51 +352,51 @@ static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts
   switch (s->ctl.kind) {
   case O_WHILE:
     status = eval_arg(fl, s, &v, 1, f);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
     if (s->closes_do) {
       j = find_back(l, *pc, name, O_DO);
-      if (v != 0 && (status = count_turn(fl, s, f)) != SWARF_GCODE_OK) return status;
+      if (v != 0 && (status = count_turn(fl, s, f)) != SWARF_OK) return status;
       *pc = v != 0 ? j + 1 : *pc + 1;
-      return SWARF_GCODE_OK;
+      return SWARF_OK;
     }
     *pc = v != 0 ? *pc + 1 : find_fwd(l, *pc, name, O_ENDWHILE, O_ENDWHILE, O_ENDWHILE) + 1;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   case O_ENDWHILE:
-    if ((status = count_turn(fl, s, f)) != SWARF_GCODE_OK) return status;
+    if ((status = count_turn(fl, s, f)) != SWARF_OK) return status;
     *pc = find_back(l, *pc, name, O_WHILE);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   case O_REPEAT:
     status = eval_arg(fl, s, &v, 1, f);
-    if (status != SWARF_GCODE_OK) return status;
+    if (status != SWARF_OK) return status;
     counts[*pc] = floor(v + 0.5);
     *pc = counts[*pc] > 0 ? *pc + 1 : find_fwd(l, *pc, name, O_ENDREPEAT, O_ENDREPEAT, O_ENDREPEAT) + 1;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   case O_ENDREPEAT:
     j = find_back(l, *pc, name, O_REPEAT);
     if (j < l->n && --counts[j] > 0) {
-      if ((status = count_turn(fl, s, f)) != SWARF_GCODE_OK) return status;
+      if ((status = count_turn(fl, s, f)) != SWARF_OK) return status;
       *pc = j + 1;
     } else
       *pc = *pc + 1;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   case O_BREAK:
     j = find_fwd(l, *pc, name, O_ENDWHILE, O_ENDREPEAT, O_WHILE);
     *pc = j + 1;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   default: /* O_CONTINUE */
     j = find_fwd(l, *pc, name, O_ENDWHILE, O_ENDREPEAT, O_WHILE);
     *pc = j;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
 }
 
 static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
   double *counts = calloc(l->n ? l->n : 1, sizeof *counts);
   size_t pc = 0;
-  int status = SWARF_GCODE_OK;
+  int status = SWARF_OK;
   double v;
-  if (counts == NULL) return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
-  while (status == SWARF_GCODE_OK && pc < l->n) {
+  if (counts == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
+  while (status == SWARF_OK && pc < l->n) {
     stored *s = &l->v[pc];
     *fl->err_line = s->line;
     switch (s->ctl.kind) {
@@ -427,22 +411,22 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
     case O_RETURN:
     case O_ENDSUB:
       status = eval_arg(fl, s, &v, 0, f);
-      if (status == SWARF_GCODE_OK && fl->depth > 0) {
+      if (status == SWARF_OK && fl->depth > 0) {
         fl->ps->value = v;
         fl->ps->value_returned = 1;
         status = DONE_END;
-      } else if (status == SWARF_GCODE_OK)
-        status = swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                               "O%s return or endsub outside a subroutine", s->ctl.name);
+      } else if (status == SWARF_OK)
+        status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_RETURN_OUTSIDE, s->ctl.column, s->ctl.name);
       break;
     case O_SUB:
-      status = swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, s->ctl.column,
-                             "Nested subroutine definition");
+      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_NESTED_SUB, s->ctl.column);
       break;
     case O_IF:
       status = eval_arg(fl, s, &v, 1, f);
-      if (status == SWARF_GCODE_OK && v != 0) pc++;
-      else if (status == SWARF_GCODE_OK) status = next_branch(fl, l, &pc, f);
+      if (status == SWARF_OK && v != 0)
+        pc++;
+      else if (status == SWARF_OK)
+        status = next_branch(fl, l, &pc, f);
       break;
     case O_ELSEIF:
     case O_ELSE: /* the branch before was taken */
@@ -458,17 +442,17 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
     }
   }
   free(counts);
-  if (status == DONE_END) return fl->depth > 0 ? SWARF_GCODE_OK : status;
+  if (status == DONE_END) return fl->depth > 0 ? SWARF_OK : status;
   return status;
 }
 
 /* ---- the streaming entry -------------------------------------------------- */
 
 static int finish_recording(swarf_gc_flow *fl, swarf_gc_fault *f) {
-  int status = SWARF_GCODE_OK;
+  int status = SWARF_OK;
   if (fl->rec.v[0].ctl.kind == O_SUB) {
     sub_def *sub = calloc(1, sizeof *sub);
-    if (sub == NULL) return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
+    if (sub == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
     strcpy(sub->name, fl->rec.v[0].ctl.name);
     sub->body = fl->rec;
     /* The body without the sub line; the endsub stays (it returns). */
@@ -478,7 +462,7 @@ static int finish_recording(swarf_gc_flow *fl, swarf_gc_fault *f) {
     sub->next = fl->subs;
     fl->subs = sub;
     memset(&fl->rec, 0, sizeof fl->rec);
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   status = run_lines(fl, &fl->rec, f);
   list_clear(&fl->rec);
@@ -491,23 +475,23 @@ int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long lin
   int status = read_ctl(text, len, &c, f), closed;
   fl->err_line = err_line;
   *err_line = line;
-  if (status != SWARF_GCODE_OK) return status;
+  if (status != SWARF_OK) return status;
   if (fl->nopen == 0 && c.kind == O_NONE) return fl->run(fl->ctx, text, len, line);
   if (fl->nopen == 0 && !opens(c.kind)) {
     line_list one = {0};
     if (list_push(&one, text, len, line, &c) != 0)
-      return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
-    status = c.kind == O_CALL ? call(fl, &one.v[0], f)
-                              : swarf_gc_fail(f, SWARF_GCODE_ERR_SEMANTIC, c.column,
-                                              "O%s: this word needs an open construct",
-                                              c.name);
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
+    if (c.kind == O_CALL)
+      status = call(fl, &one.v[0], f);
+    else
+      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_NOT_OPEN, c.column, c.name);
     list_clear(&one);
     return status;
   }
   if (list_push(&fl->rec, text, len, line, &c) != 0)
-    return swarf_gc_fail(f, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
-  if (c.kind == O_NONE) return SWARF_GCODE_OK;
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
+  if (c.kind == O_NONE) return SWARF_OK;
   closed = track(fl, &fl->rec.v[fl->rec.n - 1], f);
   if (closed < 0) return f->status;
-  return closed ? finish_recording(fl, f) : SWARF_GCODE_OK;
+  return closed ? finish_recording(fl, f) : SWARF_OK;
 }

@@ -103,7 +103,7 @@ static swarf_status load(swarf_gcode_parser *p, FILE *in, const char *path, swar
   long lineno = 0;
   swarf_status s = SWARF_OK;
   long *first = calloc(SWARF_GC_NPARAMS, sizeof *first); /* line that set each one */
-  if (first == NULL) return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
+  if (first == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, err);
   while (s == SWARF_OK && getline(&line, &cap, in) != -1) {
     int index = 0, column = 1, kind;
     double value = 0;
@@ -112,11 +112,9 @@ static swarf_status load(swarf_gcode_parser *p, FILE *in, const char *path, swar
     if (kind == 0) continue;
     swarf_error_at(err, path, lineno, column, NULL);
     if (kind < 0)
-      s = swarf_error_set(err, SWARF_ERR_FORMAT,
-                          "expected a parameter number and its value, e.g. \"5221 10.0\"");
+      s = SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_LINE, err);
     else if (index >= 1 && index < SWARF_GC_NPARAMS && first[index] != 0)
-      s = swarf_error_set(err, SWARF_ERR_FORMAT, "parameter %d is set twice (first on line %ld)",
-                          index, first[index]);
+      s = SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_TWICE, err, index, first[index]);
     else if (swarf_gcode_parser_set_param(p, index, value, err) != SWARF_OK)
       s = bad_value(err);
     else
@@ -124,7 +122,7 @@ static swarf_status load(swarf_gcode_parser *p, FILE *in, const char *path, swar
   }
   if (s == SWARF_OK && ferror(in)) {
     swarf_error_at(err, path, 0, 0, NULL);
-    s = swarf_error_set(err, SWARF_ERR_IO, "cannot read the parameter file: %s", strerror(errno));
+    s = SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_READ, err, strerror(errno));
   }
   free(first);
   free(line);
@@ -136,19 +134,17 @@ swarf_status swarf_gcode_parser_load_params(swarf_gcode_parser *p, const char *p
   saved_setup *saved;
   swarf_status s;
   FILE *in;
-  if (p == NULL || path == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no parser or path");
-  if (p->lines > 0 || p->partial_len > 0)
-    return swarf_error_set(err, SWARF_ERR_STATE, "the machine is set up before the program runs");
+  if (p == NULL || path == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_NO_PATH, err);
+  if (p->lines > 0 || p->partial_len > 0) return SWARF_GC_ERROR(SWARF_GCODE_E_SETUP_STARTED, err);
   in = fopen(path, "r");
   if (in == NULL) {
     swarf_error_at(err, path, 0, 0, NULL);
-    return swarf_error_set(err, SWARF_ERR_OPEN, "cannot open the parameter file: %s",
-                           strerror(errno));
+    return SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_OPEN, err, strerror(errno));
   }
   saved = malloc(sizeof *saved);
   if (saved == NULL) {
     fclose(in);
-    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
+    return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, err);
   }
   save(p, saved);
   s = load(p, in, path, err);

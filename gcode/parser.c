@@ -14,8 +14,10 @@
  * over to the next block, as LinuxCNC does; the end of the program lets it
  * go.
  */
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,16 +26,68 @@
 
 #define READ_CHUNK (64 * 1024)
 
-static int set_error(swarf_gcode_parser *p, int status, int column, const char *message) {
-  p->status = status;
-  p->error.line = p->cur_line;
-  p->error.column = column;
-  snprintf(p->error.message, sizeof p->error.message, "%s", message);
-  return status;
-}
-
 static int is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r';
+}
+
+/* Where the value of a word that goes on at j ends: digits, signs, points,
+ * parameter signs and whole [..] or <..> groups. */
+static size_t value_end(const char *t, size_t n, size_t j) {
+  int depth = 0;
+  for (; j < n; j++) {
+    char c = t[j];
+    if (c == '[' || c == '<')
+      depth++;
+    else if ((c == ']' || c == '>') && depth > 0)
+      depth--;
+    else if (depth == 0 && !isdigit((unsigned char)c) && !strchr(".+-#", c))
+      break;
+  }
+  return j;
+}
+
+/* The word that starts at `column` of a line, as written: a letter (or a
+ * function name) and its value, a parameter, a comment, or the one
+ * character there. "" when the column is past the line or not printable. */
+static void word_at(const char *text, size_t n, int column, char *out, size_t size) {
+  size_t i = column > 0 ? (size_t)column - 1 : n, j, k = 0;
+  out[0] = '\0';
+  if (text == NULL || i >= n || !isprint((unsigned char)text[i])) return;
+  j = i + 1;
+  if (text[i] == '(') {
+    while (j < n && text[j] != ')')
+      j++;
+    j += j < n;
+  } else if (isalnum((unsigned char)text[i]) || strchr("#[.", text[i])) {
+    j = i;
+    while (j < n && isalpha((unsigned char)text[j]))
+      j++;
+    j = value_end(text, n, j);
+  }
+  for (; i < j && k + 1 < size && isprint((unsigned char)text[i]); i++)
+    out[k++] = text[i];
+  out[k] = '\0';
+}
+
+/* The parser stops on fault `f` at the current line; `text` (may be NULL) is
+ * that line, for the word. */
+static swarf_status fail(swarf_gcode_parser *p, const swarf_gc_fault *f, const char *text,
+                         size_t n) {
+  p->status = f->status;
+  p->error.status = f->status;
+  p->error.code = f->code;
+  p->error.line = p->cur_line;
+  p->error.column = f->column;
+  snprintf(p->error.message, sizeof p->error.message, "%s", f->message);
+  word_at(text, n, f->column, p->error.word, sizeof p->error.word);
+  return p->status;
+}
+
+/* The same for an identity whose message takes no argument. */
+static swarf_status fail_code(swarf_gcode_parser *p, int code, int column) {
+  swarf_gc_fault f;
+  swarf_gc_fail_code(&f, code, column);
+  return fail(p, &f, NULL, 0);
 }
 
 static size_t skip_blanks(const char *text, size_t n, size_t i) {
@@ -120,17 +174,20 @@ static void print_call(swarf_gcode_parser *p, const swarf_gc_call *c, const char
 
 /* ---- blocks ------------------------------------------------------------ */
 
-static int emit(swarf_gcode_parser *p, const char *text, size_t n) {
+static swarf_status emit(swarf_gcode_parser *p, const char *text, size_t n) {
   char nf[24];
   if (p->canon != NULL) n_field(text, n, nf);
   for (size_t i = 0; i < p->out.ready; i++) {
     swarf_gc_call *c = &p->out.calls[i];
     if (p->canon != NULL) print_call(p, c, nf);
     if (c->kind == SWARF_GC_CALL_TEXT) continue;
-    if (p->fn != NULL && p->fn(&c->move, p->user) != 0)
-      return set_error(p, SWARF_GCODE_ERR_STOPPED, c->move.column, "stopped by the move callback");
+    if (p->fn != NULL && p->fn(&c->move, p->user) != 0) {
+      swarf_gc_fault f;
+      SWARF_GC_FAIL(&f, SWARF_GCODE_E_STOPPED, c->move.column);
+      return fail(p, &f, text, n);
+    }
   }
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 static void apply_assigns(swarf_gcode_parser *p, const swarf_gc_block *b) {
@@ -143,10 +200,6 @@ static void apply_assigns(swarf_gcode_parser *p, const swarf_gc_block *b) {
   }
 }
 
-static int fault_error(swarf_gcode_parser *p, const swarf_gc_fault *f) {
-  return set_error(p, f->status, f->column, f->message);
-}
-
 /* Starts a block's out list, after the calls held from the last blocks. */
 static void out_start(swarf_gcode_parser *p) {
   swarf_gc_out_start(&p->out, &p->held, p->cur_line);
@@ -157,12 +210,12 @@ static void out_start(swarf_gcode_parser *p) {
 static void out_keep(swarf_gcode_parser *p) {
   if (p->out.pending == 0) swarf_gc_out_reset(&p->held);
   if (p->out.ready < p->out.count) swarf_gc_out_append_held(&p->held, &p->out, p->out.ready);
-  if (p->held.overflow) set_error(p, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
+  if (p->held.overflow) fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
 }
 
 /* The end of the program without M2: held calls go out as they are. */
-static int release_held(swarf_gcode_parser *p) {
-  if (p->held.count == 0 || p->status != SWARF_GCODE_OK) return p->status;
+static swarf_status release_held(swarf_gcode_parser *p) {
+  if (p->held.count == 0 || p->status != SWARF_OK) return p->status;
   out_start(p);
   swarf_gc_out_flush(&p->out, p->state);
   swarf_gc_out_reset(&p->held);
@@ -170,7 +223,7 @@ static int release_held(swarf_gcode_parser *p) {
 }
 
 /* Read, check, execute on a copy; commit only if all of it succeeded. */
-static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
+static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   swarf_gc_block b;
   swarf_gc_fault f;
   swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
@@ -179,9 +232,9 @@ static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   *next = *p->state;
   out_start(p);
   status = swarf_gc_block_read(text, n, &p->params, &b, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_block_check(&b, p->state, &f);
-  if (status == SWARF_GCODE_OK) status = swarf_gc_execute(&b, next, &ex, &f);
-  if (status != SWARF_GCODE_OK) return fault_error(p, &f);
+  if (status == SWARF_OK) status = swarf_gc_block_check(&b, p->state, &f);
+  if (status == SWARF_OK) status = swarf_gc_execute(&b, next, &ex, &f);
+  if (status != SWARF_OK) return fail(p, &f, text, n);
   p->state = next; /* commit: the copy becomes the state */
   p->params.state = next;
   apply_assigns(p, &b);
@@ -199,18 +252,19 @@ static int run_block(swarf_gcode_parser *p, const char *text, size_t n) {
 static int run_line(void *ctx, const char *text, size_t n, long line) {
   swarf_gcode_parser *p = ctx;
   size_t first = skip_blanks(text, n, 0);
-  if (p->ended || p->status != SWARF_GCODE_OK) return p->status;
+  if (p->ended || p->status != SWARF_OK) return p->status;
   p->cur_line = line;
-  if (first == n || text[first] == '/') return SWARF_GCODE_OK;
+  if (first == n || text[first] == '/') return SWARF_OK;
   return run_block(p, text, n);
 }
 
 /* A line made of `%` alone: opens the program first, closes it later. */
-static int percent_line(swarf_gcode_parser *p, size_t at) {
+static swarf_status percent_line(swarf_gcode_parser *p, const char *text, size_t n, size_t at) {
+  swarf_gc_fault f;
   if (!p->seen_code) {
     p->seen_code = 1;
     p->percent_open = 1;
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
   if (p->percent_open) {
     release_held(p);
@@ -220,13 +274,13 @@ static int percent_line(swarf_gcode_parser *p, size_t at) {
       canon_line(p, "N.....", "ON_RESET()");
       canon_line(p, "N.....", "ON_RESET()");
     }
-    return SWARF_GCODE_OK;
+    return SWARF_OK;
   }
-  return set_error(p, SWARF_GCODE_ERR_SYNTAX, (int)at + 1,
-                   "Bad character '%' used (the program did not open with a % line)");
+  swarf_gc_fail_code(&f, SWARF_GCODE_E_PERCENT_NOT_OPEN, (int)at + 1);
+  return fail(p, &f, text, n);
 }
 
-static int process_line(swarf_gcode_parser *p, const char *text, size_t n) {
+static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t n) {
   size_t first, rest;
   swarf_gc_fault f;
   long err_line;
@@ -234,28 +288,27 @@ static int process_line(swarf_gcode_parser *p, const char *text, size_t n) {
   p->lines++;
   p->cur_line = p->lines;
   canon_start(p);
-  if (n > SWARF_GC_LINE_MAX)
-    return set_error(p, SWARF_GCODE_ERR_SYNTAX, 1, "line too long (more than 1 MiB)");
+  if (n > SWARF_GC_LINE_MAX) return fail_code(p, SWARF_GCODE_E_LINE_TOO_LONG, 1);
   first = skip_blanks(text, n, 0);
-  if (first == n) return SWARF_GCODE_OK;
+  if (first == n) return SWARF_OK;
   rest = skip_blanks(text, n, first + 1);
-  if (text[first] == '%' && rest == n) return percent_line(p, first);
+  if (text[first] == '%' && rest == n) return percent_line(p, text, n, first);
   p->seen_code = 1;
-  if (text[first] == '/') return SWARF_GCODE_OK;
+  if (text[first] == '/') return SWARF_OK;
   status = swarf_gc_flow_line(p->flow, text, n, p->lines, &err_line, &f);
-  if (status != SWARF_GCODE_OK && p->status == SWARF_GCODE_OK) {
+  if (status != SWARF_OK && p->status == SWARF_OK) {
     p->cur_line = err_line;
-    return fault_error(p, &f);
+    return err_line == p->lines ? fail(p, &f, text, n) : fail(p, &f, NULL, 0);
   }
   return p->status;
 }
 
 /* Keeps bytes of an unterminated line; refuses to hold more than a line may be. */
-static int keep_partial(swarf_gcode_parser *p, const char *s, size_t n) {
+static swarf_status keep_partial(swarf_gcode_parser *p, const char *s, size_t n) {
   size_t need = p->partial_len + n;
   if (need > SWARF_GC_LINE_MAX) {
     p->cur_line = ++p->lines;
-    return set_error(p, SWARF_GCODE_ERR_SYNTAX, 1, "line too long (more than 1 MiB)");
+    return fail_code(p, SWARF_GCODE_E_LINE_TOO_LONG, 1);
   }
   if (need > p->partial_cap) {
     size_t cap = p->partial_cap ? p->partial_cap : 256;
@@ -263,21 +316,21 @@ static int keep_partial(swarf_gcode_parser *p, const char *s, size_t n) {
     while (cap < need)
       cap *= 2;
     grown = realloc(p->partial, cap);
-    if (grown == NULL) return set_error(p, SWARF_GCODE_ERR_MEMORY, 1, "out of memory");
+    if (grown == NULL) return fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
     p->partial = grown;
     p->partial_cap = cap;
   }
   memcpy(p->partial + p->partial_len, s, n);
   p->partial_len = need;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* A whole line has arrived: its head may wait in `partial`. */
-static int complete_line(swarf_gcode_parser *p, const char *s, size_t n) {
-  int status;
+static swarf_status complete_line(swarf_gcode_parser *p, const char *s, size_t n) {
+  swarf_status status;
   if (p->partial_len == 0) return process_line(p, s, n);
   status = keep_partial(p, s, n);
-  if (status == SWARF_GCODE_OK) status = process_line(p, p->partial, p->partial_len);
+  if (status == SWARF_OK) status = process_line(p, p->partial, p->partial_len);
   p->partial_len = 0;
   return status;
 }
@@ -291,10 +344,12 @@ static void default_tools(swarf_gcode_parser *p) {
     p->tools[t][0] = z[t - 1] * SWARF_GC_MM_PER_INCH;
 }
 
-swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn,
-                                           void *user) {
-  swarf_gcode_parser *p = calloc(1, sizeof *p);
-  if (p == NULL) return NULL;
+swarf_status swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn, void *user,
+                                    swarf_gcode_parser **out) {
+  swarf_gcode_parser *p;
+  if (out == NULL) return SWARF_ERR_ARG;
+  *out = p = calloc(1, sizeof *p);
+  if (p == NULL) return SWARF_ERR_MEMORY;
   p->fn = fn;
   p->user = user;
   p->state = &p->states[0];
@@ -307,18 +362,19 @@ swarf_gcode_parser *swarf_gcode_parser_new(const char *filename, swarf_gcode_mov
   p->flow = swarf_gc_flow_new(&p->params, run_line, p);
   if (p->flow == NULL) {
     free(p);
-    return NULL;
+    *out = NULL;
+    return SWARF_ERR_MEMORY;
   }
   snprintf(p->error.file, sizeof p->error.file, "%s", filename ? filename : "");
-  return p;
+  return SWARF_OK;
 }
 
-int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len) {
+swarf_status swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len) {
   const char *s = buf, *end = buf + len;
-  if (p == NULL || (buf == NULL && len > 0)) return SWARF_GCODE_ERR_ARG;
-  if (p->status != SWARF_GCODE_OK) return p->status;
-  if (p->finished) return SWARF_GCODE_ERR_ARG;
-  while (s < end && !p->ended && p->status == SWARF_GCODE_OK) {
+  if (p == NULL || (buf == NULL && len > 0)) return SWARF_ERR_ARG;
+  if (p->status != SWARF_OK) return p->status;
+  if (p->finished) return SWARF_ERR_STATE;
+  while (s < end && !p->ended && p->status == SWARF_OK) {
     const char *nl = memchr(s, '\n', (size_t)(end - s));
     if (nl == NULL) return keep_partial(p, s, (size_t)(end - s));
     complete_line(p, s, (size_t)(nl - s));
@@ -327,30 +383,30 @@ int swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, size_t len) 
   return p->status;
 }
 
-int swarf_gcode_parser_finish(swarf_gcode_parser *p) {
-  if (p == NULL) return SWARF_GCODE_ERR_ARG;
-  if (p->status == SWARF_GCODE_OK && !p->ended && !p->finished && p->partial_len > 0) {
+swarf_status swarf_gcode_parser_finish(swarf_gcode_parser *p) {
+  if (p == NULL) return SWARF_ERR_ARG;
+  if (p->status == SWARF_OK && !p->ended && !p->finished && p->partial_len > 0) {
     process_line(p, p->partial, p->partial_len);
     p->partial_len = 0;
   }
-  if (p->status == SWARF_GCODE_OK && !p->ended && !p->finished &&
-      swarf_gc_flow_open_line(p->flow) > 0) {
+  if (p->status == SWARF_OK && !p->ended && !p->finished && swarf_gc_flow_open_line(p->flow) > 0) {
     p->cur_line = swarf_gc_flow_open_line(p->flow);
-    set_error(p, SWARF_GCODE_ERR_SEMANTIC, 1,
-              "The program ended inside an O-word construct opened here");
+    fail_code(p, SWARF_GCODE_E_O_OPEN_AT_END, 1);
   }
   release_held(p);
   p->finished = 1;
   return p->status;
 }
 
-int swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn, void *user) {
-  if (p == NULL || p->lines > 0) return SWARF_GCODE_ERR_ARG;
+swarf_status swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_canon_fn fn,
+                                          void *user) {
+  if (p == NULL) return SWARF_ERR_ARG;
+  if (p->lines > 0) return SWARF_ERR_STATE;
   p->canon = fn;
   p->canon_user = user;
   p->out.want_text = fn != NULL;
   p->held.want_text = fn != NULL;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
 /* One tool table line: T<n> then words like Z0.5 D0.25; ';' comments. */
@@ -369,44 +425,49 @@ static void tool_line(swarf_gcode_parser *p, const char *line) {
   }
 }
 
-int swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path, swarf_gcode_error *err) {
+/* *err (may be NULL), cleared, names a file of the caller's, no line. */
+static swarf_error *file_at(swarf_error *err, const char *path) {
+  swarf_error_init(err);
+  swarf_error_at(err, path, 0, 0, NULL);
+  return err;
+}
+
+swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
+                                           swarf_error *err) {
   char line[512];
   FILE *in;
-  if (p == NULL || path == NULL) return SWARF_GCODE_ERR_ARG;
+  if (p == NULL || path == NULL) return SWARF_ERR_ARG;
   in = fopen(path, "r");
-  if (in == NULL) {
-    if (err != NULL) {
-      memset(err, 0, sizeof *err);
-      snprintf(err->file, sizeof err->file, "%s", path);
-      snprintf(err->message, sizeof err->message, "cannot open tool table: %s", strerror(errno));
-    }
-    return SWARF_GCODE_ERR_ARG;
-  }
+  if (in == NULL)
+    return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_OPEN, file_at(err, path), strerror(errno));
   for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
   while (fgets(line, sizeof line, in) != NULL)
     tool_line(p, line);
   fclose(in);
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
-int swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
-  if (p == NULL || p->lines > 0) return SWARF_GCODE_ERR_ARG;
+swarf_status swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
+  if (p == NULL) return SWARF_ERR_ARG;
+  if (p->lines > 0) return SWARF_ERR_STATE;
   for (int t = 0; t < SWARF_GC_NTOOLS; t++)
     p->tools[t][0] = NAN, p->tools[t][1] = 0;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
-int swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length, double diameter) {
-  if (p == NULL || p->lines > 0 || tool < 1 || tool >= SWARF_GC_NTOOLS) return SWARF_GCODE_ERR_ARG;
-  if (!isfinite(length) || !isfinite(diameter) || diameter < 0) return SWARF_GCODE_ERR_ARG;
+swarf_status swarf_gcode_parser_set_tool(swarf_gcode_parser *p, int tool, double length,
+                                         double diameter) {
+  if (p == NULL || tool < 1 || tool >= SWARF_GC_NTOOLS) return SWARF_ERR_ARG;
+  if (!isfinite(length) || !isfinite(diameter) || diameter < 0) return SWARF_ERR_ARG;
+  if (p->lines > 0) return SWARF_ERR_STATE;
   p->tools[tool][0] = length;
   p->tools[tool][1] = diameter;
-  return SWARF_GCODE_OK;
+  return SWARF_OK;
 }
 
-const swarf_gcode_error *swarf_gcode_parser_error(const swarf_gcode_parser *p) {
-  return (p != NULL && p->status != SWARF_GCODE_OK) ? &p->error : NULL;
+const swarf_error *swarf_gcode_parser_error(const swarf_gcode_parser *p) {
+  return (p != NULL && p->status != SWARF_OK) ? &p->error : NULL;
 }
 
 long swarf_gcode_parser_lines(const swarf_gcode_parser *p) {
@@ -427,51 +488,37 @@ void swarf_gcode_parser_free(swarf_gcode_parser *p) {
   free(p);
 }
 
-static int file_error(swarf_gcode_error *err, const char *path, const char *what) {
-  if (err != NULL) {
-    memset(err, 0, sizeof *err);
-    snprintf(err->file, sizeof err->file, "%s", path);
-    snprintf(err->message, sizeof err->message, "%s", what);
-  }
-  return SWARF_GCODE_ERR_ARG;
-}
-
-static int stream_file(FILE *in, swarf_gcode_parser *p, const char *path, swarf_gcode_error *err) {
+static swarf_status stream_file(FILE *in, swarf_gcode_parser *p, const char *path,
+                                swarf_error *err) {
   char *chunk = malloc(READ_CHUNK);
-  int status = SWARF_GCODE_OK;
+  swarf_status status = SWARF_OK;
   size_t got;
-  if (chunk == NULL) {
-    file_error(err, path, "out of memory");
-    return SWARF_GCODE_ERR_MEMORY;
-  }
-  while (status == SWARF_GCODE_OK && !p->ended && (got = fread(chunk, 1, READ_CHUNK, in)) > 0)
+  if (chunk == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, file_at(err, path));
+  while (status == SWARF_OK && !p->ended && (got = fread(chunk, 1, READ_CHUNK, in)) > 0)
     status = swarf_gcode_parser_feed(p, chunk, got);
   free(chunk);
-  if (status == SWARF_GCODE_OK && ferror(in)) return file_error(err, path, "cannot read file");
+  if (status == SWARF_OK && ferror(in))
+    return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_READ, file_at(err, path));
   return status;
 }
 
-int swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
-                           swarf_gcode_error *err) {
+swarf_status swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
+                                    swarf_error *err) {
   swarf_gcode_parser *p;
   FILE *in;
-  int status;
-  char why[200];
-  if (path == NULL) return file_error(err, "", "no file name given");
+  swarf_status status;
+  if (path == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_NO_FILE_NAME, file_at(err, ""));
   in = fopen(path, "rb");
-  if (in == NULL) {
-    snprintf(why, sizeof why, "cannot open file: %s", strerror(errno));
-    return file_error(err, path, why);
-  }
-  p = swarf_gcode_parser_new(path, fn, user);
-  if (p == NULL) {
+  if (in == NULL)
+    return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), strerror(errno));
+  if (swarf_gcode_parser_new(path, fn, user, &p) != SWARF_OK) {
     fclose(in);
-    return file_error(err, path, "out of memory");
+    return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, file_at(err, path));
   }
   status = stream_file(in, p, path, err);
   fclose(in);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
-  if (status != SWARF_GCODE_OK && err != NULL && swarf_gcode_parser_error(p) != NULL)
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
+  if (status != SWARF_OK && err != NULL && swarf_gcode_parser_error(p) != NULL)
     *err = *swarf_gcode_parser_error(p);
   swarf_gcode_parser_free(p);
   return status;

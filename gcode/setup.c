@@ -13,9 +13,8 @@
 
 /* The calls below are refused once the program has started. */
 static swarf_status check_setup(const swarf_gcode_parser *p, swarf_error *err) {
-  if (p == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no parser");
-  if (p->lines > 0 || p->partial_len > 0)
-    return swarf_error_set(err, SWARF_ERR_STATE, "the machine is set up before the program runs");
+  if (p == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_SETUP_NO_PARSER, err);
+  if (p->lines > 0 || p->partial_len > 0) return SWARF_GC_ERROR(SWARF_GCODE_E_SETUP_STARTED, err);
   return SWARF_OK;
 }
 
@@ -34,10 +33,8 @@ swarf_status swarf_gcode_parser_set_units(swarf_gcode_parser *p, swarf_gcode_uni
   swarf_status s = check_setup(p, err);
   if (s != SWARF_OK) return s;
   if (u != SWARF_GCODE_UNITS_MM && u != SWARF_GCODE_UNITS_INCH)
-    return swarf_error_set(err, SWARF_ERR_ARG, "the unit is mm or inch");
-  if (p->params_set)
-    return swarf_error_set(err, SWARF_ERR_STATE,
-                           "set the machine's unit before its parameters (they are in that unit)");
+    return SWARF_GC_ERROR(SWARF_GCODE_E_UNITS_VALUE, err);
+  if (p->params_set) return SWARF_GC_ERROR(SWARF_GCODE_E_UNITS_AFTER_PARAMS, err);
   p->state->modal.units = u == SWARF_GCODE_UNITS_INCH ? 200 : 210;
   p->params.length_unit = u == SWARF_GCODE_UNITS_INCH ? SWARF_GC_MM_PER_INCH : 1.0;
   apply_setup(p);
@@ -54,15 +51,11 @@ static swarf_status set_special(swarf_gcode_parser *p, int index, double value, 
   if (index == 5220) {
     int k = (int)value;
     if (value != k || k < 1 || k > 9)
-      return swarf_error_set(err, SWARF_ERR_ARG,
-                             "#5220 (the work system in force) is 1 to 9 (G54 to G59.3), not %g",
-                             value);
+      return SWARF_GC_ERROR(SWARF_GCODE_E_SYSTEM_PARAM_VALUE, err, value);
     p->state->modal.coord_system = systems[k - 1];
     return SWARF_OK;
   }
-  if (value != 0 && value != 1)
-    return swarf_error_set(err, SWARF_ERR_ARG, "#5210 (G92 offset in force) is 0 or 1, not %g",
-                           value);
+  if (value != 0 && value != 1) return SWARF_GC_ERROR(SWARF_GCODE_E_G92_PARAM_VALUE, err, value);
   p->g92_restore = value == 1;
   if (value == 0) {
     memset(p->state->g92, 0, sizeof p->state->g92);
@@ -76,14 +69,10 @@ swarf_status swarf_gcode_parser_set_param(swarf_gcode_parser *p, int index, doub
   swarf_status s = check_setup(p, err);
   if (s != SWARF_OK) return s;
   if (index < 1 || index >= SWARF_GC_NPARAMS)
-    return swarf_error_set(err, SWARF_ERR_ARG, "parameter #%d does not exist (1 to %d)", index,
-                           SWARF_GC_NPARAMS - 1);
+    return SWARF_GC_ERROR(SWARF_GCODE_E_PARAM_NOT_FOUND, err, index, SWARF_GC_NPARAMS - 1);
   if (!isfinite(value) || fabs(value) > SWARF_GC_NUMBER_MAX)
-    return swarf_error_set(err, SWARF_ERR_ARG, "parameter #%d: %g is not a usable value", index,
-                           value);
-  if (computed(index))
-    return swarf_error_set(err, SWARF_ERR_ARG,
-                           "parameter #%d is computed by the interpreter; it cannot be set", index);
+    return SWARF_GC_ERROR(SWARF_GCODE_E_PARAM_VALUE, err, index, value);
+  if (computed(index)) return SWARF_GC_ERROR(SWARF_GCODE_E_PARAM_COMPUTED, err, index);
   if (index == 5210 || index == 5220) {
     s = set_special(p, index, value, err);
     if (s != SWARF_OK) return s;
@@ -100,10 +89,10 @@ swarf_status swarf_gcode_parser_set_start(swarf_gcode_parser *p, const double ma
                                           swarf_error *err) {
   swarf_status s = check_setup(p, err);
   if (s != SWARF_OK) return s;
-  if (machine == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no start position");
+  if (machine == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_START_MISSING, err);
   for (int i = 0; i < SWARF_NAXES; i++)
     if (!isfinite(machine[i]) || fabs(machine[i]) > SWARF_GC_NUMBER_MAX)
-      return swarf_error_set(err, SWARF_ERR_ARG, "the start position is not finite");
+      return SWARF_GC_ERROR(SWARF_GCODE_E_START_NOT_FINITE, err);
   memcpy(p->start, machine, sizeof p->start);
   apply_setup(p);
   return SWARF_OK;

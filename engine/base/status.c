@@ -8,8 +8,8 @@
 
 const char *swarf_status_name(swarf_status s) {
   switch (s) {
-#define X(name, value, cls, msg) \
-  case SWARF_##name:             \
+#define X(name, value, cls, msg)                                                                   \
+  case SWARF_##name:                                                                               \
     return "SWARF_" #name;
 #include "status.def"
 #undef X
@@ -20,8 +20,8 @@ const char *swarf_status_name(swarf_status s) {
 
 const char *swarf_status_message(swarf_status s) {
   switch (s) {
-#define X(name, value, cls, msg) \
-  case SWARF_##name:             \
+#define X(name, value, cls, msg)                                                                   \
+  case SWARF_##name:                                                                               \
     return msg;
 #include "status.def"
 #undef X
@@ -32,8 +32,8 @@ const char *swarf_status_message(swarf_status s) {
 
 swarf_status_class swarf_status_classify(swarf_status s) {
   switch (s) {
-#define X(name, value, cls, msg) \
-  case SWARF_##name:             \
+#define X(name, value, cls, msg)                                                                   \
+  case SWARF_##name:                                                                               \
     return SWARF_CLASS_##cls;
 #include "status.def"
 #undef X

@@ -51,12 +51,12 @@ SWARF_API swarf_status_class swarf_status_classify(swarf_status s);
 /* Where and why something failed. A value: the caller owns it. */
 typedef struct {
   swarf_status status;
-  int code;           /* exact identity within the status, 0 if none (gcode.h: SWARF_GCODE_E_*) */
-  char file[256];     /* input file (or program name), "" if none */
-  long line;          /* 1-based, 0 when not tied to a line */
-  int column;         /* 1-based, 0 when unknown */
-  char word[32];      /* the offending word or option ("G2", "--voxel"), "" if none */
-  char message[512];  /* for the user: what is wrong and, where it helps, what to do */
+  int code;          /* exact identity within the status, 0 if none (gcode.h: SWARF_GCODE_E_*) */
+  char file[256];    /* input file (or program name), "" if none */
+  long line;         /* 1-based, 0 when not tied to a line */
+  int column;        /* 1-based, 0 when unknown */
+  char word[32];     /* the offending word or option ("G2", "--voxel"), "" if none */
+  char message[512]; /* for the user: what is wrong and, where it helps, what to do */
 } swarf_error;
 
 /* Clears e (status SWARF_OK). */

@@ -121,16 +121,17 @@ static inline int canon_differ(const canon_calls *a, const canon_calls *b, doubl
 
 /* Runs `text` through a parser with the canon listener; `tools` may be NULL. */
 static inline int canon_run(const char *name, const char *text, size_t len, const char *tools,
-                            canon_text *out, swarf_gcode_error *err) {
-  swarf_gcode_parser *p = swarf_gcode_parser_new(name, NULL, NULL);
-  int status = SWARF_GCODE_OK;
+                            canon_text *out, swarf_error *err) {
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new(name, NULL, NULL, &p);
+  int status = SWARF_OK;
   memset(out, 0, sizeof *out);
   memset(err, 0, sizeof *err);
   swarf_gcode_parser_set_canon(p, canon_collect, out);
   if (tools != NULL) status = swarf_gcode_parser_load_tools(p, tools, err);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_feed(p, text, len);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
-  if (status != SWARF_GCODE_OK && swarf_gcode_parser_error(p) != NULL)
+  if (status == SWARF_OK) status = swarf_gcode_parser_feed(p, text, len);
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
+  if (status != SWARF_OK && swarf_gcode_parser_error(p) != NULL)
     *err = *swarf_gcode_parser_error(p);
   swarf_gcode_parser_free(p);
   if (out->text == NULL) canon_collect("", out);

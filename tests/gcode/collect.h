@@ -16,7 +16,7 @@ typedef struct {
   swarf_move moves[COLLECT_MAX];
   int n;
   int status;
-  swarf_gcode_error error; /* valid when status != 0 */
+  swarf_error error; /* valid when status != 0 */
   long lines;
   int ended;
 } collected;
@@ -28,7 +28,7 @@ static inline int collect_move(const swarf_move *mv, void *user) {
 }
 
 static inline void collect_end(collected *c, swarf_gcode_parser *p, int status) {
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
   c->status = status;
   if (swarf_gcode_parser_error(p) != NULL) c->error = *swarf_gcode_parser_error(p);
   c->lines = swarf_gcode_parser_lines(p);
@@ -38,7 +38,8 @@ static inline void collect_end(collected *c, swarf_gcode_parser *p, int status) 
 
 /* The whole text in one feed. */
 static inline collected *run_text(const char *text, collected *c) {
-  swarf_gcode_parser *p = swarf_gcode_parser_new("test.ngc", collect_move, c);
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new("test.ngc", collect_move, c, &p);
   memset(c, 0, sizeof *c);
   collect_end(c, p, swarf_gcode_parser_feed(p, text, strlen(text)));
   return c;
@@ -46,10 +47,11 @@ static inline collected *run_text(const char *text, collected *c) {
 
 /* The text in pieces of `piece` bytes. */
 static inline collected *run_pieces(const char *text, size_t len, size_t piece, collected *c) {
-  swarf_gcode_parser *p = swarf_gcode_parser_new("test.ngc", collect_move, c);
-  int status = SWARF_GCODE_OK;
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new("test.ngc", collect_move, c, &p);
+  int status = SWARF_OK;
   memset(c, 0, sizeof *c);
-  for (size_t i = 0; i < len && status == SWARF_GCODE_OK; i += piece)
+  for (size_t i = 0; i < len && status == SWARF_OK; i += piece)
     status = swarf_gcode_parser_feed(p, text + i, len - i < piece ? len - i : piece);
   collect_end(c, p, status);
   return c;

@@ -74,13 +74,14 @@ static int on_move(const swarf_move *mv, void *user) {
  * and fills the run and the error place. */
 static int run(const uint8_t *data, size_t size, unsigned max_piece, uint32_t seed, fuzz_run *r,
                long *err_line, int *err_col) {
-  swarf_gcode_parser *p = swarf_gcode_parser_new("fuzz", on_move, r);
-  int status = SWARF_GCODE_OK;
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new("fuzz", on_move, r, &p);
+  int status = SWARF_OK;
   size_t at = 0;
   memset(r, 0, sizeof *r);
   r->hash = 14695981039346656037ull;
   if (p == NULL) fail("out of memory");
-  while (at < size && status == SWARF_GCODE_OK) {
+  while (at < size && status == SWARF_OK) {
     size_t piece = size - at;
     if (max_piece) {
       seed = seed * 1103515245u + 12345u;
@@ -90,10 +91,10 @@ static int run(const uint8_t *data, size_t size, unsigned max_piece, uint32_t se
     status = swarf_gcode_parser_feed(p, (const char *)data + at, piece);
     at += piece;
   }
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
   *err_line = swarf_gcode_parser_error(p) ? swarf_gcode_parser_error(p)->line : -1;
   *err_col = swarf_gcode_parser_error(p) ? swarf_gcode_parser_error(p)->column : -1;
-  if ((status == SWARF_GCODE_OK) != (swarf_gcode_parser_error(p) == NULL)) fail("error record");
+  if ((status == SWARF_OK) != (swarf_gcode_parser_error(p) == NULL)) fail("error record");
   swarf_gcode_parser_free(p);
   return status;
 }

@@ -54,17 +54,18 @@ static void canon_sink(const char *call, void *user) {
 
 /* Program and moves at once; `tools` is the case folder's tools.tbl. */
 static int run(const char *path, const char *tools, canon_text *out, moves *m,
-               swarf_gcode_error *err) {
+               swarf_error *err) {
   size_t len;
   char *text = canon_slurp(path, &len);
-  swarf_gcode_parser *p = swarf_gcode_parser_new(path, keep_move, m);
-  int status = text == NULL ? SWARF_GCODE_ERR_ARG : SWARF_GCODE_OK;
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new(path, keep_move, m, &p);
+  int status = text == NULL ? SWARF_ERR_ARG : SWARF_OK;
   memset(out, 0, sizeof *out);
   memset(err, 0, sizeof *err);
   swarf_gcode_parser_set_canon(p, canon_sink, out);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_load_tools(p, tools, err);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_feed(p, text, len);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
+  if (status == SWARF_OK) status = swarf_gcode_parser_load_tools(p, tools, err);
+  if (status == SWARF_OK) status = swarf_gcode_parser_feed(p, text, len);
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
   if (swarf_gcode_parser_error(p) != NULL) *err = *swarf_gcode_parser_error(p);
   swarf_gcode_parser_free(p);
   free(text);
@@ -118,7 +119,7 @@ static void run_case(const char *dir, const ccomp_case *k) {
   char path[1024], exp_path[1024], tools[1024], why[200] = "";
   canon_text out;
   canon_calls got, want;
-  swarf_gcode_error err;
+  swarf_error err;
   static moves m;
   size_t elen;
   char *expected;
@@ -143,9 +144,9 @@ static void run_case(const char *dir, const ccomp_case *k) {
   free(got.v);
   free(want.v);
   canon_extract(expected, 0, &want);
-  CHECK((status == SWARF_GCODE_OK) == (rs274_error(expected) == NULL), "%s: %s", k->name,
+  CHECK((status == SWARF_OK) == (rs274_error(expected) == NULL), "%s: %s", k->name,
         status ? err.message : "rs274 stopped, swarf did not");
-  if (status != SWARF_GCODE_OK && rs274_error(expected) != NULL)
+  if (status != SWARF_OK && rs274_error(expected) != NULL)
     CHECK(strncmp(err.message, rs274_error(expected), strcspn(rs274_error(expected), "\n")) == 0,
           "%s: swarf says \"%s\", rs274 \"%.*s\"", k->name, err.message,
           (int)strcspn(rs274_error(expected), "\n"), rs274_error(expected));
@@ -164,7 +165,8 @@ static void long_hold(void) {
   char *text = malloc(cap);
   canon_text out = {0};
   moves *m = malloc(sizeof *m);
-  swarf_gcode_parser *p = swarf_gcode_parser_new("hold.ngc", keep_move, m);
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new("hold.ngc", keep_move, m, &p);
   clock_t t0 = clock();
   int status;
   m->n = 0;
@@ -174,8 +176,8 @@ static void long_hold(void) {
   n += (size_t)snprintf(text + n, cap - n, "G1 Y10\nM2\n");
   swarf_gcode_parser_set_canon(p, canon_sink, &out);
   status = swarf_gcode_parser_feed(p, text, n);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
-  CHECK(status == SWARF_GCODE_OK && m->n == MAX_MOVES, "long hold: status %d, %d moves", status,
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
+  CHECK(status == SWARF_OK && m->n == MAX_MOVES, "long hold: status %d, %d moves", status,
         m->n);
   CHECK((double)(clock() - t0) / CLOCKS_PER_SEC < 10, "long hold took %.1f s of CPU",
         (double)(clock() - t0) / CLOCKS_PER_SEC);

@@ -314,7 +314,7 @@ static void conform(const char *dir, const char *name) {
   char src[1024], canon_path[1024];
   canon_list canon = {0};
   compare_ctx cx = {0};
-  swarf_gcode_error err;
+  swarf_error err;
   int status;
   path_join(src, sizeof src, dir, "real", name, "");
   path_join(canon_path, sizeof canon_path, dir, "real/canon", name, ".canon.xz");
@@ -322,7 +322,7 @@ static void conform(const char *dir, const char *name) {
   cx.file = name;
   cx.canon = &canon;
   status = swarf_gcode_parse_file(src, on_move, &cx, &err);
-  CHECK(status == SWARF_GCODE_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column,
+  CHECK(status == SWARF_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column,
         err.message);
   CHECK(cx.next == canon.n, "%s: swarf emitted %zu motion calls, LinuxCNC %zu", name, cx.next,
         canon.n);
@@ -334,12 +334,12 @@ static void conform(const char *dir, const char *name) {
 /* A file of a later version's dialect: rejected, at the expected line. */
 static void refuse(const char *dir, const char *name, long line, const char *words) {
   char src[1024];
-  swarf_gcode_error err;
+  swarf_error err;
   int status;
   path_join(src, sizeof src, dir, "real", name, "");
   status = swarf_gcode_parse_file(src, NULL, NULL, &err);
-  CHECK(status != SWARF_GCODE_OK, "%s: accepted, but it needs a later version", name);
-  if (status == SWARF_GCODE_OK) return;
+  CHECK(status != SWARF_OK, "%s: accepted, but it needs a later version", name);
+  if (status == SWARF_OK) return;
   CHECK(err.line == line, "%s: rejected at line %ld, expected %ld (%s)", name, err.line, line,
         err.message);
   CHECK(strstr(err.message, words) != NULL, "%s: message \"%s\" lacks \"%s\"", name, err.message,
@@ -376,17 +376,18 @@ static int expected_arc(const char *path, double v[9]) {
   return found;
 }
 
-static int arc_of_program(const arc_tolerance_case *k, swarf_move *arc, swarf_gcode_error *err) {
+static int arc_of_program(const arc_tolerance_case *k, swarf_move *arc, swarf_error *err) {
   char text[256];
   collect_arc_ctx ctx = {arc, 0};
-  swarf_gcode_parser *p = swarf_gcode_parser_new(k->file, collect_arc, &ctx);
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new(k->file, collect_arc, &ctx, &p);
   int status;
   snprintf(text, sizeof text, "%s\nf1\ng0x0y0z0\ng2 x%.17g y0 i%.17g\nm2\n", k->units, k->x, k->i);
   status = swarf_gcode_parser_feed(p, text, strlen(text));
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
   if (swarf_gcode_parser_error(p)) *err = *swarf_gcode_parser_error(p);
   swarf_gcode_parser_free(p);
-  if (status == SWARF_GCODE_OK && ctx.n != 1) return -1;
+  if (status == SWARF_OK && ctx.n != 1) return -1;
   return status;
 }
 
@@ -394,11 +395,11 @@ static void arc_tolerance_good(const char *dir, const arc_tolerance_case *k) {
   char path[1024];
   double v[9];
   swarf_move arc;
-  swarf_gcode_error err;
+  swarf_error err;
   double scale = strcmp(k->units, "g20") == 0 ? 25.4 : 1.0;
   snprintf(path, sizeof path, "%s/linuxcnc/%s/%s.expected", dir, k->dir, k->file);
   CHECK(expected_arc(path, v), "%s: no ARC_FEED in %s", k->dir, path);
-  CHECK(arc_of_program(k, &arc, &err) == SWARF_GCODE_OK, "%s: refused: %s", k->dir, err.message);
+  CHECK(arc_of_program(k, &arc, &err) == SWARF_OK, "%s: refused: %s", k->dir, err.message);
   CHECK_NEAR(arc.center[0] / scale, v[2], TOL, k->dir);
   CHECK_NEAR(arc.end[0] / scale, v[0], TOL, k->dir);
   CHECK_NEAR(arc.normal[2] > 0 ? 1 : -1, v[4], 0, k->dir);
@@ -407,10 +408,10 @@ static void arc_tolerance_good(const char *dir, const arc_tolerance_case *k) {
 static void arc_tolerance_bad(const char *dir, const arc_tolerance_case *k) {
   char path[1024], expected[512];
   swarf_move arc;
-  swarf_gcode_error err;
+  swarf_error err;
   snprintf(path, sizeof path, "%s/linuxcnc/%s/%s", dir, k->dir, k->file);
   CHECK(first_line(path, expected, sizeof expected), "%s: cannot read %s", k->file, path);
-  CHECK(arc_of_program(k, &arc, &err) == SWARF_GCODE_ERR_SEMANTIC, "%s: accepted", k->file);
+  CHECK(arc_of_program(k, &arc, &err) == SWARF_ERR_SEMANTIC, "%s: accepted", k->file);
   CHECK(err.line == 4 && strcmp(err.message, expected + 1) == 0,
         "%s: line %ld\n  swarf:    %s\n  LinuxCNC: %s", k->file, err.line, err.message,
         expected + 1);
@@ -452,9 +453,9 @@ static void arc_tolerance(const char *dir) {
  * differ in wording; the refusal, its line and its subject must match). */
 static void rejected(const char *dir, const char *file, const char *words) {
   char path[1024];
-  swarf_gcode_error err;
+  swarf_error err;
   snprintf(path, sizeof path, "%s/linuxcnc/bad-rejected/%s", dir, file);
-  CHECK(swarf_gcode_parse_file(path, NULL, NULL, &err) == SWARF_GCODE_ERR_SEMANTIC &&
+  CHECK(swarf_gcode_parse_file(path, NULL, NULL, &err) == SWARF_ERR_SEMANTIC &&
             err.line == 2 && strstr(err.message, words) != NULL,
         "%s: %ld:%d %s", file, err.line, err.column, err.message);
 }
@@ -468,7 +469,7 @@ static void conform_canon(const char *dir, const char *name) {
   char *text, *expected;
   canon_text out;
   canon_calls got, want;
-  swarf_gcode_error err;
+  swarf_error err;
   int status;
   snprintf(src, sizeof src, "%s/real/%s", dir, name);
   snprintf(canon_path, sizeof canon_path, "%s/real/canon/%s.canon.xz", dir, name);
@@ -487,7 +488,7 @@ static void conform_canon(const char *dir, const char *name) {
     len = o;
   }
   status = canon_run(name, text, len, NULL, &out, &err);
-  CHECK(status == SWARF_GCODE_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column,
+  CHECK(status == SWARF_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column,
         err.message);
   canon_extract(out.text, 0, &got);
   canon_extract(expected, 0, &want);

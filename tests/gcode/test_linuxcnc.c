@@ -94,7 +94,7 @@ static void run_case(const char *root, const lcnc_case *k) {
   size_t len, elen;
   canon_text out;
   canon_calls got, want;
-  swarf_gcode_error err;
+  swarf_error err;
   char *text, *expected;
   int status;
   snprintf(path, sizeof path, "%s/linuxcnc/%s/%s", root, k->dir, k->program);
@@ -111,11 +111,11 @@ static void run_case(const char *root, const lcnc_case *k) {
   {
     canon_extract(out.text, k->messages, &got);
     canon_extract(expected, k->messages, &want);
-    CHECK(status == SWARF_GCODE_OK, "%s: rejected at %ld:%d: %s", k->dir, err.line, err.column,
+    CHECK(status == SWARF_OK, "%s: rejected at %ld:%d: %s", k->dir, err.line, err.column,
           err.message);
     /* A few cases test calls other than motions: both sides have none. */
     why[0] = '\0';
-    if (status == SWARF_GCODE_OK && !canon_differ(&got, &want, 1.01e-4, why, sizeof why))
+    if (status == SWARF_OK && !canon_differ(&got, &want, 1.01e-4, why, sizeof why))
       passed++;
     else
       CHECK(0, "%s: %s", k->dir, why);
@@ -130,11 +130,11 @@ static void run_case(const char *root, const lcnc_case *k) {
 
 static void run_bad(const char *root, const char *file) {
   char path[1024];
-  swarf_gcode_error err;
+  swarf_error err;
   int status;
   snprintf(path, sizeof path, "%s/linuxcnc/bad-rejected/%s", root, file);
   status = swarf_gcode_parse_file(path, NULL, NULL, &err);
-  CHECK(status == SWARF_GCODE_ERR_SYNTAX || status == SWARF_GCODE_ERR_SEMANTIC,
+  CHECK(status == SWARF_ERR_SYNTAX || status == SWARF_ERR_SEMANTIC,
         "%s: not rejected (status %d)", file, status);
   CHECK(err.line > 1 && err.column >= 1, "%s: error not located (%ld:%d)", file, err.line,
         err.column);

@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "sim.h"
+#include "swarf_sim.h"
 
 #define VOXEL 0.2
 #define LEN 16.0 /* cutting length of every test cutter */
@@ -197,19 +197,19 @@ static void run_case(const sim_case *c) {
   swarf_sim_report rep;
   swarf_stock *stock = NULL;
   char msg[512];
-  memset(&cfg, 0, sizeof cfg);
-  memcpy(cfg.stock_lo, box_lo, sizeof box_lo);
-  memcpy(cfg.stock_hi, box_hi, sizeof box_hi);
+  swarf_error err;
+  swarf_sim_config_init(&cfg);
+  memcpy(cfg.stock.lo, box_lo, sizeof box_lo);
+  memcpy(cfg.stock.hi, box_hi, sizeof box_hi);
   cfg.voxel = VOXEL;
   cfg.half_width = 3;
   cfg.ntools = 1;
-  if (swarf_sim_parse_tool(c->tool, &cfg.tools[0], msg, sizeof msg) != 0) {
-    CHECK(0, "%s: tool: %s", c->name, msg);
+  if (swarf_sim_parse_tool(c->tool, &cfg.tools[0], &err) != 0) {
+    CHECK(0, "%s: tool: %s", c->name, err.message);
     return;
   }
-  int rc = swarf_sim_run_text(&cfg, c->name, c->gcode, strlen(c->gcode), &stock, &rep, msg,
-                              sizeof msg);
-  CHECK(rc == 0, "%s: simulation failed: %s", c->name, msg);
+  int rc = swarf_sim_run_text(&cfg, c->name, c->gcode, strlen(c->gcode), &stock, &rep, &err);
+  CHECK(rc == 0, "%s: simulation failed: %s", c->name, err.message);
   if (rc != 0) return;
   visit_ctx v = {c, 0.0, VOXEL, 0, 0};
   swarf_stock_visit_active(stock, visit, &v);

@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "sim.h"
+#include "swarf_sim.h"
 
 #define VOXEL 0.1
 
@@ -98,7 +98,7 @@ static swarf_stock *reference(const swarf_sim_config *cfg, const char *pre, cons
   swarf_sim_report rep;
   poses ps = {c, m, n, polish, step, coarse};
   double lo[3], hi[3];
-  CHECK(swarf_sim_run_text(cfg, "pre", pre, strlen(pre), &s, &rep, NULL, 0) == 0, "approach");
+  CHECK(swarf_sim_run_text(cfg, "pre", pre, strlen(pre), &s, &rep, NULL) == 0, "approach");
   if (s == NULL) return NULL;
   swarf_sweep_init_voxel(&sw, c, m, VOXEL);
   swarf_sweep_bounds(&sw, lo, hi);
@@ -110,7 +110,7 @@ static double vol_pre(const swarf_sim_config *cfg, const char *pre) {
   swarf_stock *s = NULL;
   swarf_sim_report rep;
   double v = 0;
-  if (swarf_sim_run_text(cfg, "pre", pre, strlen(pre), &s, &rep, NULL, 0) == 0)
+  if (swarf_sim_run_text(cfg, "pre", pre, strlen(pre), &s, &rep, NULL) == 0)
     v = rep.volume_before - rep.volume_after;
   swarf_stock_free(s);
   return v;
@@ -125,15 +125,16 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   swarf_move mv;
   swarf_sweep sw;
   char msg[512];
-  memset(&cfg, 0, sizeof cfg);
+  swarf_error err;
+  swarf_sim_config_init(&cfg);
   cfg.voxel = VOXEL;
   cfg.half_width = 3;
   CHECK(swarf_machine_parse(&cfg.machine, machine, msg, sizeof msg) == 0, "%s", msg);
-  CHECK(swarf_sim_parse_stock(stock, &cfg, msg, sizeof msg) == 0, "%s", msg);
-  CHECK(swarf_sim_parse_tool(tool, &cfg.tools[0], msg, sizeof msg) == 0, "%s", msg);
+  CHECK(swarf_sim_parse_stock(stock, &cfg.stock, &err) == 0, "%s", err.message);
+  CHECK(swarf_sim_parse_tool(tool, &cfg.tools[0], &err) == 0, "%s", err.message);
   cfg.ntools = 1;
-  int rc = swarf_sim_run_text(&cfg, name, gcode, strlen(gcode), &out, &rep, msg, sizeof msg);
-  CHECK(rc == 0, "%s: run: %s", name, msg);
+  int rc = swarf_sim_run_text(&cfg, name, gcode, strlen(gcode), &out, &rep, &err);
+  CHECK(rc == 0, "%s: run: %s", name, err.message);
   if (rc != 0) return;
   /* the same move, built here from its axis values */
   memset(&mv, 0, sizeof mv);

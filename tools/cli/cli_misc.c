@@ -62,27 +62,27 @@ static int count_move(const swarf_move *m, void *user) {
 
 /* Streams the program through a parser with the canon listener set. */
 static int parse_canon(const char *program, const char *tools, long *count,
-                       swarf_gcode_error *err) {
+                       swarf_error *err) {
   char chunk[65536];
   size_t got;
-  int rc = SWARF_GCODE_OK;
+  int rc = SWARF_OK;
   FILE *in = fopen(program, "rb");
   swarf_gcode_parser *p;
   memset(err, 0, sizeof *err);
   snprintf(err->file, sizeof err->file, "%s", program);
   if (in == NULL) {
     snprintf(err->message, sizeof err->message, "cannot open file: %s", strerror(errno));
-    return SWARF_GCODE_ERR_ARG;
+    return SWARF_ERR_OPEN;
   }
-  p = swarf_gcode_parser_new(program, count_move, count);
-  if (p == NULL) return fclose(in), SWARF_GCODE_ERR_MEMORY;
+  if (swarf_gcode_parser_new(program, count_move, count, &p) != SWARF_OK)
+    return fclose(in), SWARF_ERR_MEMORY;
   swarf_gcode_parser_set_canon(p, print_canon, NULL);
   if (tools != NULL) rc = swarf_gcode_parser_load_tools(p, tools, err);
-  while (rc == SWARF_GCODE_OK && !swarf_gcode_parser_ended(p) &&
+  while (rc == SWARF_OK && !swarf_gcode_parser_ended(p) &&
          (got = fread(chunk, 1, sizeof chunk, in)) > 0)
     rc = swarf_gcode_parser_feed(p, chunk, got);
-  if (rc == SWARF_GCODE_OK) rc = swarf_gcode_parser_finish(p);
-  if (rc != SWARF_GCODE_OK && swarf_gcode_parser_error(p) != NULL) *err = *swarf_gcode_parser_error(p);
+  if (rc == SWARF_OK) rc = swarf_gcode_parser_finish(p);
+  if (rc != SWARF_OK && swarf_gcode_parser_error(p) != NULL) *err = *swarf_gcode_parser_error(p);
   swarf_gcode_parser_free(p);
   fclose(in);
   return rc;
@@ -91,7 +91,7 @@ static int parse_canon(const char *program, const char *tools, long *count,
 int swarf_cli_parse(int argc, char **argv) {
   long count[2] = {0, 0};
   const char *program = NULL, *tools = NULL;
-  swarf_gcode_error err;
+  swarf_error err;
   int rc, canon = 0;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(parse_help, stdout), 0;
@@ -106,14 +106,14 @@ int swarf_cli_parse(int argc, char **argv) {
   if (program == NULL) return fputs(parse_help, stderr), 2;
   if (canon || tools != NULL) {
     fflush(stdout);
-    rc = canon ? parse_canon(program, tools, count, &err) : SWARF_GCODE_ERR_ARG;
+    rc = canon ? parse_canon(program, tools, count, &err) : SWARF_ERR_ARG;
     if (!canon) snprintf(err.message, sizeof err.message, "--tools needs --canon"), err.line = 0;
   } else
     rc = swarf_gcode_parse_file(program, print_move, count, &err);
-  if (rc != SWARF_GCODE_OK) {
+  if (rc != SWARF_OK) {
     if (err.line > 0) fprintf(stderr, "%s:%ld:%d: %s\n", err.file, err.line, err.column, err.message);
     else fprintf(stderr, "%s: %s\n", err.file, err.message);
-    return rc == SWARF_GCODE_ERR_MEMORY ? 1 : 2;
+    return swarf_status_classify(rc) == SWARF_CLASS_INPUT ? 2 : 1;
   }
   fprintf(count[1] ? stdout : stderr, "%s: %ld moves\n", program, count[0]);
   return 0;

@@ -14,7 +14,7 @@
 
 #include "cli.h"
 #include "modbus_service.h"
-#include "sim.h"
+#include "swarf_sim.h"
 
 static const char help[] =
     "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
@@ -55,6 +55,12 @@ typedef struct {
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
 } sim_options;
+
+/* What the run's callbacks reach: the progress bar and the Modbus service. */
+typedef struct {
+  swarf_progress *bar; /* NULL when quiet */
+  swarf_modbus_service *modbus;
+} sim_clients;
 
 static int usage_error(const char *what) {
   fprintf(stderr, "swarf simulate: %s\n(run `swarf simulate --help` for the options)\n", what);
@@ -105,7 +111,8 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     return 0;
   }
   if (!strcmp(flag, "--stock")) {
-    if (swarf_sim_parse_stock(val, &o->cfg, msg, sizeof msg)) return usage_error(msg);
+    swarf_error err;
+    if (swarf_sim_parse_stock(val, &o->cfg.stock, &err)) return usage_error(err.message);
     return 0;
   }
   if (!strcmp(flag, "--machine")) {
@@ -118,16 +125,14 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
 }
 
 static int add_tool(sim_options *o, const char *spec) {
-  char msg[256];
+  char msg[600];
   swarf_sim_tool t;
-  if (o->cfg.ntools == SWARF_SIM_MAX_TOOLS) return usage_error("--tool: too many tools");
-  if (swarf_sim_parse_tool(spec, &t, msg, sizeof msg)) return usage_error(msg);
-  for (int i = 0; i < o->cfg.ntools; i++)
-    if (o->cfg.tools[i].number == t.number) {
-      snprintf(msg, sizeof msg, "--tool: T%d is given twice", t.number);
-      return usage_error(msg);
-    }
-  o->cfg.tools[o->cfg.ntools++] = t;
+  swarf_error err;
+  if (swarf_sim_parse_tool(spec, &t, &err)) return usage_error(err.message);
+  if (swarf_sim_config_add_tool(&o->cfg, &t, &err)) {
+    snprintf(msg, sizeof msg, "--tool: %s", err.message);
+    return usage_error(msg);
+  }
   return 0;
 }
 
@@ -144,8 +149,7 @@ static int check_output(const char *flag, const char *path) {
 static int parse_args(sim_options *o, int argc, char **argv) {
   int have_stock = 0, rc;
   memset(o, 0, sizeof *o);
-  o->cfg.voxel = 0.2;
-  o->cfg.half_width = 3;
+  swarf_sim_config_init(&o->cfg);
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
@@ -173,7 +177,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
 static int check_size(const swarf_sim_config *cfg) {
   double d[3], area, voxels;
   char what[256];
-  for (int k = 0; k < 3; k++) d[k] = cfg->stock_hi[k] - cfg->stock_lo[k];
+  for (int k = 0; k < 3; k++) d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
   area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
   voxels = area / (cfg->voxel * cfg->voxel) * 2.0 * cfg->half_width;
   if (voxels < 2e9) return 0;
@@ -194,12 +198,16 @@ static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t 
 
 /* Each alarm (up to the report's record of them) as a located warning. */
 static void print_alarms(const sim_options *o, const swarf_sim_report *r) {
-  for (long i = 0; i < r->alarms && i < SWARF_SIM_MAX_ALARMS; i++)
+  long rapids = r->alarm_count[SWARF_ALARM_RAPID], told = 0;
+  for (long i = 0; i < r->alarms && i < SWARF_SIM_MAX_ALARMS; i++) {
+    if (r->alarm[i].kind != SWARF_ALARM_RAPID) continue;
     fprintf(stderr, "%s:%ld:%d: warning: rapid move (G0) cuts into the material\n", o->program,
-            r->alarm_line[i], r->alarm_column[i]);
-  if (r->alarms > SWARF_SIM_MAX_ALARMS)
+            r->alarm[i].line, r->alarm[i].column);
+    told++;
+  }
+  if (rapids > told)
     fprintf(stderr, "%s: warning: %ld more rapid moves cut into the material\n", o->program,
-            r->alarms - SWARF_SIM_MAX_ALARMS);
+            rapids - told);
 }
 
 static void print_summary(const sim_options *o, const swarf_stock *stock,
@@ -224,30 +232,48 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
   printf("\n");
 }
 
+static int on_progress(void *user, const swarf_sim_progress *p) {
+  sim_clients *c = user;
+  if (c->bar != NULL) swarf_progress_update(c->bar, p->fraction, p->report->moves);
+  return swarf_modbus_observe(c->modbus, p);
+}
+
+/* The run's failure on stderr; returns the exit status. */
+static int report_failure(const swarf_error *e, const swarf_modbus_service *mb) {
+  char msg[1024];
+  if (e->status == SWARF_ERR_ABORTED && swarf_modbus_aborted(mb))
+    fprintf(stderr, "%s:%ld: aborted by a Modbus command\n", e->file, e->line);
+  else {
+    swarf_error_format(e, msg, sizeof msg);
+    fprintf(stderr, "%s\n", msg);
+  }
+  return (int)swarf_status_classify(e->status);
+}
+
 int swarf_cli_simulate(int argc, char **argv) {
   sim_options o;
   swarf_sim_report rep;
   swarf_stock *stock = NULL;
   swarf_progress pb;
   swarf_modbus_service *mb = NULL;
-  char msg[1024];
+  swarf_error err;
   size_t ntri = 0;
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
   if (rc || (rc = check_size(&o.cfg))) return rc;
-  if ((rc = swarf_modbus_start(&o.modbus, o.program, &o.cfg, &mb))) return rc;
+  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb))) return rc;
   swarf_progress_init(&pb);
-  if (!o.quiet) {
-    o.cfg.progress = swarf_progress_update;
-    o.cfg.progress_ctx = &pb;
-  }
-  rc = swarf_sim_run(&o.cfg, o.program, &stock, &rep, msg, sizeof msg);
-  swarf_progress_finish(&pb);
-  if (rc != 0) {
-    fprintf(stderr, "%s\n", msg);
+  sim_clients clients = {o.quiet ? NULL : &pb, mb};
+  o.cfg.cb.progress = on_progress;
+  o.cfg.cb.user = &clients;
+  swarf_error_init(&err);
+  if (swarf_sim_run(&o.cfg, o.program, &stock, &rep, &err) != SWARF_OK) {
+    swarf_progress_finish(&pb);
+    rc = report_failure(&err, mb);
     swarf_modbus_finish(mb, rc, &rep);
     return rc;
   }
+  swarf_progress_finish(&pb);
   print_alarms(&o, &rep);
   rc = write_outputs(&o, stock, &ntri);
   if (rc == 0 && !o.quiet) print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);

@@ -29,7 +29,7 @@ static int count_move(const swarf_move *mv, void *user) {
 
 static void *run(void *arg) {
   struct swarf_job_count *c = arg;
-  if (swarf_gcode_parse_file(c->path, count_move, c, NULL) == SWARF_GCODE_OK)
+  if (swarf_gcode_parse_file(c->path, count_move, c, NULL) == SWARF_OK)
     swarf_job_set_total(c->status, c->moves);
   return NULL;
 }

@@ -1,5 +1,5 @@
 /* job_observe.c -- the simulation side of the status service: the
- * observer that sim.c calls after every move. It fills its own snapshot and
+ * observer called from the simulation's progress callback after every move. It fills its own snapshot and
  * publishes it without waiting (job.h), refreshes the removed volume now
  * and then (a pass over the grid, so at most every 0.5 s and never more than
  * ~2 % of the run), and obeys pause and abort commands. Pausing is the one
@@ -41,15 +41,13 @@ static void hold_while_paused(swarf_job_observer *ob) {
   ob->snap.paused = 0;
 }
 
-int swarf_job_observe(void *ctx, const swarf_sim_report *sofar, long line, int tool,
-                         const swarf_stock *stock) {
-  swarf_job_observer *ob = ctx;
+int swarf_job_observe(swarf_job_observer *ob, const swarf_sim_progress *p) {
   double now = swarf_job_now();
-  ob->snap.line = line;
-  ob->snap.tool = tool;
-  ob->snap.moves_done = sofar->moves;
-  ob->snap.alarms = sofar->alarms;
-  refresh_volume(ob, sofar, stock, now);
+  ob->snap.line = p->line;
+  ob->snap.tool = p->tool;
+  ob->snap.moves_done = p->report->moves;
+  ob->snap.alarms = p->report->alarms;
+  refresh_volume(ob, p->report, p->stock, now);
   if (swarf_job_pause_requested(ob->status)) hold_while_paused(ob);
   swarf_job_publish(ob->status, &ob->snap);
   return swarf_job_abort_requested(ob->status);

@@ -21,7 +21,7 @@
 
 #include <modbus.h>
 
-#include "sim.h"
+#include "swarf_sim.h"
 #include "job.h"
 
 /* The register map (README.md, "Status over Modbus"). */
@@ -109,7 +109,7 @@ swarf_mb_push *swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_job *status, 
 /* Push once more now (the final state), then stop and free. */
 void swarf_mb_push_free(swarf_mb_push *p);
 
-/* The simulation's observer (swarf_sim_config.observe): owns the snapshot
+/* The simulation's observer (called from the simulation's progress callback): owns the snapshot
  * it publishes; computes the removed volume at most every half second and
  * never for more than ~2 % of the time. */
 typedef struct {
@@ -119,8 +119,7 @@ typedef struct {
 } swarf_job_observer;
 
 void swarf_job_observer_init(swarf_job_observer *ob, swarf_job *status);
-int swarf_job_observe(void *ob, const swarf_sim_report *sofar, long line, int tool,
-                         const swarf_stock *stock);
+int swarf_job_observe(swarf_job_observer *ob, const swarf_sim_progress *p);
 /* Publish the end of the run: rc 0 finished, else failed with error rc. */
 void swarf_job_observer_final(swarf_job_observer *ob, int rc, const swarf_sim_report *rep);
 

@@ -113,7 +113,7 @@ static void stop_all(swarf_modbus_service *svc) {
   free(svc);
 }
 
-int swarf_modbus_start(const swarf_modbus_options *o, const char *program, swarf_sim_config *cfg,
+int swarf_modbus_start(const swarf_modbus_options *o, const char *program,
                        swarf_modbus_service **out) {
   swarf_modbus_service *svc;
   char msg[600] = "out of memory";
@@ -133,14 +133,21 @@ int swarf_modbus_start(const swarf_modbus_options *o, const char *program, swarf
     if (open_endpoint(svc, o->push[i], 1, i, msg, sizeof msg)) goto err;
   swarf_job_observer_init(&svc->observer, svc->status);
   svc->count = swarf_job_count_new(program, svc->status);
-  cfg->observe = swarf_job_observe;
-  cfg->observe_ctx = &svc->observer;
   *out = svc;
   return 0;
 err:
   fprintf(stderr, "swarf simulate: %s\n", msg);
   if (svc) stop_all(svc);
   return 2;
+}
+
+int swarf_modbus_observe(swarf_modbus_service *svc, const swarf_sim_progress *p) {
+  if (svc == NULL) return 0;
+  return swarf_job_observe(&svc->observer, p);
+}
+
+int swarf_modbus_aborted(const swarf_modbus_service *svc) {
+  return svc != NULL && swarf_job_abort_requested(svc->status);
 }
 
 void swarf_modbus_finish(swarf_modbus_service *svc, int rc, const swarf_sim_report *rep) {

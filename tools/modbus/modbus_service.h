@@ -2,8 +2,7 @@
  * command line sees it: its options, and start/finish around the run.
  *
  * Role: while the simulation runs, it publishes a status snapshot (job.h)
- * through the observer that swarf_modbus_start installs in the simulation's
- * config; TCP and RTU servers and push clients, each in its own thread,
+ * from the simulation's progress callback (swarf_modbus_observe); TCP and RTU servers and push clients, each in its own thread,
  * serve that snapshot. The simulation never waits on the network.
  *
  * Ownership: the options are plain values owned by the caller; the service
@@ -14,7 +13,7 @@
 #ifndef SWARF_MODBUS_SERVICE_H
 #define SWARF_MODBUS_SERVICE_H
 
-#include "sim.h"
+#include "swarf_sim.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -43,10 +42,17 @@ int swarf_modbus_option(swarf_modbus_options *o, const char *flag, const char *v
 typedef struct swarf_modbus_service swarf_modbus_service;
 
 /* Open every endpoint (reporting a busy port or a missing device: returns
- * 2 with a message on stderr), announce them on stderr, and install the
- * observer in *cfg. With no --modbus option, *out is NULL and 0 returned. */
-int swarf_modbus_start(const swarf_modbus_options *o, const char *program, swarf_sim_config *cfg,
+ * 2 with a message on stderr) and announce them on stderr. With no --modbus
+ * option, *out is NULL and 0 returned. */
+int swarf_modbus_start(const swarf_modbus_options *o, const char *program,
                        swarf_modbus_service **out);
+
+/* Call from the simulation's progress callback (swarf_sim_callbacks): it
+ * publishes the snapshot without waiting, holds while a pause command is
+ * on, and returns non-zero when an abort command came. NULL: returns 0. */
+int swarf_modbus_observe(swarf_modbus_service *svc, const swarf_sim_progress *p);
+/* Whether an abort command stopped the run. */
+int swarf_modbus_aborted(const swarf_modbus_service *svc);
 
 /* Publish the final state (run status `rc`: 0 finished, else failed with
  * that error code; `rep` the run's report), keep serving for the linger

@@ -1,44 +1,21 @@
-/* sim.c -- the simulation driver (see sim.h).
+/* sim.c -- the simulation handle (swarf_sim.h).
  *
  * The parser calls on_move for every canonical move; motions are queued with
  * their sweeps in a fixed-size batch that is removed from the stock in one
- * pass when full and at the end. Memory is bounded by the batch size, not by
- * the program. The sim_state owns the batch arrays and the stock until the
- * run hands the stock to the caller.
+ * pass when full and at the end (batch.c). Memory is bounded by the batch
+ * size, not by the program. The handle owns the parser, the batch arrays and
+ * the stock until swarf_sim_take_stock hands the stock to the caller.
  */
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
 
-#include "sim.h"
-
-/* A move stamped at n + 1 evenly spaced poses (the benchmark baseline). */
-typedef struct {
-  const swarf_cutter *cutter;
-  const swarf_motion *motion;
-  int n;
-} stamp_ctx;
-
-typedef struct {
-  const swarf_sim_config *cfg;
-  const char *name;
-  swarf_stock *stock;
-  const swarf_cutter *cutter; /* in the spindle, NULL when empty */
-  swarf_motion *motions;      /* batch: motions, their sweeps and cuts */
-  swarf_sweep *sweeps;
-  swarf_stock_cut *cuts;
-  stamp_ctx *stamps;
-  int n, cap;
-  double pad_lo[3], pad_hi[3]; /* stock box grown by the narrow band */
-  swarf_sim_report *rep;
-  char *msg;
-  size_t msglen;
-  int status; /* 0, 1 internal, 2 bad input */
-} sim_state;
+#include "sim_private.h"
 
 static double now_seconds(void) {
   struct timespec ts;
@@ -46,321 +23,354 @@ static double now_seconds(void) {
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-static double sweep_sdf(const void *ctx, double x, double y, double z) {
-  const double p[3] = {x, y, z};
-  return swarf_sweep_sdf((const swarf_sweep *)ctx, p, NULL);
+void swarf_sim_config_init(swarf_sim_config *cfg) {
+  if (cfg == NULL) return;
+  memset(cfg, 0, sizeof *cfg);
+  cfg->voxel = 0.2;
+  cfg->half_width = 3;
+  cfg->batch = 128;
 }
 
-/* The cutter's sdf at p for one pose. */
-static double pose_sdf(const swarf_cutter *c, const double t[3], const double U[9], double x,
-                       double y, double z) {
-  const double d3[3] = {x - t[0], y - t[1], z - t[2]};
-  const double q[3] = {U[0] * d3[0] + U[3] * d3[1] + U[6] * d3[2],
-                       U[1] * d3[0] + U[4] * d3[1] + U[7] * d3[2],
-                       U[2] * d3[0] + U[5] * d3[1] + U[8] * d3[2]};
-  return swarf_cutter_sdf(c, q);
-}
-
-/* Minimum over the stamped poses, from the per-thread pose table (the same
- * one the swept sdf uses) for moves of up to 4096 stamps (600 kB a slot). */
-static double stamp_sdf(const void *ctx, double x, double y, double z) {
-  const stamp_ctx *s = ctx;
-  const swarf_pose *table = s->n <= 4096 ? swarf_motion_pose_table(s->motion, s->n) : NULL;
-  double best = INFINITY, t[3], U[9];
-  for (int i = 0; i <= s->n; i++) {
-    double d;
-    if (table != NULL)
-      d = pose_sdf(s->cutter, table[i].t, table[i].U, x, y, z);
-    else {
-      swarf_motion_eval(s->motion, (double)i / s->n, t, U);
-      d = pose_sdf(s->cutter, t, U, x, y, z);
-    }
-    if (d < best) best = d;
-  }
-  return best;
-}
-
-static const swarf_sim_tool *find_tool(const swarf_sim_config *cfg, int number) {
+swarf_status swarf_sim_config_add_tool(swarf_sim_config *cfg, const swarf_sim_tool *t,
+                                       swarf_error *err) {
+  if (cfg == NULL || t == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no config or tool");
+  if (cfg->ntools == SWARF_SIM_MAX_TOOLS)
+    return swarf_error_set(err, SWARF_ERR_ARG, "too many tools (%d at most)", SWARF_SIM_MAX_TOOLS);
   for (int i = 0; i < cfg->ntools; i++)
-    if (cfg->tools[i].number == number) return &cfg->tools[i];
+    if (cfg->tools[i].number == t->number)
+      return swarf_error_set(err, SWARF_ERR_ARG, "T%d is given twice", t->number);
+  cfg->tools[cfg->ntools++] = *t;
+  return SWARF_OK;
+}
+
+/* A failure: recorded once (the first one wins), the handle refuses more. */
+swarf_status swarf_sim_fail(swarf_sim *s, swarf_status st, long line, int column, const char *fmt,
+                            ...) {
+  va_list ap;
+  if (s->err.status != SWARF_OK) return s->err.status;
+  swarf_error_at(&s->err, s->name, line, column, NULL);
+  s->err.status = st;
+  va_start(ap, fmt);
+  vsnprintf(s->err.message, sizeof s->err.message, fmt, ap);
+  va_end(ap);
+  s->state = SIM_FAILED;
+  return st;
+}
+
+static const swarf_sim_tool *find_tool(const swarf_sim *s, int number) {
+  for (int i = 0; i < s->cfg.ntools; i++)
+    if (s->cfg.tools[i].number == number) return &s->cfg.tools[i];
   return NULL;
 }
 
-static int fail_at(sim_state *st, const swarf_move *mv, const char *what) {
-  snprintf(st->msg, st->msglen, "%s:%ld:%d: %s", st->name, mv->line, mv->column, what);
-  st->status = 2;
-  return 1;
-}
-
-static int flush(sim_state *st) {
-  if (st->n == 0) return 0;
-  if (swarf_stock_remove_batch(st->stock, st->cuts, (size_t)st->n, st->msg, st->msglen) != 0) {
-    st->status = 1;
+static int on_tool_change(swarf_sim *s, const swarf_move *mv) {
+  const swarf_sim_tool *t = find_tool(s, mv->tool);
+  s->rep.tool_changes++;
+  if (mv->tool != 0 && t == NULL) {
+    swarf_sim_fail(s, SWARF_ERR_TOOL, mv->line, mv->column,
+                   "tool T%d is not in the tool table; describe it with --tool T%d=<shape>,"
+                   "D<diameter>",
+                   mv->tool, mv->tool);
     return 1;
   }
-  st->n = 0;
+  s->tool = t;
   return 0;
 }
 
-static int boxes_overlap(const double alo[3], const double ahi[3], const double blo[3],
-                         const double bhi[3]) {
-  for (int k = 0; k < 3; k++)
-    if (ahi[k] < blo[k] || alo[k] > bhi[k]) return 0;
+/* The T number to report: the move's, or the single tool loaded at start. */
+static int spindle_tool(const swarf_sim *s, int move_tool) {
+  if (move_tool == 0 && s->tool != NULL) return s->tool->number;
+  return move_tool;
+}
+
+static int tell_progress(swarf_sim *s, long line, int tool) {
+  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, s->stock};
+  if (s->cfg.cb.progress == NULL || s->cfg.cb.progress(s->cfg.cb.user, &p) == 0) return 0;
+  swarf_sim_fail(s, SWARF_ERR_ABORTED, line, 0, "aborted by the caller");
   return 1;
 }
 
-/* A rapid move is checked against the stock as it stands when it runs:
- * cutting deeper than half a voxel into material raises an alarm. The moves
- * queued before it have been removed (queue_motion). */
-static int check_rapid(sim_state *st, const swarf_motion *m, const swarf_stock_cut *c) {
-  swarf_sim_report *r = st->rep;
-  int hit = 0;
-  if (swarf_stock_overlaps(st->stock, c, 0.5 * st->cfg->voxel, &hit, NULL, st->msg, st->msglen) != 0) {
-    st->status = 1;
-    return 1;
-  }
-  if (hit && r->alarms < SWARF_SIM_MAX_ALARMS) {
-    r->alarm_line[r->alarms] = m->line;
-    r->alarm_column[r->alarms] = m->column;
-  }
-  r->alarms += hit;
-  return 0;
-}
-
-/* Remove the queued moves before the rapid in slot st->n, which moves to slot 0. */
-static int flush_before_rapid(sim_state *st) {
-  swarf_motion m = st->motions[st->n];
-  if (flush(st) != 0) return 1;
-  st->motions[0] = m;
-  return 0;
-}
-
-/* Queue the sweep of the motion in slot st->n if it can touch the stock. */
-static int queue_motion(sim_state *st) {
-  swarf_motion *m = &st->motions[st->n];
-  swarf_sweep *s = &st->sweeps[st->n];
-  swarf_stock_cut *c = &st->cuts[st->n];
-  swarf_sweep_init_voxel(s, st->cutter, m, st->cfg->voxel);
-  swarf_sweep_bounds(s, c->lo, c->hi);
-  if (!boxes_overlap(c->lo, c->hi, st->pad_lo, st->pad_hi)) return 0;
-  if (m->rapid && st->n > 0) /* checked against the stock as it stands: once, from slot 0 */
-    return flush_before_rapid(st) != 0 ? 1 : queue_motion(st);
-  c->sdf = sweep_sdf;
-  c->ctx = s;
-  if (st->cfg->stamp_step > 0) {
-    stamp_ctx *sc = &st->stamps[st->n];
-    /* poses stamp_step apart along the path of the cutter's farthest point */
-    double n = ceil((m->length + m->turn * hypot(0.5 * st->cutter->diameter, st->cutter->length)) /
-                    st->cfg->stamp_step);
-    sc->cutter = st->cutter;
-    sc->motion = m;
-    sc->n = n < 1 ? 1 : n > 1e6 ? 1000000 : (int)n;
-    c->sdf = stamp_sdf;
-    c->ctx = sc;
-  }
-  st->rep->cutting_moves++;
-  if (m->rapid && check_rapid(st, m, c) != 0) return 1;
-  if (++st->n == st->cap) return flush(st);
-  return 0;
-}
-
-static int on_tool_change(sim_state *st, const swarf_move *mv) {
-  const swarf_sim_tool *t = find_tool(st->cfg, mv->tool);
-  char what[160];
-  st->rep->tool_changes++;
-  if (mv->tool == 0) {
-    st->cutter = NULL;
-    return 0;
-  }
-  if (t == NULL) {
-    snprintf(what, sizeof what,
-             "tool T%d is not in the tool table; describe it with --tool T%d=<shape>,D<diameter>",
-             mv->tool, mv->tool);
-    return fail_at(st, mv, what);
-  }
-  st->cutter = &t->cutter;
-  return 0;
-}
-
-/* Tell the observer (if any) about the move; 1 if it asks to stop. */
-static int observe(sim_state *st, const swarf_move *mv) {
-  int tool = mv->tool;
-  if (st->cfg->observe == NULL) return 0;
-  if (tool == 0 && st->cutter != NULL && st->cfg->ntools == 1) tool = st->cfg->tools[0].number;
-  if (st->cfg->observe(st->cfg->observe_ctx, st->rep, mv->line, tool, st->stock) == 0) return 0;
-  snprintf(st->msg, st->msglen, "%s:%ld: aborted by a Modbus command", st->name, mv->line);
-  st->status = 3;
-  return 1;
+/* Count a motion, tell the caller, and queue its sweep if it can cut. */
+static int take_motion(swarf_sim *s, swarf_motion *m) {
+  int tool = spindle_tool(s, m->tool);
+  s->rep.moves++;
+  s->rep.rapids += m->rapid;
+  s->rep.arcs += m->kind == SWARF_MOTION_HELIX;
+  s->rep.path_mm += m->length;
+  s->rep.machining_s += m->duration;
+  if (swarf_sim_lines_add(s, m, tool) != 0) return 1;
+  if (tell_progress(s, m->line, tool)) return 1;
+  if (s->tool == NULL || swarf_motion_is_null(m)) return 0;
+  return swarf_sim_batch_queue(s, m);
 }
 
 static int on_move(const swarf_move *mv, void *user) {
-  sim_state *st = user;
-  swarf_motion *m = &st->motions[st->n];
-  if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(st, mv);
+  swarf_sim *s = user;
+  swarf_motion m;
+  if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, mv);
   if (mv->kind == SWARF_MOVE_DWELL) return 0;
-  int rc = swarf_machine_motion(&st->cfg->machine, mv, m);
-  if (rc == -2)
-    return fail_at(st, mv,
-                   "this move turns a rotary axis the machine does not have; choose "
-                   "one with --machine xyza, xyzac-trt or xyzbc-trt");
-  if (rc != 0) return 0;
-  st->rep->moves++;
-  st->rep->rapids += m->rapid;
-  st->rep->arcs += m->kind == SWARF_MOTION_HELIX;
-  st->rep->path_mm += m->length;
-  st->rep->machining_s += m->duration;
-  if (observe(st, mv)) return 1;
-  if (st->cutter == NULL || swarf_motion_is_null(m)) return 0;
-  if (st->cfg->progress && st->rep->moves % 4096 == 0)
-    st->cfg->progress(st->cfg->progress_ctx, -1.0, st->rep->moves);
-  return queue_motion(st);
-}
-
-static int state_init(sim_state *st, const swarf_sim_config *cfg, const char *name,
-                      swarf_sim_report *rep, char *msg, size_t msglen) {
-  memset(st, 0, sizeof *st);
-  memset(rep, 0, sizeof *rep);
-  st->cfg = cfg;
-  st->name = name;
-  st->rep = rep;
-  st->msg = msg;
-  st->msglen = msglen;
-  st->cap = cfg->batch > 0 ? (cfg->batch < 4096 ? cfg->batch : 4096) : 128;
-  st->motions = malloc(sizeof *st->motions * (size_t)st->cap);
-  st->sweeps = malloc(sizeof *st->sweeps * (size_t)st->cap);
-  st->cuts = malloc(sizeof *st->cuts * (size_t)st->cap);
-  st->stamps = malloc(sizeof *st->stamps * (size_t)st->cap);
-  if (!st->motions || !st->sweeps || !st->cuts || !st->stamps) {
-    snprintf(msg, msglen, "out of memory");
+  int rc = swarf_machine_motion(&s->cfg.machine, mv, &m);
+  if (rc == -2) {
+    swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column,
+                   "this move turns a rotary axis the machine does not have; choose one with "
+                   "--machine xyza, xyzac-trt or xyzbc-trt");
     return 1;
   }
-  if (cfg->ntools == 1) st->cutter = &cfg->tools[0].cutter;
-  if (cfg->stock_cylinder)
-    st->stock = swarf_stock_new_cylinder(cfg->cyl_axis, cfg->cyl_radius,
-                                         cfg->stock_lo[cfg->cyl_axis], cfg->stock_hi[cfg->cyl_axis],
-                                         cfg->voxel, cfg->half_width, msg, msglen);
+  if (rc != 0) return 0;
+  return take_motion(s, &m);
+}
+
+/* The parser's tool table is the cutters given, with their length offsets
+ * (0: the simulated point is the tool tip, so G43 H<n> changes nothing; an
+ * H of a tool not given is an error at its line). */
+static void set_tool_table(swarf_sim *s) {
+  swarf_gcode_parser_clear_tools(s->parser);
+  for (int i = 0; i < s->cfg.ntools; i++)
+    swarf_gcode_parser_set_tool(s->parser, s->cfg.tools[i].number, s->cfg.tools[i].length,
+                                s->cfg.tools[i].cutter.diameter);
+}
+
+static swarf_stock *build_stock(const swarf_sim_config *cfg, swarf_error *err) {
+  const swarf_sim_stock_spec *k = &cfg->stock;
+  char msg[512] = "";
+  swarf_stock *st;
+  if (k->kind == SWARF_SIM_STOCK_CYLINDER)
+    st = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
+                                  cfg->half_width, msg, sizeof msg);
   else
-    st->stock =
-        swarf_stock_new_box(cfg->stock_lo, cfg->stock_hi, cfg->voxel, cfg->half_width, msg, msglen);
-  if (st->stock == NULL) return 1;
-  double band = swarf_stock_voxel(st->stock) * (swarf_stock_half_width(st->stock) + 1);
+    st = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, msg, sizeof msg);
+  if (st == NULL) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", msg);
+  return st;
+}
+
+/* Moves whose sweep misses the material's box grown by the band are not
+ * queued: the box of a stock built from a spec, or an existing stock's
+ * active voxels (which hold the band already). */
+static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
+  double band = swarf_stock_voxel(s->stock) * (swarf_stock_half_width(s->stock) + 1), lo[3], hi[3];
+  if (spec != NULL) {
+    memcpy(lo, spec->lo, sizeof lo);
+    memcpy(hi, spec->hi, sizeof hi);
+  } else {
+    swarf_stock_bounds(s->stock, lo, hi);
+    band = swarf_stock_voxel(s->stock);
+  }
   for (int k = 0; k < 3; k++) {
-    st->pad_lo[k] = cfg->stock_lo[k] - band;
-    st->pad_hi[k] = cfg->stock_hi[k] + band;
+    s->pad_lo[k] = lo[k] - band;
+    s->pad_hi[k] = hi[k] + band;
   }
-  rep->volume_before = swarf_stock_volume(st->stock);
-  return 0;
 }
 
-static void state_clear(sim_state *st) {
-  free(st->motions);
-  free(st->sweeps);
-  free(st->cuts);
-  free(st->stamps);
-  swarf_stock_free(st->stock);
+static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
+  if (swarf_gcode_parser_new(s->name, on_move, s, &s->parser) != SWARF_OK ||
+      swarf_sim_batch_init(s) != 0)
+    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
+  set_tool_table(s);
+  if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
+  s->rep.volume_before = swarf_stock_volume(s->stock);
+  s->rep.volume_after = NAN;
+  s->fraction = -1.0;
+  return SWARF_OK;
 }
 
-/* Map a parser status to the run's status; fills msg for parser errors. */
-static int parser_outcome(sim_state *st, swarf_gcode_parser *p, int rc) {
-  const swarf_gcode_error *e = swarf_gcode_parser_error(p);
-  if (rc == SWARF_GCODE_OK) return 0;
-  if (rc == SWARF_GCODE_ERR_STOPPED) return st->status ? st->status : 1;
-  if (e != NULL)
-    snprintf(st->msg, st->msglen, "%s:%ld:%d: %s", e->file, e->line, e->column, e->message);
-  return rc == SWARF_GCODE_ERR_MEMORY ? 1 : 2;
-}
-
-/* The parser's tool table is the cutters given: each with length offset 0,
- * since the simulated point is the tool tip (G43 H<n> then changes nothing,
- * G43 H<unknown> is an error at its line). */
-static void set_tool_table(swarf_gcode_parser *p, const swarf_sim_config *cfg) {
-  swarf_gcode_parser_clear_tools(p);
-  for (int i = 0; i < cfg->ntools; i++)
-    swarf_gcode_parser_set_tool(p, cfg->tools[i].number, 0.0, cfg->tools[i].cutter.diameter);
-}
-
-typedef int (*feed_fn)(swarf_gcode_parser *p, sim_state *st, const void *src);
-
-static int run(const swarf_sim_config *cfg, const char *name, feed_fn feed, const void *src,
-               swarf_stock **out, swarf_sim_report *rep, char *msg, size_t msglen) {
-  sim_state st;
-  double t0 = now_seconds();
-  int rc = 1;
-  *out = NULL;
-  if (state_init(&st, cfg, name, rep, msg, msglen) == 0) {
-    swarf_gcode_parser *p = swarf_gcode_parser_new(name, on_move, &st);
-    if (p == NULL) {
-      snprintf(msg, msglen, "out of memory");
-    } else {
-      set_tool_table(p, cfg);
-      rc = feed(p, &st, src);
-      if (rc == 0) rc = parser_outcome(&st, p, swarf_gcode_parser_finish(p));
-      rep->lines = swarf_gcode_parser_lines(p);
-      swarf_gcode_parser_free(p);
-    }
-    if (rc == 0 && flush(&st) != 0) rc = 1;
+static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf_stock *stock,
+                            const swarf_sim_stock_spec *spec, swarf_sim **out, swarf_error *err) {
+  swarf_sim *s;
+  swarf_status st;
+  if (out != NULL) *out = NULL;
+  if (cfg == NULL || out == NULL || stock == NULL) {
+    swarf_stock_free(stock);
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_new: no config, stock or output");
   }
-  if (rc == 0) {
-    rep->volume_after = swarf_stock_volume(st.stock);
-    *out = st.stock;
-    st.stock = NULL;
+  if ((s = calloc(1, sizeof *s)) == NULL) {
+    swarf_stock_free(stock);
+    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   }
-  state_clear(&st);
-  rep->seconds = now_seconds() - t0;
+  s->t0 = now_seconds();
+  s->cfg = *cfg;
+  s->cfg.voxel = swarf_stock_voxel(stock);
+  s->stock = stock;
+  snprintf(s->name, sizeof s->name, "%s", name != NULL ? name : "program");
+  set_pad(s, spec);
+  if ((st = sim_init(s, err)) != SWARF_OK) {
+    swarf_sim_free(s);
+    return st;
+  }
+  *out = s;
+  return SWARF_OK;
+}
+
+swarf_status swarf_sim_new_with_stock(const swarf_sim_config *cfg, const char *name,
+                                      swarf_stock *stock, swarf_sim **out, swarf_error *err) {
+  return sim_new(cfg, name, stock, NULL, out, err);
+}
+
+swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_sim **out,
+                           swarf_error *err) {
+  swarf_stock *stock;
+  if (out != NULL) *out = NULL;
+  if (cfg == NULL || out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no config or output");
+  if ((stock = build_stock(cfg, err)) == NULL) return SWARF_ERR_ARG;
+  return sim_new(cfg, name, stock, &cfg->stock, out, err);
+}
+
+static swarf_status check_open(swarf_sim *s) {
+  if (s == NULL) return SWARF_ERR_ARG;
+  if (s->state == SIM_OPEN) return SWARF_OK;
+  if (s->err.status == SWARF_OK)
+    swarf_error_set(&s->err, SWARF_ERR_STATE,
+                    s->state == SIM_FINISHED ? "the program was finished already"
+                                             : "the stock was taken already");
+  return SWARF_ERR_STATE;
+}
+
+/* Map the parser's outcome: its own errors carry their place and identity;
+ * a stop asked by on_move carries the handle's own error. */
+static swarf_status parser_outcome(swarf_sim *s, swarf_status rc) {
+  const swarf_error *e = swarf_gcode_parser_error(s->parser);
+  if (rc == SWARF_OK) return SWARF_OK;
+  if (s->err.status != SWARF_OK) return s->err.status;
+  if (e == NULL || e->status == SWARF_OK)
+    return swarf_sim_fail(s, rc, 0, 0, "%s", swarf_status_message(rc));
+  s->err = *e;
+  s->state = SIM_FAILED;
   return rc;
 }
 
-typedef struct {
-  const char *text;
-  size_t len;
-} text_src;
-
-static int feed_text(swarf_gcode_parser *p, sim_state *st, const void *src) {
-  const text_src *t = src;
-  return parser_outcome(st, p, swarf_gcode_parser_feed(p, t->text, t->len));
+swarf_status swarf_sim_feed(swarf_sim *s, const char *text, size_t len) {
+  swarf_status st = check_open(s);
+  if (st != SWARF_OK) return st;
+  if (text == NULL && len > 0) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no text");
+  return parser_outcome(s, swarf_gcode_parser_feed(s->parser, text, len));
 }
 
-static int feed_file(swarf_gcode_parser *p, sim_state *st, const void *src) {
-  FILE *f = (FILE *)src;
+swarf_status swarf_sim_feed_file(swarf_sim *s, const char *path) {
   static const size_t chunk = 1 << 16;
-  char *buf = malloc(chunk);
+  swarf_status st = check_open(s);
   struct stat sb;
-  double total = fstat(fileno(f), &sb) == 0 && sb.st_size > 0 ? (double)sb.st_size : 0.0;
-  double done = 0.0;
+  FILE *f;
+  char *buf;
   size_t n;
-  int rc = 0;
-  if (buf == NULL) return 1;
-  while (rc == 0 && (n = fread(buf, 1, chunk, f)) > 0) {
-    rc = parser_outcome(st, p, swarf_gcode_parser_feed(p, buf, n));
+  if (st != SWARF_OK) return st;
+  if (path == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no program path");
+  if ((f = fopen(path, "rb")) == NULL)
+    return swarf_sim_fail(s, SWARF_ERR_OPEN, 0, 0, "cannot open the program: %s", strerror(errno));
+  double total = fstat(fileno(f), &sb) == 0 && sb.st_size > 0 ? (double)sb.st_size : 0.0, done = 0;
+  if ((buf = malloc(chunk)) == NULL)
+    st = swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory");
+  while (st == SWARF_OK && (n = fread(buf, 1, chunk, f)) > 0) {
+    st = swarf_sim_feed(s, buf, n);
     done += (double)n;
-    if (st->cfg->progress && total > 0)
-      st->cfg->progress(st->cfg->progress_ctx, done / total, st->rep->moves);
+    if (total > 0) s->fraction = done / total > 1.0 ? 1.0 : done / total;
+    if (st == SWARF_OK && tell_progress(s, swarf_gcode_parser_lines(s->parser), spindle_tool(s, 0)))
+      st = s->err.status;
   }
-  if (rc == 0 && ferror(f)) {
-    snprintf(st->msg, st->msglen, "%s: read error: %s", st->name, strerror(errno));
-    rc = 2;
-  }
+  if (st == SWARF_OK && ferror(f))
+    st = swarf_sim_fail(s, SWARF_ERR_OPEN, 0, 0, "read error: %s", strerror(errno));
   free(buf);
-  return rc;
-}
-
-int swarf_sim_run_text(const swarf_sim_config *cfg, const char *name, const char *text, size_t len,
-                       swarf_stock **out, swarf_sim_report *rep, char *msg, size_t msglen) {
-  text_src src = {text, len};
-  return run(cfg, name, feed_text, &src, out, rep, msg, msglen);
-}
-
-int swarf_sim_run(const swarf_sim_config *cfg, const char *path, swarf_stock **out,
-                  swarf_sim_report *rep, char *msg, size_t msglen) {
-  FILE *f = fopen(path, "rb");
-  int rc;
-  if (f == NULL) {
-    *out = NULL;
-    memset(rep, 0, sizeof *rep);
-    snprintf(msg, msglen, "%s: cannot open the program: %s", path, strerror(errno));
-    return 2;
-  }
-  rc = run(cfg, path, feed_file, f, out, rep, msg, msglen);
   fclose(f);
-  return rc;
+  return st;
+}
+
+swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
+  swarf_status st = check_open(s);
+  swarf_motion copy;
+  if (st != SWARF_OK) return st;
+  if (m == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no motion");
+  copy = *m;
+  if (m->tool != 0 && (s->tool == NULL || s->tool->number != m->tool)) {
+    const swarf_sim_tool *t = find_tool(s, m->tool);
+    if (t == NULL)
+      return swarf_sim_fail(s, SWARF_ERR_TOOL, m->line, m->column,
+                            "tool T%d is not in the tool table", m->tool);
+    s->tool = t;
+  }
+  return take_motion(s, &copy) ? s->err.status : SWARF_OK;
+}
+
+swarf_status swarf_sim_finish(swarf_sim *s) {
+  swarf_status st = check_open(s);
+  if (st != SWARF_OK) return st;
+  st = parser_outcome(s, swarf_gcode_parser_finish(s->parser));
+  s->rep.lines = swarf_gcode_parser_lines(s->parser);
+  if (st == SWARF_OK && swarf_sim_batch_flush(s) != 0) st = s->err.status;
+  if (st == SWARF_OK && swarf_sim_lines_flush(s, 1) != 0) st = s->err.status;
+  s->rep.seconds = now_seconds() - s->t0;
+  if (st != SWARF_OK) return st;
+  s->rep.volume_after = swarf_stock_volume(s->stock);
+  s->state = SIM_FINISHED;
+  return SWARF_OK;
+}
+
+const swarf_error *swarf_sim_error(const swarf_sim *s) {
+  return s != NULL ? &s->err : NULL;
+}
+
+const swarf_sim_report *swarf_sim_get_report(const swarf_sim *s) {
+  return s != NULL ? &s->rep : NULL;
+}
+
+const swarf_stock *swarf_sim_stock(const swarf_sim *s) {
+  return s != NULL ? s->stock : NULL;
+}
+
+swarf_stock *swarf_sim_take_stock(swarf_sim *s) {
+  swarf_stock *st;
+  if (s == NULL) return NULL;
+  st = s->stock;
+  s->stock = NULL;
+  if (s->state == SIM_OPEN) s->state = SIM_TAKEN;
+  return st;
+}
+
+void swarf_sim_free(swarf_sim *s) {
+  if (s == NULL) return;
+  swarf_gcode_parser_free(s->parser);
+  swarf_sim_batch_clear(s);
+  swarf_stock_free(s->stock);
+  free(s);
+}
+
+/* ---- One-shot conveniences ------------------------------------------------ */
+
+typedef swarf_status (*feed_fn)(swarf_sim *s, const void *a, size_t len);
+
+static swarf_status feed_path(swarf_sim *s, const void *path, size_t len) {
+  (void)len;
+  return swarf_sim_feed_file(s, path);
+}
+
+static swarf_status feed_text(swarf_sim *s, const void *text, size_t len) {
+  return swarf_sim_feed(s, text, len);
+}
+
+static swarf_status run(const swarf_sim_config *cfg, const char *name, feed_fn feed,
+                        const void *src, size_t len, swarf_stock **out, swarf_sim_report *rep,
+                        swarf_error *err) {
+  swarf_sim *s = NULL;
+  swarf_status st;
+  if (out != NULL) *out = NULL;
+  if (rep != NULL) memset(rep, 0, sizeof *rep);
+  if (out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no output");
+  if ((st = swarf_sim_new(cfg, name, &s, err)) != SWARF_OK) return st;
+  st = feed(s, src, len);
+  if (st == SWARF_OK) st = swarf_sim_finish(s);
+  if (rep != NULL) *rep = s->rep;
+  if (st == SWARF_OK)
+    *out = swarf_sim_take_stock(s);
+  else if (err != NULL)
+    *err = s->err;
+  swarf_sim_free(s);
+  return st;
+}
+
+swarf_status swarf_sim_run(const swarf_sim_config *cfg, const char *path, swarf_stock **out,
+                           swarf_sim_report *rep, swarf_error *err) {
+  return run(cfg, path, feed_path, path, 0, out, rep, err);
+}
+
+swarf_status swarf_sim_run_text(const swarf_sim_config *cfg, const char *name, const char *text,
+                                size_t len, swarf_stock **out, swarf_sim_report *rep,
+                                swarf_error *err) {
+  return run(cfg, name, feed_text, text, len, out, rep, err);
 }

@@ -84,9 +84,9 @@ typedef struct {
 } swarf_sim_fixture;
 
 typedef enum {
-  SWARF_SIM_STOCK_BOX = 0,  /* lo..hi */
-  SWARF_SIM_STOCK_CYLINDER  /* about axis (0 x, 1 y, 2 z) through the origin, radius,
-                             * from lo[axis] to hi[axis] along it */
+  SWARF_SIM_STOCK_BOX = 0, /* lo..hi */
+  SWARF_SIM_STOCK_CYLINDER /* about axis (0 x, 1 y, 2 z) through the origin, radius,
+                            * from lo[axis] to hi[axis] along it */
 } swarf_sim_stock_kind;
 
 typedef struct {
@@ -111,21 +111,21 @@ typedef enum {
 
 typedef struct {
   swarf_alarm_kind kind;
-  long line;     /* source line of the move, 1-based */
-  int column;    /* source column of its motion word */
-  int tool;      /* T number in the spindle */
-  double depth;  /* mm, deepest penetration found (NaN when not measured) */
-  double at[3];  /* mm, workpiece frame: where (NaN when not measured) */
-  int index;     /* FIXTURE: which fixture (1-based); 0 otherwise */
+  long line;    /* source line of the move, 1-based */
+  int column;   /* source column of its motion word */
+  int tool;     /* T number in the spindle */
+  double depth; /* mm, deepest penetration found (NaN when not measured) */
+  double at[3]; /* mm, workpiece frame: where (NaN when not measured) */
+  int index;    /* FIXTURE: which fixture (1-based); 0 otherwise */
 } swarf_alarm;
 
 /* Progress, after every motion move (and after each chunk of a file). */
 typedef struct {
-  double fraction;                 /* of the program read, 0..1; < 0 while unknown */
-  long line;                       /* source line of the move */
-  int tool;                        /* T number in the spindle, 0 none */
-  const swarf_sim_report *report;  /* counts so far */
-  const swarf_stock *stock;        /* the stock as of the last removal pass (read only) */
+  double fraction;                /* of the program read, 0..1; < 0 while unknown */
+  long line;                      /* source line of the move */
+  int tool;                       /* T number in the spindle, 0 none */
+  const swarf_sim_report *report; /* counts so far */
+  const swarf_stock *stock;       /* the stock as of the last removal pass (read only) */
 } swarf_sim_progress;
 
 /* Per source line that moved the tool, in program order, once its moves have
@@ -150,16 +150,16 @@ typedef struct {
 } swarf_sim_callbacks;
 
 typedef struct {
-  swarf_machine machine; /* kinematics (toolpath.h); zero: xyz */
+  swarf_machine machine;      /* kinematics (toolpath.h); zero: xyz */
   swarf_sim_stock_spec stock; /* the initial stock, unless swarf_sim_new_with_stock */
-  double voxel;          /* voxel edge, mm */
-  int half_width;        /* narrow band, voxels each side (>= 3) */
-  int batch;             /* moves removed per stock pass (default 128) */
+  double voxel;               /* voxel edge, mm */
+  int half_width;             /* narrow band, voxels each side (>= 3) */
+  int batch;                  /* moves removed per stock pass (default 128) */
   swarf_sim_tool tools[SWARF_SIM_MAX_TOOLS];
-  int ntools;            /* one tool: loaded at the start; more: T<n> M6 selects */
-  int line_volumes;      /* 1: measure each line's removed volume (swarf_line_result) */
+  int ntools;       /* one tool: loaded at the start; more: T<n> M6 selects */
+  int line_volumes; /* 1: measure each line's removed volume (swarf_line_result) */
   swarf_sim_fixture fixtures[SWARF_SIM_MAX_FIXTURES];
-  int nfixtures;         /* fixtures (FIXTURE alarms, index 1-based in this order) */
+  int nfixtures;    /* fixtures (FIXTURE alarms, index 1-based in this order) */
   /* Benchmark baseline only: when > 0 each move is not swept exactly but
    * stamped at poses stamp_step mm apart, as stamping simulators do. */
   double stamp_step;
@@ -179,8 +179,8 @@ SWARF_API swarf_status swarf_sim_config_add_tool(swarf_sim_config *cfg, const sw
 /* A new simulation of a program called `name` (used in messages; not
  * opened). It builds the stock from cfg->stock. The config is copied: the
  * caller may free it. On failure *out is NULL and err (may be NULL) says why. */
-SWARF_API swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name,
-                                     swarf_sim **out, swarf_error *err);
+SWARF_API swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_sim **out,
+                                     swarf_error *err);
 
 /* The same on an existing stock (a .vdb read back, an earlier run's result):
  * the handle takes ownership of `stock` in every case (freed on failure). Its
@@ -211,20 +211,20 @@ SWARF_API const swarf_error *swarf_sim_error(const swarf_sim *sim);
 
 /* Counts so far (final after finish). Owned by the handle. */
 struct swarf_sim_report {
-  long lines;                 /* program lines read */
-  long moves;                 /* motion moves (rapid, line, arc) */
-  long cutting_moves;         /* moves whose sweep touched the stock's bounds */
-  long rapids, arcs;          /* counts among moves */
+  long lines;         /* program lines read */
+  long moves;         /* motion moves (rapid, line, arc) */
+  long cutting_moves; /* moves whose sweep touched the stock's bounds */
+  long rapids, arcs;  /* counts among moves */
   long tool_changes;
-  double path_mm;             /* tip path length */
-  double machining_s;         /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
-  double volume_before;       /* stock volume at the start, mm^3 */
-  double volume_after;        /* at finish, mm^3 (NaN before) */
-  double seconds;             /* wall time from new to finish */
-  long alarms;                /* all alarms */
-  long collisions;            /* among them: SHANK, HOLDER and FIXTURE alarms */
-  double collision_s;         /* wall time spent checking for collisions, s */
-  long alarm_count[5];        /* per swarf_alarm_kind */
+  double path_mm;                          /* tip path length */
+  double machining_s;                      /* at programmed feeds (rapids at SWARF_RAPID_RATE) */
+  double volume_before;                    /* stock volume at the start, mm^3 */
+  double volume_after;                     /* at finish, mm^3 (NaN before) */
+  double seconds;                          /* wall time from new to finish */
+  long alarms;                             /* all alarms */
+  long alarm_count[5];                     /* per swarf_alarm_kind */
+  long collisions;                         /* among them: SHANK, HOLDER and FIXTURE alarms */
+  double collision_s;                      /* wall time checking for collisions, s */
   swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */
 };
 SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);

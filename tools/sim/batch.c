@@ -1,0 +1,150 @@
+/* batch.c -- the simulation's batch of queued sweeps (sim_private.h).
+ *
+ * Each motion that can touch the material gets its swept volume (or, for
+ * the --stamp baseline, the cutter stamped at poses along it) in the next
+ * slot; a full batch is removed from the stock in one pass. A rapid move is
+ * checked against the stock as it stands when it runs: the moves queued
+ * before it are removed first, and cutting deeper than half a voxel into
+ * material raises an alarm (the cut is still made, as on the machine).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim_private.h"
+
+static double sweep_sdf(const void *ctx, double x, double y, double z) {
+  const double p[3] = {x, y, z};
+  return swarf_sweep_sdf((const swarf_sweep *)ctx, p, NULL);
+}
+
+/* The cutter's sdf at p for one pose. */
+static double pose_sdf(const swarf_cutter *c, const double t[3], const double U[9], double x,
+                       double y, double z) {
+  const double d3[3] = {x - t[0], y - t[1], z - t[2]};
+  const double q[3] = {U[0] * d3[0] + U[3] * d3[1] + U[6] * d3[2],
+                       U[1] * d3[0] + U[4] * d3[1] + U[7] * d3[2],
+                       U[2] * d3[0] + U[5] * d3[1] + U[8] * d3[2]};
+  return swarf_cutter_sdf(c, q);
+}
+
+/* Minimum over the stamped poses, from the per-thread pose table (the same
+ * one the swept sdf uses) for moves of up to 4096 stamps (600 kB a slot). */
+static double stamp_sdf(const void *ctx, double x, double y, double z) {
+  const swarf_sim_stamp *s = ctx;
+  const swarf_pose *table = s->n <= 4096 ? swarf_motion_pose_table(s->motion, s->n) : NULL;
+  double best = INFINITY, t[3], U[9];
+  for (int i = 0; i <= s->n; i++) {
+    double d;
+    if (table != NULL)
+      d = pose_sdf(s->cutter, table[i].t, table[i].U, x, y, z);
+    else {
+      swarf_motion_eval(s->motion, (double)i / s->n, t, U);
+      d = pose_sdf(s->cutter, t, U, x, y, z);
+    }
+    if (d < best) best = d;
+  }
+  return best;
+}
+
+int swarf_sim_batch_init(swarf_sim *s) {
+  int b = s->cfg.batch;
+  s->cap = b > 0 ? (b < 4096 ? b : 4096) : 128;
+  s->motions = malloc(sizeof *s->motions * (size_t)s->cap);
+  s->sweeps = malloc(sizeof *s->sweeps * (size_t)s->cap);
+  s->cuts = malloc(sizeof *s->cuts * (size_t)s->cap);
+  s->stamps = malloc(sizeof *s->stamps * (size_t)s->cap);
+  s->pending_cap = s->cap;
+  s->pending = malloc(sizeof *s->pending * (size_t)s->pending_cap);
+  return s->motions && s->sweeps && s->cuts && s->stamps && s->pending ? 0 : -1;
+}
+
+void swarf_sim_batch_clear(swarf_sim *s) {
+  free(s->motions);
+  free(s->sweeps);
+  free(s->cuts);
+  free(s->stamps);
+  free(s->pending);
+}
+
+int swarf_sim_batch_flush(swarf_sim *s) {
+  char msg[512];
+  if (s->n > 0) {
+    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, msg, sizeof msg) != 0) {
+      swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", msg);
+      return 1;
+    }
+    s->n = 0;
+  }
+  return swarf_sim_lines_flush(s, 0);
+}
+
+void swarf_sim_raise(swarf_sim *s, const swarf_alarm *a) {
+  swarf_sim_report *r = &s->rep;
+  if (r->alarms < SWARF_SIM_MAX_ALARMS) r->alarm[r->alarms] = *a;
+  r->alarms++;
+  if ((unsigned)a->kind < sizeof r->alarm_count / sizeof r->alarm_count[0])
+    r->alarm_count[a->kind]++;
+  if (s->cfg.cb.alarm != NULL) s->cfg.cb.alarm(s->cfg.cb.user, a);
+}
+
+static int boxes_overlap(const double alo[3], const double ahi[3], const double blo[3],
+                         const double bhi[3]) {
+  for (int k = 0; k < 3; k++)
+    if (ahi[k] < blo[k] || alo[k] > bhi[k]) return 0;
+  return 1;
+}
+
+/* The rapid in slot 0 against the stock as it stands. */
+static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *c) {
+  char msg[512];
+  int hit = 0;
+  double where[3];
+  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, msg, sizeof msg) != 0) {
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", msg);
+    return 1;
+  }
+  if (hit) {
+    swarf_alarm a = {SWARF_ALARM_RAPID,
+                     m->line,
+                     m->column,
+                     s->tool->number,
+                     NAN,
+                     {where[0], where[1], where[2]},
+                     0};
+    swarf_sim_raise(s, &a);
+  }
+  return 0;
+}
+
+/* Poses stamp_step apart along the path of the cutter's farthest point. */
+static void set_stamps(swarf_sim *s, swarf_sim_stamp *sc, const swarf_motion *m) {
+  const swarf_cutter *c = &s->tool->cutter;
+  double n = ceil((m->length + m->turn * hypot(0.5 * c->diameter, c->length)) / s->cfg.stamp_step);
+  sc->cutter = c;
+  sc->motion = m;
+  sc->n = n < 1 ? 1 : n > 1e6 ? 1000000 : (int)n;
+}
+
+int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
+  swarf_motion *m = &s->motions[s->n];
+  swarf_sweep *w = &s->sweeps[s->n];
+  swarf_stock_cut *c = &s->cuts[s->n];
+  *m = *mv;
+  swarf_sweep_init_voxel(w, &s->tool->cutter, m, s->cfg.voxel);
+  swarf_sweep_bounds(w, c->lo, c->hi);
+  if (!boxes_overlap(c->lo, c->hi, s->pad_lo, s->pad_hi)) return 0;
+  if (m->rapid && s->n > 0) /* checked against the stock as it stands: from slot 0 */
+    return swarf_sim_batch_flush(s) != 0 ? 1 : swarf_sim_batch_queue(s, mv);
+  c->sdf = sweep_sdf;
+  c->ctx = w;
+  if (s->cfg.stamp_step > 0) {
+    set_stamps(s, &s->stamps[s->n], m);
+    c->sdf = stamp_sdf;
+    c->ctx = &s->stamps[s->n];
+  }
+  s->rep.cutting_moves++;
+  if (m->rapid && check_rapid(s, m, c) != 0) return 1;
+  if (++s->n == s->cap) return swarf_sim_batch_flush(s);
+  return 0;
+}

@@ -263,12 +263,14 @@ bool block_overlap(const Pass &p, ConstAcc &acc, const Coord &o, double depth, V
   return false;
 }
 
-/// First voxel of the block at o whose score -v - sdf (v: the stock value,
-/// below +band) exceeds depth (see stock.h); false if none. A voxel scores at
-/// most -v + (r - dc) (r: its distance to the block centre, dc: the cut's sdf
-/// there), so blocks and voxels the Lipschitz bound keeps below depth are
-/// passed over without evaluating the cut.
-bool block_penetrates(const Pass &p, ConstAcc &acc, const Coord &o, double depth, Vec3d &where) {
+/// First voxel of the block at o whose score min(-v, clear) - sdf (v: the
+/// stock value, below +band; clear: the sdf of a volume already cut away,
+/// +inf without one) exceeds depth (see stock.h); false if none. A voxel
+/// scores at most -v + (r - dc) (r: its distance to the block centre, dc:
+/// the cut's sdf there), so blocks and voxels the Lipschitz bound keeps below
+/// depth are passed over without evaluating the cut.
+bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, ConstAcc &acc, const Coord &o,
+                      double depth, Vec3d &where) {
   const swarf_stock_cut &cut = p.cuts[0];
   const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
   const double dc = cut.sdf(cut.ctx, c.x(), c.y(), c.z()), r = p.reach - p.bgf;
@@ -284,10 +286,12 @@ bool block_penetrates(const Pass &p, ConstAcc &acc, const Coord &o, double depth
         const double val = v != nullptr ? v[n] : tile;
         if (!(val < p.bgf) || -val + p.radius[n] - dc <= depth) continue;
         const Vec3d q = block_point(p, o, x, y, z);
-        if (-val - cut.sdf(cut.ctx, q.x(), q.y(), q.z()) > depth) {
-          where = q;
-          return true;
-        }
+        const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        if (!(-val - d > depth)) continue;
+        if (clear != nullptr && !(clear->sdf(clear->ctx, q.x(), q.y(), q.z()) - d > depth))
+          continue;
+        where = q;
+        return true;
       }
   return false;
 }
@@ -295,7 +299,8 @@ bool block_penetrates(const Pass &p, ConstAcc &acc, const Coord &o, double depth
 }  // namespace
 
 /// True if the cut penetrates the material by more than depth (see stock.h).
-bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
+bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
+                    double depth, Vec3d &where) {
   Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
   init_pass(p);
   Coord a, b;
@@ -304,7 +309,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, double dep
   for (int x = a.x(); x <= b.x(); x += 8)
     for (int y = a.y(); y <= b.y(); y += 8)
       for (int z = a.z(); z <= b.z(); z += 8)
-        if (block_penetrates(p, acc, Coord(x, y, z), depth, where)) return true;
+        if (block_penetrates(p, clear, acc, Coord(x, y, z), depth, where)) return true;
   return false;
 }
 
@@ -397,8 +402,8 @@ extern "C" int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut 
 }
 
 extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
-                                               double depth, int *hit, double where[3],
-                                               swarf_error *err) {
+                                               const swarf_stock_cut *clear, double depth,
+                                               int *hit, double where[3], swarf_error *err) {
   char msg[256];
   const int rc = swarf::guard(msg, sizeof msg, [&] {
     if (s == nullptr || cut == nullptr || hit == nullptr)
@@ -408,7 +413,9 @@ extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf
     if (!(depth >= 0.0 && std::isfinite(depth)))
       throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be finite and >= 0");
     openvdb::Vec3d q;
-    *hit = swarf::cut_penetrates(*s, *cut, depth, q) ? 1 : 0;
+    if (clear != nullptr && clear->sdf == nullptr)
+      throw swarf::Error(SWARF_STOCK_ERR_ARG, "the clear volume has no sdf");
+    *hit = swarf::cut_penetrates(*s, *cut, clear, depth, q) ? 1 : 0;
     if (*hit && where != nullptr)
       for (int k = 0; k < 3; k++) where[k] = q[k];
   });

@@ -93,12 +93,14 @@ SWARF_API int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *
  * parallel (a holder's face entering a flat face: the same at every point
  * between them, so no voxel centre needs to fall inside a thin overlap), a
  * lower bound of the depth elsewhere; deeper than the band, v is -band and
- * the sum a lower bound again. Read-only; *hit gets 1 or 0, where (may be
- * NULL) the first such voxel centre found. For the non-cutting parts of a
- * tool (tools/sim/collide.c). */
+ * the sum a lower bound again. `clear` (may be NULL; its bounds are not
+ * used) is a volume cut away but not removed from the grid yet: the
+ * material is then the stock minus it, its depth min(-v, clear sdf).
+ * Read-only; *hit gets 1 or 0, where (may be NULL) the first such voxel
+ * centre found. For the non-cutting parts of a tool (tools/sim/collide.c). */
 SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
-                                             double depth, int *hit, double where[3],
-                                             swarf_error *err);
+                                             const swarf_stock_cut *clear, double depth,
+                                             int *hit, double where[3], swarf_error *err);
 
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);

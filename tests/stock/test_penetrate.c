@@ -25,7 +25,7 @@ static int penetrates(const swarf_stock *s, const box_shape *b, double depth, do
   swarf_error err;
   int hit = -1;
   swarf_stock_cut cut = {{b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b};
-  CHECK(swarf_stock_penetrates(s, &cut, depth, &hit, where, &err) == SWARF_OK, "query: %s",
+  CHECK(swarf_stock_penetrates(s, &cut, NULL, depth, &hit, where, &err) == SWARF_OK, "query: %s",
         err.message);
   return hit;
 }
@@ -60,6 +60,22 @@ int main(void) {
   box_shape above = {{5.0, 2.0, 0.05}, {8.0, 6.0, 5.0}};
   CHECK(penetrates(s, &above, 0.0, where) == 0, "a body above the top face is not found");
   CHECK(swarf_stock_volume(s) == vol0, "the queries change nothing");
+  /* the same pocket, cut away but not removed yet (clear): a body inside it
+   * is not found, and one 0.5 mm wider than it is, by 0.5 */
+  capsule_shape pocket0 = {{10.0, 5.0, 0.0}, {16.0, 5.0, 0.0}, 2.0};
+  swarf_stock_cut clear = capsule_cut(&pocket0);
+  capsule_shape wide = {{10.0, 5.0, 0.0}, {16.0, 5.0, 0.0}, 2.5}, narrow = wide;
+  narrow.r = 1.5;
+  swarf_stock_cut wc = capsule_cut(&wide), nc = capsule_cut(&narrow);
+  int hit2 = -1;
+  CHECK(swarf_stock_penetrates(s, &nc, &clear, 0.0, &hit2, where, NULL) == SWARF_OK && hit2 == 0,
+        "a body inside a cleared pocket is not found");
+  CHECK(swarf_stock_penetrates(s, &nc, NULL, 0.0, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
+        "the same body without the clear volume is");
+  CHECK(swarf_stock_penetrates(s, &wc, &clear, 0.49, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
+        "0.5 mm wider than the cleared pocket: found at 0.49");
+  CHECK(swarf_stock_penetrates(s, &wc, &clear, 0.51, &hit2, where, NULL) == SWARF_OK && hit2 == 0,
+        "0.5 mm wider than the cleared pocket: not found at 0.51");
   /* a pocket 2 mm deep cut away first: the same body 1 mm into its floor only */
   capsule_shape pocket = {{10.0, 5.0, 0.0}, {16.0, 5.0, 0.0}, 2.0};
   swarf_stock_cut pc = capsule_cut(&pocket);
@@ -70,11 +86,11 @@ int main(void) {
   int hit;
   swarf_stock_cut cut = {{0, 0, 0}, {1, 1, 1}, box_cb, &inside};
   swarf_error err;
-  CHECK(swarf_stock_penetrates(NULL, &cut, 0.0, &hit, NULL, &err) == SWARF_ERR_ARG,
+  CHECK(swarf_stock_penetrates(NULL, &cut, NULL, 0.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "NULL stock refused");
-  CHECK(swarf_stock_penetrates(s, &cut, -1.0, &hit, NULL, &err) == SWARF_ERR_ARG,
+  CHECK(swarf_stock_penetrates(s, &cut, NULL, -1.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "negative depth refused: %s", err.message);
-  CHECK(swarf_stock_penetrates(s, &cut, 0.0, &hit, NULL, NULL) == SWARF_OK, "err may be NULL");
+  CHECK(swarf_stock_penetrates(s, &cut, NULL, 0.0, &hit, NULL, NULL) == SWARF_OK, "err may be NULL");
   swarf_stock_free(s);
   return check_done();
 }

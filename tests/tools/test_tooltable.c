@@ -46,15 +46,17 @@ static void run_case(const char *root, const char *dir, const swarf_sim_config *
   char *text = canon_slurp(path, &len), *expected = canon_slurp(exp_path, &elen);
   CHECK(text != NULL && expected != NULL, "%s: cannot read %s or %s", dir, path, exp_path);
   if (text == NULL || expected == NULL) return free(text), free(expected);
-  swarf_gcode_parser *p = swarf_gcode_parser_new(program, NULL, NULL);
+  swarf_gcode_parser *p = NULL;
+  CHECK(swarf_gcode_parser_new(program, NULL, NULL, &p) == SWARF_OK, "parser");
+  if (p == NULL) return free(text), free(expected);
   swarf_gcode_parser_set_canon(p, canon_collect, &out);
   swarf_gcode_parser_clear_tools(p);
   for (int i = 0; i < cfg->ntools; i++)
     swarf_gcode_parser_set_tool(p, cfg->tools[i].number, cfg->tools[i].length,
                                 cfg->tools[i].cutter.diameter);
-  int status = swarf_gcode_parser_feed(p, text, len);
-  if (status == SWARF_GCODE_OK) status = swarf_gcode_parser_finish(p);
-  CHECK(status == SWARF_GCODE_OK, "%s: rejected: %s", dir,
+  swarf_status status = swarf_gcode_parser_feed(p, text, len);
+  if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
+  CHECK(status == SWARF_OK, "%s: rejected: %s", dir,
         swarf_gcode_parser_error(p) ? swarf_gcode_parser_error(p)->message : "?");
   swarf_gcode_parser_free(p);
   if (out.text == NULL) canon_collect("", &out);

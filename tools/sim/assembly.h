@@ -43,4 +43,19 @@ typedef struct {
  * flute length) and the holder's pieces. Returns how many (0 without S). */
 int swarf_sim_tool_parts(const swarf_sim_tool *t, swarf_sim_part parts[SWARF_SIM_MAX_PARTS]);
 
+/* ---- Collisions (collide.c) --------------------------------------------- */
+
+/* The collision check's state in a handle. */
+typedef struct {
+  long last_line[2]; /* SHANK, HOLDER: the line last reported (once per line) */
+  long fixture_line[SWARF_SIM_MAX_FIXTURES][3]; /* per fixture and part (cutter, shank, holder) */
+  swarf_stock *fixture[SWARF_SIM_MAX_FIXTURES]; /* each fixture as a level set */
+  const swarf_stock_cut **clear; /* scratch: the sweeps clearing material for a part */
+  long checked;                  /* part checks that reached a grid's box */
+} swarf_sim_collide;
+
+/* The motion m with the tool carried dz along its axis (a body dz above the
+ * tip); -1 when the machine cannot express it (a RIGID motion in TCP mode). */
+int swarf_sim_shift_motion(const swarf_motion *m, double dz, swarf_motion *out);
+
 #endif

@@ -7,8 +7,8 @@
  * "still there when the move runs" is the stock of the last removal pass
  * minus the sweeps queued since (not removed yet) and minus this move's own
  * cutter sweep (the flutes clear the way of a shank that follows them into
- * their hole): the part's distance is max(part, -those sweeps), so no batch
- * is flushed for the check.
+ * their hole): swarf_stock_penetrates takes their union as the volume cut
+ * away, so no batch is flushed for the check.
  *
  * A part collides when it penetrates by more than half a voxel
  * (swarf_stock_penetrates: the two signed depths add up to more). The depth
@@ -79,20 +79,23 @@ static int boxes_meet(const double alo[3], const double ahi[3], const double blo
   return 1;
 }
 
-/* The part's distance with the sweeps that clear material for it. */
-typedef struct {
-  const swarf_sweep *part;
-  const swarf_stock_cut *const *clear;
-  int nclear;
-} part_sdf_ctx;
-
-static double part_sdf(const void *ctx, double x, double y, double z) {
-  const part_sdf_ctx *c = ctx;
+static double sweep_sdf(const void *ctx, double x, double y, double z) {
   const double p[3] = {x, y, z};
-  double f = swarf_sweep_sdf(c->part, p, NULL);
-  for (int i = 0; i < c->nclear; i++) {
-    const double e = -c->clear[i]->sdf(c->clear[i]->ctx, x, y, z);
-    if (e > f) f = e;
+  return swarf_sweep_sdf((const swarf_sweep *)ctx, p, NULL);
+}
+
+/* The volume cut away but not removed yet: the union of some cuts. */
+typedef struct {
+  const swarf_stock_cut *const *cuts;
+  int n;
+} clear_ctx;
+
+static double clear_sdf(const void *ctx, double x, double y, double z) {
+  const clear_ctx *c = ctx;
+  double f = INFINITY;
+  for (int i = 0; i < c->n; i++) {
+    const double e = c->cuts[i]->sdf(c->cuts[i]->ctx, x, y, z);
+    if (e < f) f = e;
   }
   return f;
 }
@@ -117,11 +120,13 @@ static int penetrates_at(const part_check *pc, double lift, double where[3]) {
   swarf_error err;
   int hit = 0;
   if (part_sweep_init(&ps, pc->body, pc->z0, lift, pc->m, pc->s->cfg.voxel) != 0) return 0;
-  part_sdf_ctx ctx = {&ps.sweep, pc->clear, pc->nclear};
-  swarf_stock_cut cut = {{ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, part_sdf,
-                         &ctx};
+  swarf_stock_cut cut = {{ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, sweep_sdf,
+                         &ps.sweep};
+  clear_ctx cc = {pc->clear, pc->nclear};
+  swarf_stock_cut clear = {{0, 0, 0}, {0, 0, 0}, clear_sdf, &cc};
   const double h = 0.5 * swarf_stock_voxel(pc->grid);
-  if (swarf_stock_penetrates(pc->grid, &cut, h, &hit, where, &err) != SWARF_OK) {
+  if (swarf_stock_penetrates(pc->grid, &cut, pc->nclear > 0 ? &clear : NULL, h, &hit, where,
+                             &err) != SWARF_OK) {
     swarf_sim_fail(pc->s, err.status, pc->m->line, pc->m->column, "%s", err.message);
     return -1;
   }
@@ -146,12 +151,6 @@ static double clearing_depth(const part_check *pc) {
 }
 
 /* ---- The material --------------------------------------------------------- */
-
-static int already_told(long *last, long line) {
-  if (*last == line) return 1;
-  *last = line;
-  return 0;
-}
 
 /* The queued sweeps (and this move's) whose bounds meet [lo, hi]. */
 static int clearing_sweeps(swarf_sim *s, const swarf_stock_cut *own, const double lo[3],

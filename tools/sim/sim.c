@@ -101,15 +101,38 @@ static int take_motion(swarf_sim *s, swarf_motion *m) {
   if (swarf_sim_lines_add(s, m, tool) != 0) return 1;
   if (tell_progress(s, m->line, tool)) return 1;
   if (s->tool == NULL || swarf_motion_is_null(m)) return 0;
+  if (!(s->tool->cutter.diameter > 0)) {
+    swarf_sim_fail(s, SWARF_ERR_TOOL, m->line, m->column,
+                   "tool T%d has no shape (diameter 0 in the tool table); describe it with "
+                   "--tool T%d=<shape>,D<diameter> or in a tool library",
+                   s->tool->number, s->tool->number);
+    return 1;
+  }
   return swarf_sim_batch_queue(s, m);
+}
+
+/* The parser's positions are the machine's: with G43 the controlled point
+ * is the tip of the tool whose length H names, without it the spindle's
+ * gauge line. The simulator follows the tip of the tool in the spindle,
+ * which lies its length below: G43 with that tool's H puts it where the
+ * program says, as on the machine. */
+static const swarf_move *tip_move(const swarf_sim *s, const swarf_move *mv, swarf_move *buf) {
+  const double len = s->tool != NULL ? s->tool->length : 0.0;
+  if (len == 0.0) return mv;
+  *buf = *mv;
+  buf->start[SWARF_AXIS_Z] -= len;
+  buf->end[SWARF_AXIS_Z] -= len;
+  buf->center[2] -= len;
+  return buf;
 }
 
 static int on_move(const swarf_move *mv, void *user) {
   swarf_sim *s = user;
   swarf_motion m;
+  swarf_move tip;
   if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, mv);
   if (mv->kind == SWARF_MOVE_DWELL) return 0;
-  int rc = swarf_machine_motion(&s->cfg.machine, mv, &m);
+  int rc = swarf_machine_motion(&s->cfg.machine, tip_move(s, mv, &tip), &m);
   if (rc == -2) {
     swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column,
                    "this move turns a rotary axis the machine does not have; choose one with "
@@ -120,9 +143,9 @@ static int on_move(const swarf_move *mv, void *user) {
   return take_motion(s, &m);
 }
 
-/* The parser's tool table is the cutters given, with their length offsets
- * (0: the simulated point is the tool tip, so G43 H<n> changes nothing; an
- * H of a tool not given is an error at its line). */
+/* The parser's tool table is the tools given, with their length offsets
+ * (G43 H<n> applies tool n's; an H of a tool not given is an error at its
+ * line). With length 0 (tools given by --tool alone) G43 changes nothing. */
 static void set_tool_table(swarf_sim *s) {
   swarf_gcode_parser_clear_tools(s->parser);
   for (int i = 0; i < s->cfg.ntools; i++)
@@ -167,6 +190,10 @@ static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   set_tool_table(s);
   if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
+  if (swarf_sim_collide_init(s) != 0) {
+    if (err != NULL) *err = s->err;
+    return s->err.status != SWARF_OK ? s->err.status : SWARF_ERR_MEMORY;
+  }
   s->rep.volume_before = swarf_stock_volume(s->stock);
   s->rep.volume_after = NAN;
   s->fraction = -1.0;
@@ -326,6 +353,7 @@ swarf_stock *swarf_sim_take_stock(swarf_sim *s) {
 void swarf_sim_free(swarf_sim *s) {
   if (s == NULL) return;
   swarf_gcode_parser_free(s->parser);
+  swarf_sim_collide_clear(s);
   swarf_sim_batch_clear(s);
   swarf_stock_free(s->stock);
   free(s);

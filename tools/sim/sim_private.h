@@ -5,6 +5,7 @@
 #ifndef SWARF_SIM_PRIVATE_H
 #define SWARF_SIM_PRIVATE_H
 
+#include "assembly.h"
 #include "swarf_sim.h"
 
 /* A move stamped at n + 1 evenly spaced poses (the benchmark baseline). */
@@ -38,6 +39,7 @@ struct swarf_sim {
   swarf_line_result cur;
   swarf_line_result *pending;
   int npending, pending_cap;
+  swarf_sim_collide col; /* collisions (collide.c) */
 };
 
 /* Record the first failure (status, place, message) and return its status. */
@@ -59,5 +61,13 @@ void swarf_sim_raise(swarf_sim *s, const swarf_alarm *a);
 /* lines.c: count a motion in its line; tell the closed lines (all, at the end). */
 int swarf_sim_lines_add(swarf_sim *s, const swarf_motion *m, int tool);
 int swarf_sim_lines_flush(swarf_sim *s, int at_end);
+
+/* collide.c: init after the stock (fixtures as level sets), clear; check a
+ * motion's shank, holder and fixtures (w: its cutter sweep, own: its cut when
+ * queued, NULL otherwise). Return 0, or 1 after swarf_sim_fail. */
+int swarf_sim_collide_init(swarf_sim *s);
+void swarf_sim_collide_clear(swarf_sim *s);
+int swarf_sim_collide_move(swarf_sim *s, const swarf_motion *m, const swarf_sweep *w,
+                           const swarf_stock_cut *own);
 
 #endif

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "swarf_sim.h"
+#include "assembly.h"
 
 /* Read one finite number at *s; advances *s. Returns 0 or -1. */
 static int read_number(const char **s, double *out) {
@@ -135,7 +135,18 @@ static int parse_dims(const char *s, double dims[3], char *bad, size_t badlen) {
 
 swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_error *err) {
   static const char usage[] =
-      "write --tool T<n>=<ball|flat|bull>,D<diameter>[,R<corner>][,L<length>]";
+      "write --tool T<n>=<ball|flat|bull>,D<diameter>[,R<corner>][,L<length>][,S<stick-out>]"
+      "[,N<shank diameter>]";
+  char cutter_spec[512];
+  double stickout, shank;
+  swarf_status st = swarf_sim_split_assembly(spec, cutter_spec, sizeof cutter_spec, &stickout,
+                                             &shank, err);
+  if (st != SWARF_OK) return st;
+  memset(out, 0, sizeof *out);
+  out->stickout = stickout;
+  out->shank = shank;
+  const char *given = spec;
+  spec = cutter_spec;
   const char *s = spec, *why = NULL;
   double dims[3] = {0, 0, 0};
   char bad[96];
@@ -150,16 +161,15 @@ swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_e
   s = end + 1;
   if (parse_shape(&s, &shape) != 0) goto usage_err;
   if (parse_dims(s, dims, bad, sizeof bad) != 0) {
-    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, spec, usage);
+    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, given, usage);
   }
   if (swarf_cutter_init(&out->cutter, shape, dims[0], dims[1], dims[2], &why) != 0) {
     return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"",
-                           why ? why : "impossible cutter", spec);
+                           why ? why : "impossible cutter", given);
   }
   out->number = (int)n;
   out->length = 0.0;
   return SWARF_OK;
 usage_err:
-  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", spec ? spec : "",
-                         usage);
+  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", given, usage);
 }

@@ -117,6 +117,8 @@ typedef struct {
   double depth; /* mm, deepest penetration found (NaN when not measured) */
   double at[3]; /* mm, workpiece frame: where (NaN when not measured) */
   int index;    /* FIXTURE: which fixture (1-based); 0 otherwise */
+  int part;     /* FIXTURE: the part that entered it: 0 cutter, 1 shank, 2 holder;
+                 * SHANK 1, HOLDER 2; 0 otherwise */
 } swarf_alarm;
 
 /* Progress, after every motion move (and after each chunk of a file). */

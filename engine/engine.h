@@ -15,8 +15,8 @@
 
 #include <stddef.h>
 
-#include "toolpath.h"
 #include "swarf_status.h"
+#include "toolpath.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -24,44 +24,198 @@ extern "C" {
 
 /* ---- Cutters ------------------------------------------------------------ */
 
+/* A QSS of revolution about z (paper eq. 12 with c = d = 0):
+ * h(n) = a (n_x^2 + n_y^2) + b n_z^2 + e n_z + f, so phi(z) = (b - a) z^2 + e z + a + f.
+ * Its surface point is x_h(n) = phi(z) n + phi'(z) (e_z - z n). */
+typedef struct {
+  double a, b, e, f;
+} swarf_qss;
+
+/* Every cutter (and every non-cutting body of revolution: shank, holder
+ * segment) is a solid of revolution about the +z axis of its frame, given by
+ * its PROFILE in the (r, z) half-plane r >= 0. The profile is a union of
+ * PIECES; each piece is
+ *   - a HULL: the convex hull of a few circles (r_i, z_i, rho_i) and their
+ *     mirror images (-r_i, z_i, rho_i), bounded by lines and convex arcs. A
+ *     point is a circle of radius 0. Cylinders, cones, frustums, balls,
+ *     bull noses, V tips, drill points, tapered and APT cutters are one hull;
+ *   - a QSS of revolution (swarf_qss above): the region enclosed by the
+ *     surface x_h(n) of h = a(x^2+y^2) + b z^2 + e z + f and the axis, moved
+ *     up by `lift`; convex or not (Example 2's h = x^2+y^2-z^2 is a spool
+ *     with dished ends and sharp rims).
+ * A non-convex cutter is a union of convex hulls (lollipop = ball + neck,
+ * dovetail = frustum + neck, T-slot = disk + neck; a holder = a stack of
+ * frustums). Its exact distance is the minimum over the pieces outside; inside
+ * it is the deepest piece's depth (never deeper than the true depth; equal
+ * near the surface). The distance to a solid of revolution is the 2-D
+ * distance to its profile region at (sqrt(x^2 + y^2), z).
+ *
+ * Building a body that is not a cutter (the `assembly` use):
+ *   swarf_cutter c;
+ *   swarf_cutter_begin(&c);
+ *   swarf_cutter_add_frustum(&c, z0, r0, z1, r1, err);   any number, <= MAX_PIECES
+ *   (or swarf_cutter_add_hull with circles)
+ *   swarf_cutter_finish(&c, err);
+ * after which every engine call (sdf, sweeps, characteristic curves) takes it
+ * like a cutter. Its z range need not start at 0 (a shank from z = L to S).
+ *
+ * flat, ball and bull (swarf_cutter_init) keep their closed forms (fast = 1);
+ * their piece is filled too, so profile code sees every cutter the same way. */
+
 typedef enum {
-  SWARF_CUTTER_FLAT, /* flat end mill: corner radius 0 */
-  SWARF_CUTTER_BALL, /* ball end mill: corner radius D/2 */
-  SWARF_CUTTER_BULL  /* bull nose: 0 < corner radius < D/2 */
+  SWARF_CUTTER_FLAT,     /* flat end mill: corner radius 0 */
+  SWARF_CUTTER_BALL,     /* ball end mill: corner radius D/2 */
+  SWARF_CUTTER_BULL,     /* bull nose: 0 < corner radius < D/2 */
+  SWARF_CUTTER_VEE,      /* V-bit / engraver: sharp cone tip, included angle */
+  SWARF_CUTTER_DRILL,    /* twist drill: point angle (default 118 deg) */
+  SWARF_CUTTER_SPOT,     /* spot drill: point angle (default 90 deg) */
+  SWARF_CUTTER_CHAMFER,  /* chamfer mill: cone from a tip diameter up to D */
+  SWARF_CUTTER_TAPER,    /* tapered end mill: tip diameter, half-angle, tip radius */
+  SWARF_CUTTER_APT,      /* the APT 7-parameter cutter */
+  SWARF_CUTTER_LOLLIPOP, /* undercut ball: sphere on a thinner neck (non-convex) */
+  SWARF_CUTTER_DOVETAIL, /* frustum narrowing upward on a neck (non-convex) */
+  SWARF_CUTTER_TSLOT,    /* disk on a thinner neck (non-convex) */
+  SWARF_CUTTER_QSS,      /* the paper's QSS of revolution, lowest point at the tip */
+  SWARF_CUTTER_BODY      /* built with swarf_cutter_begin, add_..., finish */
 } swarf_cutter_shape;
 
-/* A cutter of revolution: the body swept by the cutting edges, from the tip
- * (z = 0) to z = length. It is the Minkowski sum of a solid cylinder of
- * radius a = D/2 - R spanning z in [R, length - R] and a ball of radius R, so
- * its support function is
- *   h(n) = phi(n_z),  phi(z) = a sqrt(1 - z^2) + R + (z >= 0 ? (length - R) z : R z).
- * (The top rim is rounded like the bottom one; it never cuts in practice.) */
+#define SWARF_PIECE_MAX_ELEMS 12
+#define SWARF_PIECE_MAX_CIRCLES 6
+#define SWARF_CUTTER_MAX_PIECES 8
+
+typedef enum { SWARF_PIECE_HULL, SWARF_PIECE_QSS } swarf_piece_kind;
+
+/* One element of a hull's outline, counterclockwise (bottom to top, r >= 0):
+ * a line from (r0, z0) to (r1, z1) (rad = 0; a point when both ends agree),
+ * or an arc of the circle (cr, cz, rad) from (r0, z0) to (r1, z1),
+ * counterclockwise about its centre (a convex arc). */
+typedef struct {
+  double r0, z0, r1, z1;
+  double cr, cz, rad;
+  double inv; /* line: 1 / squared length (0 for a point) */
+} swarf_profile_elem;
+
+typedef struct {
+  swarf_piece_kind kind;
+  int convex; /* 1: the solid is convex (every hull; a QSS when p + p'' >= 0) */
+  /* HULL: the circles as given (r, z, rho), and the outline built from them.
+   * The outline has a lower chain (elements below the widest part, as z
+   * goes up), the side (a vertical line at r = rmax from zw0 to zw1, perhaps
+   * of length 0) and an upper chain. */
+  int ncircle;
+  double circle[SWARF_PIECE_MAX_CIRCLES][3];
+  int nel, side; /* elements, and the index of the side element */
+  swarf_profile_elem el[SWARF_PIECE_MAX_ELEMS];
+  double zlo, zhi, rmax, zw0, zw1;
+  /* QSS: h = a(x^2+y^2) + b z^2 + e z + f, profile r(s) = sqrt(1-s^2)(q0 - q2 s^2),
+   * z(s) = -q2 s^3 + (q0 + 2 q2) s + q1 + lift for s = n_z in [-1, 1]. */
+  swarf_qss qss;
+  double q2, q1, q0, lift;
+} swarf_profile_piece;
+
+/* A cutter of revolution. The flat/ball/bull fields keep their meaning: the
+ * body is the Minkowski sum of a solid cylinder of radius a = D/2 - R over z
+ * in [R, length - R] and a ball of radius R (the top rim rounded like the
+ * bottom one), support h(n) = phi(n_z),
+ *   phi(z) = a sqrt(1 - z^2) + R + (z >= 0 ? (length - R) z : R z).
+ * For the other shapes `diameter` is the largest diameter and `length` the
+ * top of the body; corner_radius is the family's R if it has one. */
 typedef struct {
   swarf_cutter_shape shape;
-  double diameter;      /* D, mm */
+  double diameter;      /* D, mm (largest) */
   double corner_radius; /* R, mm */
-  double length;        /* cutting body above the tip, mm, >= D */
+  double length;        /* top of the body above the tip (z max), mm */
+  double zmin;          /* bottom of the body, mm (0 for cutters) */
+  int fast;             /* 1: flat/ball/bull closed forms apply */
+  int convex;           /* 1: the body is convex (one convex piece) */
+  double param[8];      /* the family's numbers as given (angles in radians) */
+  int npieces;
+  swarf_profile_piece piece[SWARF_CUTTER_MAX_PIECES];
 } swarf_cutter;
 
-/* Validate and fill a cutter. corner_radius is ignored for flat and ball.
- * length <= 0 selects the default, 4 * diameter. Returns 0, or -1 with a
- * reason in `why` (if not NULL) when the dimensions are impossible. */
+/* Validate and fill a flat, ball or bull cutter. corner_radius is ignored
+ * for flat and ball. length <= 0 selects the default, 4 * diameter. Flutes
+ * shorter than the diameter are allowed (a face mill); a bull needs length
+ * >= 2 R, a ball length >= R (below 2 R = D the ball is cut flat at the
+ * top: a profile cutter, fast = 0). Returns 0, or -1 with a reason in `why`
+ * (if not NULL) when the dimensions are impossible. */
 SWARF_API int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
                                 double corner_radius, double length, const char **why);
 
+/* A cutter of any named family from its numbers (mm, angles in DEGREES as
+ * the tool world writes them); a field left NAN takes its default:
+ *   VEE      d, angle (included), length (default max(4 d, cone height))
+ *   DRILL    d, angle (point, default 118), length (default max(4 d, point))
+ *   SPOT     d, angle (point, default 90), length
+ *   CHAMFER  d, angle (included), tip (tip diameter, default 0), length
+ *   TAPER    d (tip diameter), angle (taper half-angle), r (tip corner radius,
+ *            default 0; d/2: tapered ball), length (default 4 d)
+ *   APT      d, r, e, f, angle (alpha), beta, h: corner circle (e, f, r), bottom
+ *            line at alpha from the horizontal through the tip, side at beta
+ *            from the axis, up to h; requires f cos(alpha) - e sin(alpha) = r
+ *            and d = 2 (e + r / cos(beta)) (to 1e-3 mm + 1e-3 d)
+ *   LOLLIPOP d (sphere), neck (diameter < d), length (default 4 d)
+ *   DOVETAIL d (bottom diameter), angle (flank to base, < 90), h (flank
+ *            height), neck (default the flank's top diameter), length
+ *            (default h + 2 d)
+ *   TSLOT    d, h (disk thickness), neck (< d), length (default h + 2 d)
+ *   QSS      a, b, e, f (h = a(x^2+y^2) + b z^2 + e z + f, mm), moved up so
+ *            that its lowest point is at z = 0
+ *   FLAT, BALL, BULL: d, r, length as swarf_cutter_init.
+ * On bad numbers returns SWARF_ERR_TOOL and err->message names the
+ * parameter (its letter in the tool spec: D, A, R, L, T, E, F, B, H, N) and
+ * why; err->word holds the letter. */
+typedef struct {
+  swarf_cutter_shape shape;
+  double d, r, length, angle, tip, e, f, beta, h, neck;
+  double qa, qb, qe, qf; /* QSS coefficients */
+} swarf_cutter_spec;
+
+/* All fields NAN, shape FLAT. */
+SWARF_API void swarf_cutter_spec_init(swarf_cutter_spec *s);
+SWARF_API swarf_status swarf_cutter_make(swarf_cutter *c, const swarf_cutter_spec *spec,
+                                         swarf_error *err);
+
+/* Bodies piece by piece (see the top of this section). begin empties c
+ * (shape BODY); add_hull adds the convex hull of n circles {r, z, rho}
+ * (r >= 0, rho >= 0; at least one circle with r + rho > 0) and their mirror
+ * images; add_frustum the frustum (cylinder when r0 = r1, cone when one
+ * radius is 0) between heights z0 < z1; add_qss a QSS piece lifted by
+ * `lift`. finish computes the bounds (diameter, zmin, length, convex).
+ * Errors: SWARF_ERR_TOOL (bad numbers, too many pieces or circles). */
+SWARF_API void swarf_cutter_begin(swarf_cutter *c);
+SWARF_API swarf_status swarf_cutter_add_hull(swarf_cutter *c, const double (*circles)[3], int n,
+                                             swarf_error *err);
+SWARF_API swarf_status swarf_cutter_add_frustum(swarf_cutter *c, double z0, double r0, double z1,
+                                                double r1, swarf_error *err);
+SWARF_API swarf_status swarf_cutter_add_qss(swarf_cutter *c, const swarf_qss *q, double lift,
+                                            swarf_error *err);
+SWARF_API swarf_status swarf_cutter_finish(swarf_cutter *c, swarf_error *err);
+
+/* "vee D6 A90 L20"-like one-line description of the cutter (for reports). */
+SWARF_API void swarf_cutter_describe(const swarf_cutter *c, char *buf, size_t len);
+
 /* Support function on the unit sphere, h(n), and its profile phi(z), phi'(z)
  * (phi' is one-sided at the kinks z = 0 and unbounded at z = +-1 when a > 0;
- * the value returned there is the limit from inside (-1, 1)). */
+ * the value returned there is the limit from inside (-1, 1)). For a
+ * non-convex cutter: those of its convex hull. */
 SWARF_API double swarf_cutter_support(const swarf_cutter *c, const double n[3]);
 SWARF_API void swarf_cutter_profile(const swarf_cutter *c, double z, double *phi, double *dphi);
 
 /* Surface point x_h(n) = h(n) n + grad_S h(n) for a unit normal n (paper eq. 1-2).
  * Where the support function has a kink (a flat face or a ruling), returns the
- * point of that face given by continuity from n_z -> 0+ / n_z -> +-1. */
+ * point of that face given by continuity from n_z -> 0+ / n_z -> +-1. For a
+ * non-convex cutter: the point of its convex hull's outline. */
 SWARF_API void swarf_cutter_point(const swarf_cutter *c, const double n[3], double x[3]);
 
-/* Signed distance from p (cutter frame) to the cutter: < 0 inside. Exact. */
+/* Signed distance from p (cutter frame) to the cutter: < 0 inside. Exact
+ * outside; inside exact for one piece, the deepest piece's depth otherwise. */
 SWARF_API double swarf_cutter_sdf(const swarf_cutter *c, const double p[3]);
+
+/* The 2-D signed distance of the profile region at (r, z), r >= 0, and its
+ * gradient (dr, dz) (unit; a subgradient on the medial axis). The same value
+ * as swarf_cutter_sdf at any point with that r and z. */
+SWARF_API double swarf_cutter_sdf2(const swarf_cutter *c, double r, double z, double g[2]);
 
 /* ---- Characteristic curves ---------------------------------------------- */
 
@@ -106,12 +260,7 @@ SWARF_API int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter 
  * contains a surface patch (a ball turning about its own centre) give some
  * curves inside that patch. */
 
-/* A QSS of revolution about z (paper eq. 12 with c = d = 0):
- * h(n) = a (n_x^2 + n_y^2) + b n_z^2 + e n_z + f, so phi(z) = (b - a) z^2 + e z + a + f.
- * Its surface point is x_h(n) = phi(z) n + phi'(z) (e_z - z n). */
-typedef struct {
-  double a, b, e, f;
-} swarf_qss;
+/* A QSS of revolution about z: swarf_qss (declared with the cutters). */
 
 /* swarf_char_curve_compute for a QSS of revolution instead of a cutter. */
 SWARF_API int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q,
@@ -166,8 +315,8 @@ SWARF_API int swarf_char_gauss_slice(double dphi, const double v[3], const doubl
 typedef struct {
   const swarf_cutter *cutter;
   const swarf_motion *motion;
-  int method;       /* internal: which evaluator applies */
-  double aux[16];   /* internal: precomputed per-move constants */
+  int method;     /* internal: which evaluator applies */
+  double aux[16]; /* internal: precomputed per-move constants */
 } swarf_sweep;
 
 SWARF_API void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m);

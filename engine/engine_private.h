@@ -1,6 +1,9 @@
 /* engine_private.h -- the engine's insides, shared by its source files only.
  *
  *   cutter.c        cutters: support function, surface points, exact sdf.
+ *   cutter_body.c   bodies piece by piece: hulls, frustums, QSS pieces.
+ *   cutter_family.c the named families (vee, drill, ..., qss) from numbers.
+ *   profile.c       a piece's outline and its exact 2-D signed distance.
  *   charslice.c     the per-slice closed form of ENVELOPE.md Fact 2 and the
  *                   branch points (roots of Delta), for cutters and QSS.
  *   charcurve.c     characteristic curves: components, adaptive sampling.
@@ -105,6 +108,25 @@ static inline double swarf_cutter_sdf_rz(const swarf_cutter *c, double r, double
   double R = c->corner_radius, hh = 0.5 * c->length - R;
   return swarf_box2(r - swarf_cutter_core(c), fabs(z - 0.5 * c->length) - hh) - R;
 }
+
+/* ---- Profiles (profile.c, cutter_body.c) -------------------------------- */
+
+/* Trace a hull piece's outline from its circles (0, or -1: too many
+ * elements), then its extent (zlo, zhi, rmax and the side's zw0, zw1). */
+int swarf_profile_hull_build(swarf_profile_piece *pc);
+void swarf_profile_hull_extent(swarf_profile_piece *pc);
+
+/* 2-D signed distance of a piece at (r, z), r >= 0, and its gradient (dr,
+ * dz) if g is not NULL. The hull's with its upper chain raised by dz >= 0
+ * (the hull swept up by dz); the QSS piece's from its quartic. */
+double swarf_profile_hull_sdf(const swarf_profile_piece *pc, double r, double z, double dz,
+                              double g[2]);
+double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
+double swarf_profile_piece_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
+
+/* swarf_cutter_add_hull cut flat at height top (above the widest part). */
+swarf_status swarf_cutter_add_hull_clipped(swarf_cutter *c, const double (*circles)[3], int n,
+                                           double top, swarf_error *err);
 
 /* Cutter sdf at p (cutter frame) and its gradient g (unit where the sdf is
  * differentiable; a subgradient on the medial axis). */

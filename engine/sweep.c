@@ -21,7 +21,8 @@ void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_m
   s->cutter = c;
   s->motion = m;
   if (c == NULL || m == NULL) return;
-  if (m->kind == SWARF_MOTION_RIGID)
+  /* Profile cutters: the certified time search for now (closed forms to come). */
+  if (m->kind == SWARF_MOTION_RIGID || !c->fast)
     swarf_sweep_rigid_init(s, voxel > 0 ? voxel : 0.1);
   else if (m->kind == SWARF_MOTION_LINE)
     swarf_sweep_line_init(s, m->p0, m->p1);

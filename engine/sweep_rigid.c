@@ -227,6 +227,7 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
 double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
                                   const double p[3], double *alpha) {
   rsample smp[MAXN + 1];
+  const swarf_pose *table;
   rctx h;
   int n;
   double lb;
@@ -234,7 +235,8 @@ double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, 
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
   h.best.a = 0.0, h.best.g = INFINITY, h.best.dg = 0.0, h.best.dist = 0.0;
   n = (int)s->aux[RG_N];
-  n = rsteps(&h, swarf_motion_pose_table(s->motion, n), n, smp, &lb);
+  swarf_motion_pose_table(s->motion, n, &table); /* NULL when out of memory: poses computed */
+  n = rsteps(&h, table, n, smp, &lb);
   if (alpha != NULL) *alpha = h.best.a;
   if (n < 0) return lb;
   h.evals = 0;

@@ -1,5 +1,5 @@
-/* machine.c -- machine kinematics: the --machine description and the rigid
- * motion of the cutter in the workpiece frame for each canonical move.
+/* machine.c -- machine kinematics: the --machine description (the rigid
+ * motion of the cutter for a canonical move is move_motion.c's).
  *
  * Table machines only (the workpiece turns, the spindle keeps its
  * orientation): xyza (a rotary table about X, identity kinematics: program
@@ -12,13 +12,12 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "toolpath_private.h"
-
-static const double deg = 3.14159265358979323846 / 180.0;
 
 static const struct {
   const char *name;
@@ -45,14 +44,31 @@ static int read_pivot(const char **s, int npivot, double pivot[3]) {
   return 0;
 }
 
+/* --machine is wrong: err gets the reason. */
+static swarf_status refuse(swarf_error *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static swarf_status refuse(swarf_error *err, const char *fmt, ...) {
+  va_list ap;
+  if (err == NULL) return SWARF_ERR_ARG;
+  swarf_error_init(err);
+  swarf_error_at(err, NULL, 0, 0, "--machine");
+  err->status = SWARF_ERR_ARG;
+  va_start(ap, fmt);
+  vsnprintf(err->message, sizeof err->message, fmt, ap);
+  va_end(ap);
+  return SWARF_ERR_ARG;
+}
+
 /* One ",key=value" field at *s (after the comma). */
-static int parse_key(swarf_machine *m, int npivot, const char **s, char *msg, size_t msglen,
-                     const char *spec) {
+static swarf_status parse_key(swarf_machine *m, int npivot, const char **s, const char *spec,
+                              swarf_error *err) {
   if (npivot > 0 && strncmp(*s, "pivot=", 6) == 0) {
     *s += 6;
-    if (read_pivot(s, npivot, m->pivot) == 0) return 0;
-    snprintf(msg, msglen, "--machine: pivot needs %d numbers in \"%s\"; %s", npivot, spec, usage);
-    return -1;
+    if (read_pivot(s, npivot, m->pivot) == 0) return SWARF_OK;
+    return refuse(err, "--machine: pivot needs %d numbers in \"%s\"; %s", npivot, spec, usage);
   }
   if (npivot == 3 && strncmp(*s, "mode=", 5) == 0) {
     const char *v = *s + 5;
@@ -60,19 +76,18 @@ static int parse_key(swarf_machine *m, int npivot, const char **s, char *msg, si
     if ((n == 3 && !strncmp(v, "tcp", 3)) || (n == 5 && !strncmp(v, "joint", 5))) {
       m->tcp = n == 3;
       *s = v + n;
-      return 0;
+      return SWARF_OK;
     }
   }
-  snprintf(msg, msglen, "--machine: unknown field \"%.*s\" in \"%s\"; %s", (int)strcspn(*s, ","),
-           *s, spec, usage);
-  return -1;
+  return refuse(err, "--machine: unknown field \"%.*s\" in \"%s\"; %s", (int)strcspn(*s, ","),
+                *s, spec, usage);
 }
 
-int swarf_machine_parse(swarf_machine *m, const char *spec, char *msg, size_t msglen) {
+swarf_status swarf_machine_parse(swarf_machine *m, const char *spec, swarf_error *err) {
   const char *s = spec;
   size_t n;
   int npivot = -1;
-  if (m == NULL || spec == NULL) return -1;
+  if (m == NULL || spec == NULL) return refuse(err, "--machine: no machine given; %s", usage);
   memset(m, 0, sizeof *m);
   m->tcp = 1;
   n = strcspn(s, ",");
@@ -81,75 +96,12 @@ int swarf_machine_parse(swarf_machine *m, const char *spec, char *msg, size_t ms
       m->kind = machines[i].kind;
       npivot = machines[i].npivot;
     }
-  if (npivot < 0) {
-    snprintf(msg, msglen, "--machine: unknown machine \"%.*s\"; %s", (int)n, s, usage);
-    return -1;
-  }
+  if (npivot < 0) return refuse(err, "--machine: unknown machine \"%.*s\"; %s", (int)n, s, usage);
   if (m->kind == SWARF_MACHINE_XYZA) m->tcp = 0;
   for (s += n; *s == ',';) {
     s++;
-    if (parse_key(m, npivot, &s, msg, msglen, spec) != 0) return -1;
+    if (parse_key(m, npivot, &s, spec, err) != SWARF_OK) return SWARF_ERR_ARG;
   }
-  if (*s != '\0') {
-    snprintf(msg, msglen, "--machine: unexpected \"%s\" in \"%s\"; %s", s, spec, usage);
-    return -1;
-  }
-  return 0;
-}
-
-/* The machine's rotary axes: indices into a move's axes (-1: none). */
-static void machine_axes(swarf_machine_kind kind, int ax[2]) {
-  ax[0] = kind == SWARF_MACHINE_XYZBC_TRT ? SWARF_AXIS_B : SWARF_AXIS_A;
-  ax[1] = kind == SWARF_MACHINE_XYZA ? -1 : SWARF_AXIS_C;
-}
-
-/* -2 if the move turns an axis the machine does not have. */
-static int check_axes(const swarf_machine *mc, const swarf_move *mv, const int ax[2]) {
-  for (int k = SWARF_AXIS_A; k <= SWARF_AXIS_C; k++)
-    if (mv->start[k] != mv->end[k] && (mc->kind == SWARF_MACHINE_XYZ || (k != ax[0] && k != ax[1])))
-      return -2;
-  return 0;
-}
-
-static void fill_rigid(const swarf_machine *mc, const swarf_move *mv, const int ax[2],
-                       swarf_motion *m) {
-  double programmed = m->length, turn_deg = 0.0;
-  m->kind = SWARF_MOTION_RIGID;
-  m->tcp = mc->kind != SWARF_MACHINE_XYZA && mc->tcp;
-  memcpy(m->pivot, mc->pivot, sizeof m->pivot);
-  m->e1[mc->kind == SWARF_MACHINE_XYZBC_TRT ? 1 : 0] = 1.0;
-  if (ax[1] >= 0) m->e2[2] = 1.0;
-  for (int i = 0; i < 2; i++) {
-    if (ax[i] < 0) continue;
-    m->th0[i] = mv->start[ax[i]] * deg;
-    m->th1[i] = mv->end[ax[i]] * deg;
-    m->turn += fabs(m->th1[i] - m->th0[i]);
-    turn_deg += fabs(mv->end[ax[i]] - mv->start[ax[i]]);
-  }
-  m->length = swarf_rigid_length(m);
-  /* Feed: along the programmed X Y Z path, or in degrees/min for a purely
-   * rotary move (LinuxCNC's rule). */
-  if (m->rapid)
-    m->duration = fmax(programmed, turn_deg) / SWARF_RAPID_RATE * 60.0;
-  else if (mv->feed > 0)
-    m->duration = (programmed > 0 ? programmed : turn_deg) / mv->feed * 60.0;
-}
-
-int swarf_machine_motion(const swarf_machine *mc, const swarf_move *mv, swarf_motion *out) {
-  swarf_move flat;
-  int ax[2], rc, zero = 1;
-  if (mc == NULL || mv == NULL || out == NULL) return -1;
-  if (mv->kind != SWARF_MOVE_RAPID && mv->kind != SWARF_MOVE_LINE && mv->kind != SWARF_MOVE_ARC)
-    return -1;
-  machine_axes(mc->kind, ax);
-  if (check_axes(mc, mv, ax) != 0) return -2;
-  flat = *mv; /* the X Y Z part of the move */
-  for (int k = SWARF_AXIS_A; k <= SWARF_AXIS_C; k++)
-    flat.start[k] = flat.end[k] = mv->start[k];
-  if ((rc = swarf_motion_from_move(&flat, out)) != 0) return rc;
-  if (mc->kind == SWARF_MACHINE_XYZ) return 0;
-  for (int i = 0; i < 2; i++)
-    if (ax[i] >= 0 && (mv->start[ax[i]] != 0.0 || mv->end[ax[i]] != 0.0)) zero = 0;
-  if (!zero) fill_rigid(mc, mv, ax, out);
-  return 0;
+  if (*s != '\0') return refuse(err, "--machine: unexpected \"%s\" in \"%s\"; %s", s, spec, usage);
+  return SWARF_OK;
 }

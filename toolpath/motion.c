@@ -1,8 +1,7 @@
-/* motion.c -- rigid motions of the cutter for the 3-axis (xyz) machine.
- *
- * A canonical move becomes t(alpha), U(alpha) = I: the tool tip follows the
- * programmed straight line or helix exactly (no chords). Values only; the
- * caller owns every struct passed in.
+/* motion.c -- rigid motions of the cutter: the xyz machine's lines and
+ * helices (t(alpha), U(alpha) = I: the tool tip follows the programmed
+ * straight line or helix exactly, no chords) and the public dispatch to
+ * rigid.c for RIGID motions. Values only; the caller owns every struct.
  */
 #include <math.h>
 #include <string.h>
@@ -31,63 +30,6 @@ static void rotate3(const double n[3], double th, const double v[3], double out[
 static void set_identity(double U[9]) {
   static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   memcpy(U, I, sizeof I);
-}
-
-static void fill_common(const swarf_move *mv, swarf_motion *m) {
-  memset(m, 0, sizeof *m);
-  for (int k = 0; k < 3; k++) {
-    m->p0[k] = mv->start[k];
-    m->p1[k] = mv->end[k];
-  }
-  m->tool = mv->tool;
-  m->rapid = mv->kind == SWARF_MOVE_RAPID;
-  m->line = mv->line;
-  m->column = mv->column;
-}
-
-static void fill_helix(const swarf_move *mv, swarf_motion *m) {
-  double r[3], nr;
-  m->kind = SWARF_MOTION_HELIX;
-  m->helix = 1;
-  memcpy(m->axis, mv->normal, sizeof m->axis);
-  /* Keep the centre in the plane of p0 so that p0 - centre is radial. */
-  for (int k = 0; k < 3; k++)
-    r[k] = m->p0[k] - mv->center[k];
-  nr = dot3(r, m->axis);
-  for (int k = 0; k < 3; k++)
-    m->center[k] = mv->center[k] + nr * m->axis[k];
-  for (int k = 0; k < 3; k++)
-    r[k] = m->p0[k] - m->center[k];
-  m->radius = sqrt(dot3(r, r));
-  m->angle = mv->angle;
-  m->rise = mv->rise;
-  m->length = hypot(m->radius * m->angle, m->rise);
-  /* The path is the exact helix; its end replaces the programmed end, which
-   * the front end allows to differ by the arc tolerance. */
-  swarf_motion_eval(m, 1.0, m->p1, NULL);
-}
-
-int swarf_motion_from_move(const swarf_move *mv, swarf_motion *m) {
-  double d[3];
-  if (mv == NULL || m == NULL) return -1;
-  if (mv->kind != SWARF_MOVE_RAPID && mv->kind != SWARF_MOVE_LINE && mv->kind != SWARF_MOVE_ARC)
-    return -1;
-  for (int k = SWARF_AXIS_A; k <= SWARF_AXIS_C; k++)
-    if (mv->start[k] != mv->end[k]) return -1;
-  fill_common(mv, m);
-  if (mv->kind == SWARF_MOVE_ARC) {
-    fill_helix(mv, m);
-  } else {
-    m->kind = SWARF_MOTION_LINE;
-    for (int k = 0; k < 3; k++)
-      d[k] = m->p1[k] - m->p0[k];
-    m->length = sqrt(dot3(d, d));
-  }
-  if (m->rapid)
-    m->duration = m->length / SWARF_RAPID_RATE * 60.0;
-  else
-    m->duration = mv->feed > 0 ? m->length / mv->feed * 60.0 : 0.0;
-  return 0;
 }
 
 void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double U[9]) {

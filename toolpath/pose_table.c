@@ -65,12 +65,20 @@ static int slot_fill(pose_slot *s, const swarf_motion *m, int n) {
   return 0;
 }
 
-const swarf_pose *swarf_motion_pose_table(const swarf_motion *m, int n) {
+swarf_status swarf_motion_pose_table(const swarf_motion *m, int n, const swarf_pose **out) {
   pose_cache *c;
   pose_slot *s;
-  if (m == NULL || n < 1 || (c = cache_get()) == NULL) return NULL;
+  if (out == NULL) return SWARF_ERR_ARG;
+  *out = NULL;
+  if (m == NULL || n < 1) return SWARF_ERR_ARG;
+  if ((c = cache_get()) == NULL) return SWARF_ERR_MEMORY;
   s = &c->slot[((uintptr_t)m / sizeof *m) % SLOTS];
-  if (s->n == n && memcmp(&s->key, m, sizeof *m) == 0) return s->poses;
+  if (s->n == n && memcmp(&s->key, m, sizeof *m) == 0) {
+    *out = s->poses;
+    return SWARF_OK;
+  }
   s->n = 0;
-  return slot_fill(s, m, n) == 0 ? s->poses : NULL;
+  if (slot_fill(s, m, n) != 0) return SWARF_ERR_MEMORY;
+  *out = s->poses;
+  return SWARF_OK;
 }

@@ -1,21 +1,26 @@
-/* toolpath.h -- canonical moves become rigid motions of the cutter.
+/* toolpath.h -- rigid motions of the cutter and the machines that make them.
  *
- * Role: a move from the G-code front end becomes a rigid motion
+ * Role: a rigid motion
  *   x' = t(alpha) + U(alpha) x,   alpha in [0, 1],
- * that carries a point x of the cutter frame (tip at the origin, axis +z)
- * into the workpiece frame. On the 3-axis machine (xyz) U is the identity
- * and t(alpha) is the tool tip on the programmed path; arcs stay arcs: a
+ * carries a point x of the cutter frame (tip at the origin, axis +z) into
+ * the workpiece frame. On the 3-axis machine (xyz) U is the identity and
+ * t(alpha) is the tool tip on the programmed path; arcs stay arcs: a
  * helical motion is evaluated exactly at any alpha. Machines with rotary
  * table axes (swarf_machine, machine.c) give RIGID motions with U != I.
  *
- * Units: mm, radians, seconds. Values only, no state: thread-safe.
+ * Layers: this header knows nothing of G-code. A canonical move of the
+ * front end becomes a motion in move_motion.h (library swarf_move_motion),
+ * the one place where toolpath meets gcode; the engine sees only motions.
+ *
+ * Units: mm, radians, seconds. Values only, no state: thread-safe (the pose
+ * table is per thread).
  */
 #ifndef SWARF_TOOLPATH_H
 #define SWARF_TOOLPATH_H
 
 #include <stddef.h>
 
-#include "gcode.h"
+#include "swarf_status.h"
 #include "swarf_status.h"
 
 #ifdef __cplusplus
@@ -62,11 +67,6 @@ typedef struct {
 /* Rapid traverse rate used for the duration of G0 moves, mm/min. */
 #define SWARF_RAPID_RATE 5000.0
 
-/* Fill `out` from a motion move (RAPID, LINE or ARC) of a 3-axis machine.
- * Returns 0, or -1 if the move has no motion (dwell, tool change) or a
- * rotary axis moves (not handled by the xyz machine). */
-SWARF_API int swarf_motion_from_move(const swarf_move *move, swarf_motion *out);
-
 /* ---- Machines ------------------------------------------------------------ */
 
 typedef enum {
@@ -84,15 +84,9 @@ typedef struct {
 
 /* Fill `m` from "NAME[,key=value...]": NAME xyz, xyza, xyzac-trt, xyzbc-trt;
  * keys pivot=Y,Z (xyza) or pivot=X,Y,Z (trt), mode=tcp|joint (trt).
- * Returns 0, or -1 with a reason (naming --machine) in msg. */
-SWARF_API int swarf_machine_parse(swarf_machine *m, const char *spec, char *msg, size_t msglen);
-
-/* The rigid motion of the cutter in the workpiece frame for `move` on machine
- * `mc`. Straight moves that turn a rotary axis become RIGID motions; the rest
- * as swarf_motion_from_move. Returns 0, -1 for moves without motion, -2 when
- * the machine does not have an axis the move turns (or an arc turns one). */
-SWARF_API int swarf_machine_motion(const swarf_machine *mc, const swarf_move *move,
-                                   swarf_motion *out);
+ * SWARF_ERR_ARG when the description is wrong: *err (may be NULL) gets the
+ * reason, naming --machine (err->word "--machine"). */
+SWARF_API swarf_status swarf_machine_parse(swarf_machine *m, const char *spec, swarf_error *err);
 
 /* Pose at alpha: t (3) and U (3x3 row-major). */
 SWARF_API void swarf_motion_eval(const swarf_motion *m, double alpha, double t[3], double U[9]);
@@ -114,12 +108,14 @@ typedef struct {
  * rotation's sines and cosines once). */
 SWARF_API void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose *out);
 
-/* The poses at alpha = i / n, i = 0..n (n >= 1), from a per-thread cache of
- * the last motions asked for (keyed by the motion's contents, so a motion
- * changed in place is recomputed). The array belongs to the cache and stays
- * valid until the next call of this function on the same thread. Returns
- * NULL when out of memory. Thread-safe (each thread has its own cache). */
-SWARF_API const swarf_pose *swarf_motion_pose_table(const swarf_motion *m, int n);
+/* The poses at alpha = i / n, i = 0..n (n >= 1), into *out, from a
+ * per-thread cache of the last motions asked for (keyed by the motion's
+ * contents, so a motion changed in place is recomputed). The array belongs
+ * to the cache and stays valid until the next call of this function on the
+ * same thread. SWARF_ERR_MEMORY (*out = NULL) when out of memory,
+ * SWARF_ERR_ARG for n < 1. Thread-safe (each thread has its own cache). */
+SWARF_API swarf_status swarf_motion_pose_table(const swarf_motion *m, int n,
+                                               const swarf_pose **out);
 
 /* Axis-aligned bounds of the tip path t([0,1]), mm. */
 SWARF_API void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]);

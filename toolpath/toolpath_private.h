@@ -2,7 +2,8 @@
  *
  *   motion.c   xyz motions (lines, helices) and the public dispatch.
  *   rigid.c    RIGID motions: table rotations, poses, velocities, bounds.
- *   machine.c  machine descriptions (--machine) and moves -> motions.
+ *   machine.c  machine descriptions (--machine).
+ *   move_motion.c  canonical moves -> motions (library swarf_move_motion).
  *   pose_table.c  per-thread tables of poses at evenly spaced times.
  */
 #ifndef SWARF_TOOLPATH_PRIVATE_H

@@ -24,7 +24,7 @@ static void test_init(void) {
   CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10.0, 0.0, 25.0, &why) == -1, "bull R = 0");
   CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 0.0, 0.0, 25.0, &why) == -1, "D = 0");
   CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, NAN, 0.0, 25.0, &why) == -1, "D = NaN");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 0.0, 5.0, &why) == -1, "length < D");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 0.0, 5.0, &why) == 0, "length < D: a short-fluted flat is real");
   CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 0.0, NAN, &why) == -1, "length NaN");
   CHECK(swarf_cutter_init(NULL, SWARF_CUTTER_FLAT, 6.0, 0.0, 0.0, &why) == -1, "NULL cutter");
 }

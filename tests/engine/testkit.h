@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "engine.h"
+#include "move_motion.h"
 
 static const double tk_pi = 3.14159265358979323846;
 
@@ -74,7 +75,7 @@ static inline swarf_motion tk_line(const double p0[3], const double p1[3]) {
     mv.start[k] = p0[k];
     mv.end[k] = p1[k];
   }
-  swarf_motion_from_move(&mv, &m);
+  swarf_motion_from_move(&mv, &m, NULL);
   return m;
 }
 
@@ -93,7 +94,7 @@ static inline swarf_motion tk_helix(const double start[3], const double center[3
   }
   mv.angle = angle;
   mv.rise = rise;
-  swarf_motion_from_move(&mv, &m);
+  swarf_motion_from_move(&mv, &m, NULL);
   for (int k = 0; k < 3; k++) mv.end[k] = m.p1[k];
   return m;
 }

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "toolpath.h"
+#include "move_motion.h"
 
 static const double deg = M_PI / 180.0;
 
@@ -33,15 +33,15 @@ static swarf_motion motion(const char *spec, const double s6[6], const double e6
   swarf_machine mc;
   swarf_move mv;
   swarf_motion m;
-  char msg[256];
+  swarf_error err;
   memset(&mv, 0, sizeof mv);
   memset(&m, 0, sizeof m);
   mv.kind = SWARF_MOVE_LINE;
   mv.feed = 600;
   memcpy(mv.start, s6, sizeof mv.start);
   memcpy(mv.end, e6, sizeof mv.end);
-  CHECK(swarf_machine_parse(&mc, spec, msg, sizeof msg) == 0, "%s: %s", spec, msg);
-  *rc = swarf_machine_motion(&mc, &mv, &m);
+  CHECK(swarf_machine_parse(&mc, spec, &err) == SWARF_OK, "%s: %s", spec, err.message);
+  *rc = swarf_machine_motion(&mc, &mv, &m, NULL);
   return m;
 }
 
@@ -108,7 +108,7 @@ static void test_machines(void) {
   double tmp[6];
   int rc;
   swarf_motion m = motion("xyzac-trt", s6, b6, &rc);
-  CHECK(rc == -2, "xyzac-trt refuses a move that turns B");
+  CHECK(rc == SWARF_ERR_MACHINE, "xyzac-trt refuses a move that turns B");
   memcpy(tmp, s6, sizeof tmp);
   tmp[4] = 0;
   double e0[6];
@@ -135,7 +135,7 @@ static void test_machines(void) {
   m = motion("xyza", a6, a6, &rc);
   CHECK(rc == 0 && m.kind == SWARF_MOTION_LINE, "A = 0 throughout: a plain 3-axis line");
   m = motion("xyz", a6, g6, &rc);
-  CHECK(rc == -2, "xyz refuses A");
+  CHECK(rc == SWARF_ERR_MACHINE, "xyz refuses A");
 }
 
 static void test_parse_errors(void) {
@@ -143,15 +143,17 @@ static void test_parse_errors(void) {
       "xyzq",          "xyza,pivot=1",  "xyza,pivot=1,2,3",        "xyzac-trt,mode=tpc",
       "xyz,pivot=1,2", "xyza,mode=tcp", "xyzac-trt,pivot=1,nan,2", ""};
   swarf_machine m;
-  char msg[256];
+  swarf_error err;
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-    msg[0] = 0;
-    CHECK(swarf_machine_parse(&m, bad[i], msg, sizeof msg) == -1, "\"%s\" refused", bad[i]);
-    CHECK(strstr(msg, "--machine") != NULL, "message names the flag: %s", msg);
+    swarf_error_init(&err);
+    CHECK(swarf_machine_parse(&m, bad[i], &err) == SWARF_ERR_ARG && err.status == SWARF_ERR_ARG,
+          "\"%s\" refused", bad[i]);
+    CHECK(strstr(err.message, "--machine") != NULL && strcmp(err.word, "--machine") == 0,
+          "message names the flag: %s (%s)", err.message, err.word);
   }
-  CHECK(swarf_machine_parse(&m, "xyzbc-trt,mode=joint,pivot=1,2,3", msg, sizeof msg) == 0 &&
+  CHECK(swarf_machine_parse(&m, "xyzbc-trt,mode=joint,pivot=1,2,3", &err) == SWARF_OK &&
             m.kind == SWARF_MACHINE_XYZBC_TRT && !m.tcp && m.pivot[2] == 3,
-        "full spec: %s", msg);
+        "full spec: %s", err.message);
 }
 
 int main(void) {

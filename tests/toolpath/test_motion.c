@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "toolpath.h"
+#include "move_motion.h"
 
 static swarf_move make_arc(double cx, double cy, double sign, double angle, double rise) {
   swarf_move mv;
@@ -34,7 +34,7 @@ static void test_line(void) {
   mv.end[0] = 3.0;
   mv.end[1] = 4.0;
   mv.feed = 300.0;
-  CHECK(swarf_motion_from_move(&mv, &m) == 0, "line accepted");
+  CHECK(swarf_motion_from_move(&mv, &m, NULL) == SWARF_OK, "line accepted");
   swarf_motion_eval(&m, 0.5, t, U);
   CHECK_NEAR(t[0], 1.5, 1e-15, "line midpoint x");
   CHECK_NEAR(t[1], 2.0, 1e-15, "line midpoint y");
@@ -42,7 +42,7 @@ static void test_line(void) {
   CHECK_NEAR(m.length, 5.0, 1e-15, "line length");
   CHECK_NEAR(m.duration, 1.0, 1e-12, "5 mm at 300 mm/min takes 1 s");
   mv.kind = SWARF_MOVE_DWELL;
-  CHECK(swarf_motion_from_move(&mv, &m) == -1, "dwell is no motion");
+  CHECK(swarf_motion_from_move(&mv, &m, NULL) == SWARF_ERR_ARG, "dwell is no motion");
 }
 
 static void test_helix_quarter(void) {
@@ -50,7 +50,7 @@ static void test_helix_quarter(void) {
   swarf_move mv = make_arc(10.0, 10.0, 1.0, M_PI / 2, 2.0);
   swarf_motion m;
   double t[3];
-  CHECK(swarf_motion_from_move(&mv, &m) == 0, "arc accepted");
+  CHECK(swarf_motion_from_move(&mv, &m, NULL) == SWARF_OK, "arc accepted");
   swarf_motion_eval(&m, 1.0, t, NULL);
   CHECK_NEAR(t[0], 10.0, 1e-12, "G3 quarter ends at x = 10");
   CHECK_NEAR(t[1], 15.0, 1e-12, "G3 quarter ends at y = 15");
@@ -58,7 +58,7 @@ static void test_helix_quarter(void) {
   CHECK_NEAR(m.length, hypot(5.0 * M_PI / 2, 2.0), 1e-12, "helix length");
   /* G2: normal -z, rise along the normal lowers z. */
   mv = make_arc(10.0, 10.0, -1.0, M_PI / 2, 2.0);
-  swarf_motion_from_move(&mv, &m);
+  swarf_motion_from_move(&mv, &m, NULL);
   swarf_motion_eval(&m, 1.0, t, NULL);
   CHECK_NEAR(t[1], 5.0, 1e-12, "G2 quarter ends at y = 5");
   CHECK_NEAR(t[2], -3.0, 1e-12, "G2 rise along -z");
@@ -68,7 +68,7 @@ static void test_velocity(void) {
   swarf_move mv = make_arc(0.0, 0.0, 1.0, 5.0, 3.0);
   swarf_motion m;
   double a = 0.37, h = 1e-6, tp[3], tm[3], td[3], v[3], w[3];
-  swarf_motion_from_move(&mv, &m);
+  swarf_motion_from_move(&mv, &m, NULL);
   swarf_motion_eval(&m, a + h, tp, NULL);
   swarf_motion_eval(&m, a - h, tm, NULL);
   swarf_motion_velocity(&m, a, td, v, w);
@@ -88,7 +88,7 @@ static void test_bounds(void) {
     swarf_motion m;
     double lo[3], hi[3], slo[3] = {1e9, 1e9, 1e9}, shi[3] = {-1e9, -1e9, -1e9}, t[3];
     for (int k = 0; k < 3; k++) mv.normal[k] = n[k] / len;
-    swarf_motion_from_move(&mv, &m);
+    swarf_motion_from_move(&mv, &m, NULL);
     swarf_motion_bounds(&m, lo, hi);
     for (int i = 0; i <= 20000; i++) {
       swarf_motion_eval(&m, i / 20000.0, t, NULL);

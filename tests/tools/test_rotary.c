@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "move_motion.h"
 #include "swarf_sim.h"
 
 #define VOXEL 0.1
@@ -124,12 +125,11 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   swarf_motion m;
   swarf_move mv;
   swarf_sweep sw;
-  char msg[512];
   swarf_error err;
   swarf_sim_config_init(&cfg);
   cfg.voxel = VOXEL;
   cfg.half_width = 3;
-  CHECK(swarf_machine_parse(&cfg.machine, machine, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(swarf_machine_parse(&cfg.machine, machine, &err) == SWARF_OK, "%s", err.message);
   CHECK(swarf_sim_parse_stock(stock, &cfg.stock, &err) == 0, "%s", err.message);
   CHECK(swarf_sim_parse_tool(tool, &cfg.tools[0], &err) == 0, "%s", err.message);
   cfg.ntools = 1;
@@ -142,7 +142,7 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   mv.feed = 100;
   memcpy(mv.start, s6, sizeof mv.start);
   memcpy(mv.end, e6, sizeof mv.end);
-  CHECK(swarf_machine_motion(&cfg.machine, &mv, &m) == 0, "motion");
+  CHECK(swarf_machine_motion(&cfg.machine, &mv, &m, NULL) == SWARF_OK, "motion");
   swarf_sweep_init_voxel(&sw, &cfg.tools[0].cutter, &m, VOXEL);
   int n = (int)sw.aux[6]; /* the production's time steps */
   const swarf_cutter *c = &cfg.tools[0].cutter;

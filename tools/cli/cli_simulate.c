@@ -116,7 +116,8 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     return 0;
   }
   if (!strcmp(flag, "--machine")) {
-    if (swarf_machine_parse(&o->cfg.machine, val, msg, sizeof msg)) return usage_error(msg);
+    swarf_error err;
+    if (swarf_machine_parse(&o->cfg.machine, val, &err) != SWARF_OK) return usage_error(err.message);
     return 0;
   }
   if (!strcmp(flag, "--tool")) return -1; /* handled by the caller */

@@ -32,7 +32,8 @@ static double pose_sdf(const swarf_cutter *c, const double t[3], const double U[
  * one the swept sdf uses) for moves of up to 4096 stamps (600 kB a slot). */
 static double stamp_sdf(const void *ctx, double x, double y, double z) {
   const swarf_sim_stamp *s = ctx;
-  const swarf_pose *table = s->n <= 4096 ? swarf_motion_pose_table(s->motion, s->n) : NULL;
+  const swarf_pose *table = NULL;
+  if (s->n <= 4096) swarf_motion_pose_table(s->motion, s->n, &table); /* NULL: poses computed */
   double best = INFINITY, t[3], U[9];
   for (int i = 0; i <= s->n; i++) {
     double d;

@@ -132,14 +132,13 @@ static int on_move(const swarf_move *mv, void *user) {
   swarf_move tip;
   if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, mv);
   if (mv->kind == SWARF_MOVE_DWELL) return 0;
-  int rc = swarf_machine_motion(&s->cfg.machine, tip_move(s, mv, &tip), &m);
-  if (rc == -2) {
-    swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column,
-                   "this move turns a rotary axis the machine does not have; choose one with "
-                   "--machine xyza, xyzac-trt or xyzbc-trt");
+  swarf_error e;
+  swarf_status rc = swarf_machine_motion(&s->cfg.machine, tip_move(s, mv, &tip), &m, &e);
+  if (rc == SWARF_ERR_MACHINE) {
+    swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column, "%s", e.message);
     return 1;
   }
-  if (rc != 0) return 0;
+  if (rc != SWARF_OK) return 0;
   return take_motion(s, &m);
 }
 

@@ -6,6 +6,8 @@
 #define SWARF_SIM_PRIVATE_H
 
 #include "assembly.h"
+#include "gcode.h"
+#include "move_motion.h"
 #include "swarf_sim.h"
 
 /* A move stamped at n + 1 evenly spaced poses (the benchmark baseline). */

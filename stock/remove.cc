@@ -264,7 +264,7 @@ bool block_overlap(const Pass &p, ConstAcc &acc, const Coord &o, double depth, V
 }
 
 /// First voxel of the block at o whose score min(-v, clear) - sdf (v: the
-/// stock value, below +band; clear: the sdf of a volume already cut away,
+/// stock value, at most half a voxel outside; clear: the sdf of a volume already cut away,
 /// +inf without one) exceeds depth (see stock.h); false if none. A voxel
 /// scores at most -v + (r - dc) (r: its distance to the block centre, dc:
 /// the cut's sdf there), so blocks and voxels the Lipschitz bound keeps below
@@ -277,14 +277,15 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, ConstAcc &acc
   if (p.bgf + r - dc <= depth) return false;
   const Leaf *leaf = acc.probeConstLeaf(o);
   const float tile = leaf == nullptr ? acc.getValue(o) : 0.0f;
-  if (leaf == nullptr && !(tile < p.bgf)) return false;  // an outside tile
+  if (leaf == nullptr && !(tile < 0.0f)) return false;  // an outside tile
   const float *v = leaf != nullptr ? leaf->buffer().data() : nullptr;
+  const double out = 0.5 * p.voxel;
   for (int x = 0; x < 8; x++)
     for (int y = 0; y < 8; y++)
       for (int z = 0; z < 8; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         const double val = v != nullptr ? v[n] : tile;
-        if (!(val < p.bgf) || -val + p.radius[n] - dc <= depth) continue;
+        if (!(val <= out) || -val + p.radius[n] - dc <= depth) continue;
         const Vec3d q = block_point(p, o, x, y, z);
         const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
         if (!(-val - d > depth)) continue;

@@ -52,21 +52,38 @@ typedef struct {
   double lo[3], hi[3];
 } part_sweep;
 
-/* The body of a part, tip at its bottom (z0). A cone is bounded by the
- * cylinder of its larger diameter (until the engine sweeps cones). */
-static void part_body(const swarf_sim_part *p, swarf_cutter *body) {
-  memset(body, 0, sizeof *body);
-  body->shape = SWARF_CUTTER_FLAT;
-  body->diameter = fmax(p->d0, p->d1);
-  body->length = p->z1 - p->z0;
+/* The sweep of a body of revolution from z0 to z1 above the tip (diameters
+ * d0 at z0, d1 at z1), lifted by `lift` along the tool axis, along m. A
+ * cylinder on a motion that can be shifted is a flat cutter on the shifted
+ * motion (the closed forms); anything else (a cone, a motion in TCP mode) a
+ * profile body at its height (engine.h: swarf_cutter_add_frustum) on m
+ * itself. -1 if the body cannot be built. */
+static int part_sweep_init(part_sweep *ps, double z0, double z1, double d0, double d1,
+                           double lift, const swarf_motion *m, double voxel) {
+  swarf_error err;
+  const char *why = NULL;
+  if (d0 == d1 && swarf_sim_shift_motion(m, z0 + lift, &ps->motion) == 0) {
+    if (swarf_cutter_init(&ps->body, SWARF_CUTTER_FLAT, d0, 0, z1 - z0, &why) != 0) return -1;
+  } else {
+    ps->motion = *m;
+    swarf_cutter_begin(&ps->body);
+    if (swarf_cutter_add_frustum(&ps->body, z0 + lift, 0.5 * d0, z1 + lift, 0.5 * d1, &err) !=
+            SWARF_OK ||
+        swarf_cutter_finish(&ps->body, &err) != SWARF_OK)
+      return -1;
+  }
+  swarf_sweep_init_voxel(&ps->sweep, &ps->body, &ps->motion, voxel);
+  swarf_sweep_bounds(&ps->sweep, ps->lo, ps->hi);
+  return 0;
 }
 
-/* The sweep of the part (body, offset z0 + lift) along m; -1 if the machine's
- * motion cannot carry it. */
-static int part_sweep_init(part_sweep *ps, const swarf_cutter *body, double z0, double lift,
-                           const swarf_motion *m, double voxel) {
-  ps->body = *body;
-  if (swarf_sim_shift_motion(m, z0 + lift, &ps->motion) != 0) return -1;
+/* The cutter's own sweep, lifted along the tool axis (by shifting the
+ * motion; -1 when the motion cannot be shifted and lift is not 0). */
+static int cutter_sweep_init(part_sweep *ps, const swarf_cutter *c, double lift,
+                             const swarf_motion *m, double voxel) {
+  if (lift == 0) ps->motion = *m;
+  else if (swarf_sim_shift_motion(m, lift, &ps->motion) != 0) return -1;
+  ps->body = *c;
   swarf_sweep_init_voxel(&ps->sweep, &ps->body, &ps->motion, voxel);
   swarf_sweep_bounds(&ps->sweep, ps->lo, ps->hi);
   return 0;
@@ -105,8 +122,8 @@ static double clear_sdf(const void *ctx, double x, double y, double z) {
 typedef struct {
   swarf_sim *s;
   const swarf_stock *grid;
-  const swarf_cutter *body;
-  double z0;
+  double z0, z1, d0, d1;       /* the body (part_sweep_init) ... */
+  const swarf_cutter *cutter; /* ... or, when not NULL, the cutter itself */
   const swarf_motion *m;
   const swarf_stock_cut *const *clear;
   int nclear;
@@ -114,12 +131,18 @@ typedef struct {
 } part_check;
 
 /* Does the part, lifted by `lift`, penetrate the grid by more than half a
- * voxel? 1 yes, 0 no, -1 failed (after swarf_sim_fail). */
+ * voxel? 1 yes, 0 no, -1 failed (after swarf_sim_fail), -2 it cannot be
+ * lifted on this motion. */
 static int penetrates_at(const part_check *pc, double lift, double where[3]) {
   part_sweep ps;
   swarf_error err;
   int hit = 0;
-  if (part_sweep_init(&ps, pc->body, pc->z0, lift, pc->m, pc->s->cfg.voxel) != 0) return 0;
+  if (pc->cutter != NULL) {
+    if (cutter_sweep_init(&ps, pc->cutter, lift, pc->m, pc->s->cfg.voxel) != 0) return -2;
+  } else if (part_sweep_init(&ps, pc->z0, pc->z1, pc->d0, pc->d1, lift, pc->m, pc->s->cfg.voxel) !=
+             0) {
+    return -2;
+  }
   swarf_stock_cut cut = {{ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, sweep_sdf,
                          &ps.sweep};
   clear_ctx cc = {pc->clear, pc->nclear};
@@ -133,7 +156,8 @@ static int penetrates_at(const part_check *pc, double lift, double where[3]) {
   return hit;
 }
 
-/* The lift that clears a part found penetrating at lift 0, plus half a voxel. */
+/* The lift that clears a part found penetrating at lift 0, plus half a
+ * voxel; NaN when it cannot be measured (-2 above) or after a failure. */
 static double clearing_depth(const part_check *pc) {
   const double v = swarf_stock_voxel(pc->grid), h = 0.5 * v;
   double lo = 0, hi = h, where[3];
@@ -190,27 +214,36 @@ static int material_kind(swarf_sim *s, const swarf_motion *m, const swarf_stock_
                          const swarf_sim_part *parts, int n, swarf_alarm_kind kind) {
   swarf_sim_collide *c = &s->col;
   double deepest = -1, at[3] = {NAN, NAN, NAN};
+  int found = 0;
   for (int i = 0; i < n; i++) {
-    swarf_cutter body;
+    const swarf_sim_part *q = &parts[i];
     part_sweep ps;
     double where[3];
-    if (parts[i].kind != kind) continue;
-    part_body(&parts[i], &body);
-    if (part_sweep_init(&ps, &body, parts[i].z0, 0, m, s->cfg.voxel) != 0 ||
+    if (q->kind != kind) continue;
+    if (part_sweep_init(&ps, q->z0, q->z1, q->d0, q->d1, 0, m, s->cfg.voxel) != 0 ||
         !boxes_meet(ps.lo, ps.hi, s->pad_lo, s->pad_hi))
       continue;
     c->checked++;
-    part_check pc = {s, s->stock, &body, parts[i].z0, m, (const swarf_stock_cut *const *)c->clear,
+    part_check pc = {s,
+                     s->stock,
+                     q->z0,
+                     q->z1,
+                     q->d0,
+                     q->d1,
+                     NULL,
+                     m,
+                     (const swarf_stock_cut *const *)c->clear,
                      clearing_sweeps(s, own, ps.lo, ps.hi),
-                     box_diagonal(s->pad_lo, s->pad_hi) + parts[i].z1 - parts[i].z0};
+                     box_diagonal(s->pad_lo, s->pad_hi) + q->z1 - q->z0};
     int r = penetrates_at(&pc, 0, where);
-    if (r < 0) return 1;
-    if (r == 0) continue;
+    if (r == -1) return 1;
+    if (r != 1) continue;
     double d = clearing_depth(&pc);
-    if (isnan(d)) return 1;
-    if (d > deepest) deepest = d, memcpy(at, where, sizeof at);
+    if (s->err.status != SWARF_OK) return 1;
+    if (!found || d > deepest || isnan(d)) deepest = d, memcpy(at, where, sizeof at);
+    found = 1;
   }
-  if (deepest < 0) return 0;
+  if (!found) return 0;
   c->last_line[kind == SWARF_ALARM_SHANK ? 0 : 1] = m->line;
   raise_collision(s, m, kind, 0, kind == SWARF_ALARM_SHANK ? 1 : 2, deepest, at);
   return 0;
@@ -218,24 +251,27 @@ static int material_kind(swarf_sim *s, const swarf_motion *m, const swarf_stock_
 
 /* ---- Fixtures ------------------------------------------------------------- */
 
-/* Body `body` at z0 (part: 0 cutter, 1 shank, 2 holder) against fixture f. */
-static int fixture_part(swarf_sim *s, const swarf_motion *m, int f, const swarf_cutter *body,
-                        double z0, int part) {
+/* A part (part: 1 shank, 2 holder; q) or the cutter (part 0, cutter)
+ * against fixture f. */
+static int fixture_part(swarf_sim *s, const swarf_motion *m, int f, const swarf_sim_part *q,
+                        const swarf_cutter *cutter, int part) {
   swarf_sim_collide *c = &s->col;
   const swarf_sim_fixture *fx = &s->cfg.fixtures[f];
   part_sweep ps;
   double where[3];
   if (c->fixture_line[f][part] == m->line) return 0;
-  if (part_sweep_init(&ps, body, z0, 0, m, s->cfg.voxel) != 0 ||
-      !boxes_meet(ps.lo, ps.hi, fx->lo, fx->hi))
-    return 0;
+  int built = cutter != NULL ? cutter_sweep_init(&ps, cutter, 0, m, s->cfg.voxel)
+                             : part_sweep_init(&ps, q->z0, q->z1, q->d0, q->d1, 0, m, s->cfg.voxel);
+  if (built != 0 || !boxes_meet(ps.lo, ps.hi, fx->lo, fx->hi)) return 0;
   c->checked++;
-  part_check pc = {s, c->fixture[f], body, z0, m, NULL, 0,
+  part_check pc = {s, c->fixture[f], 0, 0, 0, 0, cutter, m, NULL, 0,
                    box_diagonal(fx->lo, fx->hi) + ps.hi[2] - ps.lo[2]};
+  if (q != NULL) pc.z0 = q->z0, pc.z1 = q->z1, pc.d0 = q->d0, pc.d1 = q->d1;
   int r = penetrates_at(&pc, 0, where);
-  if (r <= 0) return r < 0;
+  if (r == -1) return 1;
+  if (r != 1) return 0;
   double d = clearing_depth(&pc);
-  if (isnan(d)) return 1;
+  if (s->err.status != SWARF_OK) return 1;
   c->fixture_line[f][part] = m->line;
   raise_collision(s, m, SWARF_ALARM_FIXTURE, f + 1, part, d, where);
   return 0;
@@ -243,13 +279,10 @@ static int fixture_part(swarf_sim *s, const swarf_motion *m, int f, const swarf_
 
 static int fixtures(swarf_sim *s, const swarf_motion *m, const swarf_sim_part *parts, int n) {
   for (int f = 0; f < s->cfg.nfixtures; f++) {
-    if (fixture_part(s, m, f, &s->tool->cutter, 0, 0) != 0) return 1;
-    for (int i = 0; i < n; i++) {
-      swarf_cutter body;
-      part_body(&parts[i], &body);
-      if (fixture_part(s, m, f, &body, parts[i].z0, parts[i].kind == SWARF_ALARM_SHANK ? 1 : 2))
+    if (fixture_part(s, m, f, NULL, &s->tool->cutter, 0) != 0) return 1;
+    for (int i = 0; i < n; i++)
+      if (fixture_part(s, m, f, &parts[i], NULL, parts[i].kind == SWARF_ALARM_SHANK ? 1 : 2))
         return 1;
-    }
   }
   return 0;
 }

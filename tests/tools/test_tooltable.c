@@ -235,6 +235,46 @@ static void bad_libraries(void) {
   bad_library("[1, 2]\n", 1, "{\"tools\"");
 }
 
+/* ---- G43 with the table's lengths ------------------------------------------ */
+
+/* Removed volume of a plunge of T1 (flat D6, table length 50) from Z5 to Z-3
+ * at (10, 10) under `g43`. The tip follows the machine: G43 H1 puts it where
+ * the program says (a hole 3 deep: 27 pi mm^3); G43 H2 (T2 is 45 long) 5 mm
+ * lower (8 deep: 72 pi); G49 (no offset) 50 mm lower: the first traverse,
+ * from the start position (0,0,0, the tip's), dives through the stock to
+ * Z-45 and the plunge stays under it (the stock is 20 deep). */
+static double plunge_volume(const char *g43) {
+  char program[256], path[] = "/tmp/swarf_g43_XXXXXX";
+  FILE *f = fdopen(mkstemp(path), "w");
+  fputs("T1 P1 D6 Z+50\nT2 P2 D6 Z+45\n", f);
+  fclose(f);
+  swarf_sim_config cfg;
+  swarf_error err;
+  swarf_sim_config_init(&cfg);
+  cfg.voxel = 0.1;
+  CHECK(swarf_sim_parse_stock("box:0,0,-20,20,20,0", &cfg.stock, &err) == SWARF_OK, "stock");
+  CHECK(swarf_sim_config_load_tool_table(&cfg, path, 1.0, &err) == SWARF_OK, "%s", err.message);
+  remove(path);
+  snprintf(program, sizeof program, "T1 M6\n%s\nG0 X10 Y10 Z5\nG1 Z-3 F100\nG1 Z5\nM2\n", g43);
+  swarf_stock *out = NULL;
+  swarf_sim_report rep;
+  CHECK(swarf_sim_run_text(&cfg, "g43.ngc", program, strlen(program), &out, &rep, &err) ==
+            SWARF_OK,
+        "%s: %s", g43, err.message);
+  swarf_stock_free(out);
+  return rep.volume_before - rep.volume_after;
+}
+
+static void g43_lengths(void) {
+  const double pi = 3.14159265358979;
+  double h1 = plunge_volume("G43 H1"), h2 = plunge_volume("G43 H2"), none = plunge_volume("G49");
+  printf("G43 H1: removed %.3f mm^3 (27 pi = %.3f); G43 H2: %.3f (72 pi = %.3f); G49: %.3f\n", h1,
+         27 * pi, h2, 72 * pi, none);
+  CHECK(fabs(h1 - 27 * pi) < 0.02 * 27 * pi, "G43 H1: the tip lands where the program says");
+  CHECK(fabs(h2 - 72 * pi) < 0.02 * 72 * pi, "G43 H2 on T1: 5 mm lower, as on the machine");
+  CHECK(none > 10 * h2, "G49: the gauge line at the program's Z, the tip 50 mm lower");
+}
+
 int main(int argc, char **argv) {
   if (argc < 3) {
     fprintf(stderr, "usage: %s <conformance-dir> <tests/tools>\n", argv[0]);
@@ -244,5 +284,6 @@ int main(int argc, char **argv) {
   bad_tables();
   good_library(argv[2]);
   bad_libraries();
+  g43_lengths();
   return check_done();
 }

@@ -115,12 +115,16 @@ static int take_motion(swarf_sim *s, swarf_motion *m) {
  * is the tip of the tool whose length H names, without it the spindle's
  * gauge line. The simulator follows the tip of the tool in the spindle,
  * which lies its length below: G43 with that tool's H puts it where the
- * program says, as on the machine. */
-static const swarf_move *tip_move(const swarf_sim *s, const swarf_move *mv, swarf_move *buf) {
+ * program says, as on the machine. One exception: the machine's start
+ * position (0,0,0, where no homing put it) is taken as the tip's, so the
+ * first straight move starts there and not a tool length below. */
+static const swarf_move *tip_move(swarf_sim *s, const swarf_move *mv, swarf_move *buf) {
   const double len = s->tool != NULL ? s->tool->length : 0.0;
+  const int first = !s->moved && mv->kind != SWARF_MOVE_ARC;
+  s->moved = 1;
   if (len == 0.0) return mv;
   *buf = *mv;
-  buf->start[SWARF_AXIS_Z] -= len;
+  if (!first) buf->start[SWARF_AXIS_Z] -= len;
   buf->end[SWARF_AXIS_Z] -= len;
   buf->center[2] -= len;
   return buf;

@@ -42,6 +42,7 @@ struct swarf_sim {
   swarf_line_result *pending;
   int npending, pending_cap;
   swarf_sim_collide col; /* collisions (collide.c) */
+  int moved;             /* a motion move was seen (the start position is the tip's) */
 };
 
 /* Record the first failure (status, place, message) and return its status. */

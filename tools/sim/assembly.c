@@ -125,6 +125,11 @@ swarf_status swarf_sim_check_assembly(const swarf_sim_tool *t, const char *what,
   return SWARF_OK;
 }
 
+swarf_status swarf_sim_check_tool(const swarf_sim_tool *t, swarf_error *err) {
+  if (t == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no tool");
+  return swarf_sim_check_assembly(t, "assembly", err);
+}
+
 /* ---- --holder ------------------------------------------------------------- */
 
 /* One piece "<D>x<H>" or "<D1>-<D2>x<H>" at *s. */

@@ -212,6 +212,11 @@ static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_new: no config, stock or output");
   }
+  for (int i = 0; i < cfg->ntools; i++)
+    if ((st = swarf_sim_check_tool(&cfg->tools[i], err)) != SWARF_OK) {
+      swarf_stock_free(stock);
+      return st;
+    }
   if ((s = calloc(1, sizeof *s)) == NULL) {
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");

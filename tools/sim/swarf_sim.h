@@ -290,6 +290,10 @@ SWARF_API swarf_status swarf_sim_config_load_tool_library(swarf_sim_config *cfg,
  * library), whose length and holder stay; otherwise the tool is added. */
 SWARF_API swarf_status swarf_sim_config_put_tool(swarf_sim_config *cfg, const swarf_sim_tool *t,
                                                  swarf_error *err);
+/* Checks a tool's assembly: S, N, holder pieces finite and > 0, a holder
+ * only with a stick-out (SWARF_ERR_TOOL naming the tool). swarf_sim_new
+ * checks every tool of the config. */
+SWARF_API swarf_status swarf_sim_check_tool(const swarf_sim_tool *t, swarf_error *err);
 /* Puts a --holder into cfg: tool t->number must be there already. */
 SWARF_API swarf_status swarf_sim_config_put_holder(swarf_sim_config *cfg,
                                                    const swarf_sim_tool *t, swarf_error *err);

@@ -263,14 +263,33 @@ bool block_overlap(const Pass &p, ConstAcc &acc, const Coord &o, double depth, V
   return false;
 }
 
+/// Whether every cleared volume's sdf exceeds t at q (false as soon as one
+/// does not). A volume lies inside its bounds, so its sdf is at least the
+/// distance to them: those farther than t are passed over unevaluated.
+inline bool cleared_enough(const swarf_stock_cut *clear, size_t n, const Vec3d &q, double t) {
+  for (size_t i = 0; i < n; i++) {
+    const swarf_stock_cut &c = clear[i];
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) {
+      const double o = std::max(c.lo[k] - q[k], q[k] - c.hi[k]);
+      if (o > 0) d2 += o * o;
+    }
+    if (t < 0 ? d2 > 0 || c.sdf(c.ctx, q.x(), q.y(), q.z()) > t
+              : d2 > t * t || c.sdf(c.ctx, q.x(), q.y(), q.z()) > t)
+      continue;
+    return false;
+  }
+  return true;
+}
+
 /// First voxel of the block at o whose score min(-v, clear) - sdf (v: the
 /// stock value, at most half a voxel outside; clear: the sdf of a volume already cut away,
 /// +inf without one) exceeds depth (see stock.h); false if none. A voxel
 /// scores at most -v + (r - dc) (r: its distance to the block centre, dc:
 /// the cut's sdf there), so blocks and voxels the Lipschitz bound keeps below
 /// depth are passed over without evaluating the cut.
-bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, ConstAcc &acc, const Coord &o,
-                      double depth, Vec3d &where) {
+bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear, ConstAcc &acc,
+                      const Coord &o, double depth, Vec3d &where) {
   const swarf_stock_cut &cut = p.cuts[0];
   const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
   const double dc = cut.sdf(cut.ctx, c.x(), c.y(), c.z()), r = p.reach - p.bgf;
@@ -289,8 +308,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, ConstAcc &acc
         const Vec3d q = block_point(p, o, x, y, z);
         const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
         if (!(-val - d > depth)) continue;
-        if (clear != nullptr && !(clear->sdf(clear->ctx, q.x(), q.y(), q.z()) - d > depth))
-          continue;
+        if (!cleared_enough(clear, nclear, q, d + depth)) continue;
         where = q;
         return true;
       }
@@ -301,7 +319,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, ConstAcc &acc
 
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
-                    double depth, Vec3d &where) {
+                    size_t nclear, double depth, Vec3d &where) {
   Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
   init_pass(p);
   Coord a, b;
@@ -310,7 +328,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
   for (int x = a.x(); x <= b.x(); x += 8)
     for (int y = a.y(); y <= b.y(); y += 8)
       for (int z = a.z(); z <= b.z(); z += 8)
-        if (block_penetrates(p, clear, acc, Coord(x, y, z), depth, where)) return true;
+        if (block_penetrates(p, clear, nclear, acc, Coord(x, y, z), depth, where)) return true;
   return false;
 }
 
@@ -403,8 +421,9 @@ extern "C" int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut 
 }
 
 extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
-                                               const swarf_stock_cut *clear, double depth,
-                                               int *hit, double where[3], swarf_error *err) {
+                                               const swarf_stock_cut *clear, size_t nclear,
+                                               double depth, int *hit, double where[3],
+                                               swarf_error *err) {
   char msg[256];
   const int rc = swarf::guard(msg, sizeof msg, [&] {
     if (s == nullptr || cut == nullptr || hit == nullptr)
@@ -414,9 +433,9 @@ extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf
     if (!(depth >= 0.0 && std::isfinite(depth)))
       throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be finite and >= 0");
     openvdb::Vec3d q;
-    if (clear != nullptr && clear->sdf == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "the clear volume has no sdf");
-    *hit = swarf::cut_penetrates(*s, *cut, clear, depth, q) ? 1 : 0;
+    if (nclear > 0 && clear == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "clear is NULL");
+    for (size_t i = 0; i < nclear; i++) check_cut(clear[i], i);
+    *hit = swarf::cut_penetrates(*s, *cut, clear, nclear, depth, q) ? 1 : 0;
     if (*hit && where != nullptr)
       for (int k = 0; k < 3; k++) where[k] = q[k];
   });

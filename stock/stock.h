@@ -102,8 +102,9 @@ SWARF_API int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *
  * Read-only; *hit gets 1 or 0, where (may be NULL) the first such voxel
  * centre found. For the non-cutting parts of a tool (tools/sim/collide.c). */
 SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
-                                             const swarf_stock_cut *clear, double depth,
-                                             int *hit, double where[3], swarf_error *err);
+                                             const swarf_stock_cut *clear, size_t nclear,
+                                             double depth, int *hit, double where[3],
+                                             swarf_error *err);
 
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);

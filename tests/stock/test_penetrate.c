@@ -25,7 +25,7 @@ static int penetrates(const swarf_stock *s, const box_shape *b, double depth, do
   swarf_error err;
   int hit = -1;
   swarf_stock_cut cut = {{b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b};
-  CHECK(swarf_stock_penetrates(s, &cut, NULL, depth, &hit, where, &err) == SWARF_OK, "query: %s",
+  CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, depth, &hit, where, &err) == SWARF_OK, "query: %s",
         err.message);
   return hit;
 }
@@ -68,13 +68,13 @@ int main(void) {
   narrow.r = 1.5;
   swarf_stock_cut wc = capsule_cut(&wide), nc = capsule_cut(&narrow);
   int hit2 = -1;
-  CHECK(swarf_stock_penetrates(s, &nc, &clear, 0.0, &hit2, where, NULL) == SWARF_OK && hit2 == 0,
+  CHECK(swarf_stock_penetrates(s, &nc, &clear, 1, 0.0, &hit2, where, NULL) == SWARF_OK && hit2 == 0,
         "a body inside a cleared pocket is not found");
-  CHECK(swarf_stock_penetrates(s, &nc, NULL, 0.0, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
+  CHECK(swarf_stock_penetrates(s, &nc, NULL, 0, 0.0, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
         "the same body without the clear volume is");
-  CHECK(swarf_stock_penetrates(s, &wc, &clear, 0.49, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
+  CHECK(swarf_stock_penetrates(s, &wc, &clear, 1, 0.49, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
         "0.5 mm wider than the cleared pocket: found at 0.49");
-  CHECK(swarf_stock_penetrates(s, &wc, &clear, 0.51, &hit2, where, NULL) == SWARF_OK && hit2 == 0,
+  CHECK(swarf_stock_penetrates(s, &wc, &clear, 1, 0.51, &hit2, where, NULL) == SWARF_OK && hit2 == 0,
         "0.5 mm wider than the cleared pocket: not found at 0.51");
   /* a pocket 2 mm deep cut away first: the same body 1 mm into its floor only */
   capsule_shape pocket = {{10.0, 5.0, 0.0}, {16.0, 5.0, 0.0}, 2.0};
@@ -86,11 +86,11 @@ int main(void) {
   int hit;
   swarf_stock_cut cut = {{0, 0, 0}, {1, 1, 1}, box_cb, &inside};
   swarf_error err;
-  CHECK(swarf_stock_penetrates(NULL, &cut, NULL, 0.0, &hit, NULL, &err) == SWARF_ERR_ARG,
+  CHECK(swarf_stock_penetrates(NULL, &cut, NULL, 0, 0.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "NULL stock refused");
-  CHECK(swarf_stock_penetrates(s, &cut, NULL, -1.0, &hit, NULL, &err) == SWARF_ERR_ARG,
+  CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, -1.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "negative depth refused: %s", err.message);
-  CHECK(swarf_stock_penetrates(s, &cut, NULL, 0.0, &hit, NULL, NULL) == SWARF_OK, "err may be NULL");
+  CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, 0.0, &hit, NULL, NULL) == SWARF_OK, "err may be NULL");
   swarf_stock_free(s);
   return check_done();
 }

@@ -50,7 +50,7 @@ typedef struct {
   long last_line[2]; /* SHANK, HOLDER: the line last reported (once per line) */
   long fixture_line[SWARF_SIM_MAX_FIXTURES][3]; /* per fixture and part (cutter, shank, holder) */
   swarf_stock *fixture[SWARF_SIM_MAX_FIXTURES]; /* each fixture as a level set */
-  const swarf_stock_cut **clear; /* scratch: the sweeps clearing material for a part */
+  swarf_stock_cut *clear;        /* scratch: the sweeps clearing material for a part */
   long checked;                  /* part checks that reached a grid's box */
 } swarf_sim_collide;
 

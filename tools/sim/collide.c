@@ -7,13 +7,13 @@
  * "still there when the move runs" is the stock of the last removal pass
  * minus the sweeps queued since (not removed yet) and minus this move's own
  * cutter sweep (the flutes clear the way of a shank that follows them into
- * their hole): swarf_stock_penetrates takes their union as the volume cut
- * away, so no batch is flushed for the check.
+ * their hole): swarf_stock_penetrates takes them as volumes cut away, so no
+ * batch is flushed for the check.
  *
  * A part collides when it penetrates by more than half a voxel
  * (swarf_stock_penetrates: the two signed depths add up to more). The depth
  * reported is how far the part would have to be lifted along the tool axis
- * to clear the material (bisection on the lift, to voxel/32), plus that
+ * to clear the material (bisection on the lift, to voxel/8), plus that
  * half voxel: for a holder face entering a flat face d mm, d.
  *
  * Cost: a part is only looked at when its sweep's bounds reach the material
@@ -101,22 +101,6 @@ static double sweep_sdf(const void *ctx, double x, double y, double z) {
   return swarf_sweep_sdf((const swarf_sweep *)ctx, p, NULL);
 }
 
-/* The volume cut away but not removed yet: the union of some cuts. */
-typedef struct {
-  const swarf_stock_cut *const *cuts;
-  int n;
-} clear_ctx;
-
-static double clear_sdf(const void *ctx, double x, double y, double z) {
-  const clear_ctx *c = ctx;
-  double f = INFINITY;
-  for (int i = 0; i < c->n; i++) {
-    const double e = c->cuts[i]->sdf(c->cuts[i]->ctx, x, y, z);
-    if (e < f) f = e;
-  }
-  return f;
-}
-
 /* What one check looks at: the body, where it starts, the grid it enters
  * and the sweeps clearing that grid's material. */
 typedef struct {
@@ -125,7 +109,7 @@ typedef struct {
   double z0, z1, d0, d1;       /* the body (part_sweep_init) ... */
   const swarf_cutter *cutter; /* ... or, when not NULL, the cutter itself */
   const swarf_motion *m;
-  const swarf_stock_cut *const *clear;
+  const swarf_stock_cut *clear; /* the volumes cut away but not removed yet */
   int nclear;
   double lmax; /* a lift that certainly clears the grid's box */
 } part_check;
@@ -145,10 +129,8 @@ static int penetrates_at(const part_check *pc, double lift, double where[3]) {
   }
   swarf_stock_cut cut = {{ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, sweep_sdf,
                          &ps.sweep};
-  clear_ctx cc = {pc->clear, pc->nclear};
-  swarf_stock_cut clear = {{0, 0, 0}, {0, 0, 0}, clear_sdf, &cc};
   const double h = 0.5 * swarf_stock_voxel(pc->grid);
-  if (swarf_stock_penetrates(pc->grid, &cut, pc->nclear > 0 ? &clear : NULL, h, &hit, where,
+  if (swarf_stock_penetrates(pc->grid, &cut, pc->clear, (size_t)pc->nclear, h, &hit, where,
                              &err) != SWARF_OK) {
     swarf_sim_fail(pc->s, err.status, pc->m->line, pc->m->column, "%s", err.message);
     return -1;
@@ -157,39 +139,46 @@ static int penetrates_at(const part_check *pc, double lift, double where[3]) {
 }
 
 /* The lift that clears a part found penetrating at lift 0, plus half a
- * voxel; NaN when it cannot be measured (-2 above) or after a failure. */
+ * voxel; NaN when it cannot be measured (-2 above) or after a failure.
+ * Bisection between 0 (in) and lmax (a lift that clears the grid's box for
+ * sure) to voxel/8: each step not in is a pass over the part's blocks. */
 static double clearing_depth(const part_check *pc) {
   const double v = swarf_stock_voxel(pc->grid), h = 0.5 * v;
-  double lo = 0, hi = h, where[3];
-  int r;
-  while ((r = penetrates_at(pc, hi, where)) == 1 && hi < pc->lmax) lo = hi, hi *= 2;
-  if (r < 0) return NAN;
-  if (r == 1) return hi + h; /* still in at lmax: a bound */
-  while (hi - lo > v / 32) {
+  double lo = 0, hi = pc->lmax, where[3];
+  while (hi - lo > v / 8) {
     const double mid = 0.5 * (lo + hi);
-    if ((r = penetrates_at(pc, mid, where)) < 0) return NAN;
+    const int r = penetrates_at(pc, mid, where);
+    if (r < 0) return NAN;
     if (r) lo = mid;
     else hi = mid;
   }
   return 0.5 * (lo + hi) + h;
 }
 
+/* A lift that certainly clears the box [lo, hi] of a part whose sweep's
+ * bounds are plo..phi: straight up past the box's top when the tool axis is
+ * the z axis throughout, else the box's diagonal plus the part's extent. */
+static double lift_bound(const swarf_motion *m, const double lo[3], const double hi[3],
+                         const double plo[3], const double phi[3]) {
+  if (m->kind != SWARF_MOTION_RIGID) return fmax(hi[2] - plo[2], 0) + 1e-3;
+  return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+              (hi[2] - lo[2]) * (hi[2] - lo[2])) +
+         (phi[0] - plo[0]) + (phi[1] - plo[1]) + (phi[2] - plo[2]);
+}
+
 /* ---- The material --------------------------------------------------------- */
 
-/* The queued sweeps (and this move's) whose bounds meet [lo, hi]. */
+/* This move's sweep and the queued ones whose bounds meet [lo, hi], newest
+ * first (the likeliest to have cleared the part's way: the check stops at
+ * the first that did). */
 static int clearing_sweeps(swarf_sim *s, const swarf_stock_cut *own, const double lo[3],
                            const double hi[3]) {
   swarf_sim_collide *c = &s->col;
   int n = 0;
-  for (int i = 0; i < s->n; i++)
-    if (boxes_meet(s->cuts[i].lo, s->cuts[i].hi, lo, hi)) c->clear[n++] = &s->cuts[i];
-  if (own != NULL && boxes_meet(own->lo, own->hi, lo, hi)) c->clear[n++] = own;
+  if (own != NULL && boxes_meet(own->lo, own->hi, lo, hi)) c->clear[n++] = *own;
+  for (int i = s->n - 1; i >= 0; i--)
+    if (boxes_meet(s->cuts[i].lo, s->cuts[i].hi, lo, hi)) c->clear[n++] = s->cuts[i];
   return n;
-}
-
-static double box_diagonal(const double lo[3], const double hi[3]) {
-  return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-              (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
 
 static void raise_collision(swarf_sim *s, const swarf_motion *m, swarf_alarm_kind kind, int index,
@@ -232,9 +221,9 @@ static int material_kind(swarf_sim *s, const swarf_motion *m, const swarf_stock_
                      q->d1,
                      NULL,
                      m,
-                     (const swarf_stock_cut *const *)c->clear,
+                     c->clear,
                      clearing_sweeps(s, own, ps.lo, ps.hi),
-                     box_diagonal(s->pad_lo, s->pad_hi) + q->z1 - q->z0};
+                     lift_bound(m, s->pad_lo, s->pad_hi, ps.lo, ps.hi)};
     int r = penetrates_at(&pc, 0, where);
     if (r == -1) return 1;
     if (r != 1) continue;
@@ -265,7 +254,7 @@ static int fixture_part(swarf_sim *s, const swarf_motion *m, int f, const swarf_
   if (built != 0 || !boxes_meet(ps.lo, ps.hi, fx->lo, fx->hi)) return 0;
   c->checked++;
   part_check pc = {s, c->fixture[f], 0, 0, 0, 0, cutter, m, NULL, 0,
-                   box_diagonal(fx->lo, fx->hi) + ps.hi[2] - ps.lo[2]};
+                   lift_bound(m, fx->lo, fx->hi, ps.lo, ps.hi)};
   if (q != NULL) pc.z0 = q->z0, pc.z1 = q->z1, pc.d0 = q->d0, pc.d1 = q->d1;
   int r = penetrates_at(&pc, 0, where);
   if (r == -1) return 1;

@@ -240,6 +240,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   memset(o, 0, sizeof *o);
   swarf_sim_config_init(&o->cfg);
   o->table_mm_per_unit = 1.0;
+  o->cfg.collision_depths = 100; /* the warnings printed; the rest are counted */
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
@@ -360,7 +361,7 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
          r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->collisions,
          r->alarm_count[SWARF_ALARM_SHANK], r->alarm_count[SWARF_ALARM_HOLDER],
          r->alarm_count[SWARF_ALARM_FIXTURE]);
-  if (r->collision_s > 0) printf("  collision check %.2f s\n", r->collision_s);
+  if (r->collision_s > 0) printf("  collision check %.2f s CPU\n", r->collision_s);
   printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
          r->seconds > 0 ? r->moves / r->seconds : 0.0, total_s);
   printf("  grid: voxel %g mm, active voxels %llu\n", swarf_stock_voxel(stock),

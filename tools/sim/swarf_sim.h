@@ -162,6 +162,9 @@ typedef struct {
   int line_volumes; /* 1: measure each line's removed volume (swarf_line_result) */
   swarf_sim_fixture fixtures[SWARF_SIM_MAX_FIXTURES];
   int nfixtures;    /* fixtures (FIXTURE alarms, index 1-based in this order) */
+  /* Measure the depth (a bisection: ~8 passes over the part's blocks) of the
+   * first N collisions of each kind only, the later ones get NaN; 0: all. */
+  long collision_depths;
   /* Benchmark baseline only: when > 0 each move is not swept exactly but
    * stamped at poses stamp_step mm apart, as stamping simulators do. */
   double stamp_step;
@@ -226,7 +229,7 @@ struct swarf_sim_report {
   long alarms;                             /* all alarms */
   long alarm_count[5];                     /* per swarf_alarm_kind */
   long collisions;                         /* among them: SHANK, HOLDER and FIXTURE alarms */
-  double collision_s;                      /* wall time checking for collisions, s */
+  double collision_s;                      /* CPU time checking for collisions, s */
   swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */
 };
 SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);

@@ -55,6 +55,8 @@ static const char help[] =
     "                   of the tool may enter, cutter included; repeatable\n"
     "  --fail-on collision  exit status 4 after the run (outputs written) when a\n"
     "                   shank, holder or fixture collision was found\n"
+    "  --collision-depths N  measure the depth of the first N collisions of each\n"
+    "                   kind (default 100, the warnings printed; 0: all)\n"
     "  --voxel MM       voxel edge (default 0.2); halving it takes ~4x the time\n"
     "  --band N         narrow band half width in voxels (default 3, at least 3)\n"
     "  --out FILE.vdb   remaining material: OpenVDB float level set named \"stock\"\n"
@@ -175,6 +177,11 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     if (swarf_sim_parse_fixture(val, &o->cfg.fixtures[o->cfg.nfixtures], &err))
       return usage_error(err.message);
     return o->cfg.nfixtures++, 0;
+  }
+  if (!strcmp(flag, "--collision-depths")) {
+    if (read_double(flag, val, 0, &d) || d != floor(d) || d > 1e9)
+      return usage_error("--collision-depths: give a whole number (0: all)");
+    return o->cfg.collision_depths = (long)d, 0;
   }
   if (!strcmp(flag, "--fail-on")) {
     if (strcmp(val, "collision")) return usage_error("--fail-on: give collision");

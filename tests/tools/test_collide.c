@@ -5,9 +5,9 @@
  * Every case has a geometry whose depth is known in closed form (written
  * next to it): the lift along the tool axis that clears the part, e.g. a
  * holder face 2 mm below a flat top face is 2.0 mm deep. The reported depth
- * must match to 0.02 mm (the bisection runs to voxel/8 = 0.025 mm, the midpoint is
- * reported, faces parallel to
- * the stock's exact-distance faces), the line and the kind exactly, and no
+ * must match to 0.02 mm (the bisection runs to voxel/8 = 0.025 mm and the
+ * midpoint is reported; faces parallel to the stock's exact-distance faces),
+ * the line and the kind exactly, and no
  * other alarm may be raised: plunges and slots within the flute length, a
  * shank as wide as the cutter following it into its own hole, and a tool
  * working beside a fixture raise nothing. Shank and holder never cut: the

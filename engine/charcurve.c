@@ -292,20 +292,27 @@ static int compute(swarf_char_curve *cc, const swarf_char_profile *pr, const dou
   return (int)cc->ncomp;
 }
 
-int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c, const double t[3],
-                             const double U[9], const double v[3], const double omega[3],
-                             double tol) {
-  swarf_char_profile pr;
-  if (c == NULL) return -1;
-  swarf_char_profile_cutter(&pr, c);
-  return compute(cc, &pr, t, U, v, omega, tol);
+/* compute()'s count as a status (its arguments were checked: -1 is memory). */
+static swarf_status computed(int n) {
+  return n >= 0 ? SWARF_OK : SWARF_ERR_MEMORY;
 }
 
-int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q, const double t[3],
-                                 const double U[9], const double v[3], const double omega[3],
-                                 double tol) {
+swarf_status swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c,
+                                      const double t[3], const double U[9], const double v[3],
+                                      const double omega[3], double tol) {
   swarf_char_profile pr;
-  if (q == NULL) return -1;
+  if (cc == NULL || c == NULL || t == NULL || U == NULL || v == NULL || omega == NULL)
+    return SWARF_ERR_ARG;
+  swarf_char_profile_cutter(&pr, c);
+  return computed(compute(cc, &pr, t, U, v, omega, tol));
+}
+
+swarf_status swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q,
+                                          const double t[3], const double U[9], const double v[3],
+                                          const double omega[3], double tol) {
+  swarf_char_profile pr;
+  if (cc == NULL || q == NULL || t == NULL || U == NULL || v == NULL || omega == NULL)
+    return SWARF_ERR_ARG;
   swarf_char_profile_qss(&pr, q);
-  return compute(cc, &pr, t, U, v, omega, tol);
+  return computed(compute(cc, &pr, t, U, v, omega, tol));
 }

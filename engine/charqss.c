@@ -6,13 +6,14 @@
  */
 #include "engine_private.h"
 
-int swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6], const double t[3],
-                                   const double U[9], const double v[3], const double omega[3],
-                                   double tol) {
+swarf_status swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6],
+                                            const double t[3], const double U[9], const double v[3],
+                                            const double omega[3], double tol) {
   swarf_qss q;
   double p[3], vp[3], tp[3];
-  int n;
-  if (cc == NULL || coef == NULL || t == NULL || U == NULL || v == NULL || omega == NULL) return -1;
+  swarf_status n;
+  if (cc == NULL || coef == NULL || t == NULL || U == NULL || v == NULL || omega == NULL)
+    return SWARF_ERR_ARG;
   q.a = coef[0], q.b = coef[1], q.e = coef[4], q.f = coef[5];
   p[0] = coef[2], p[1] = coef[3], p[2] = 0.0;
   vp[0] = v[0] + omega[1] * p[2] - omega[2] * p[1];
@@ -21,7 +22,7 @@ int swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6], c
   for (int i = 0; i < 3; i++)
     tp[i] = t[i] + U[3 * i] * p[0] + U[3 * i + 1] * p[1];
   n = swarf_char_curve_compute_qss(cc, &q, tp, U, vp, omega, tol);
-  for (size_t i = 0; n >= 0 && i < cc->len; i++)
+  for (size_t i = 0; n == SWARF_OK && i < cc->len; i++)
     for (int k = 0; k < 2; k++)
       cc->pts[i].x[k] += p[k];
   return n;

@@ -235,17 +235,19 @@ static double qss_scale(const swarf_qss_general *q) {
   return s > 0.0 ? s : 1.0;
 }
 
-int swarf_char_curve_compute_qss_general(swarf_char_curve *cc, const swarf_qss_general *q,
-                                         const double t[3], const double U[9], const double v[3],
-                                         const double omega[3], double tol) {
+swarf_status swarf_char_curve_compute_qss_general(swarf_char_curve *cc, const swarf_qss_general *q,
+                                                  const double t[3], const double U[9],
+                                                  const double v[3], const double omega[3],
+                                                  double tol) {
   swarf_gen_sweep s;
   gbuilder b = {cc, q, &s, t, U, {0}, 0.0, 0};
   double M[9], L[3], big = 0.0, tiny = 0.0, sc;
   int r;
-  if (cc == NULL || q == NULL || t == NULL || U == NULL || v == NULL || omega == NULL) return -1;
+  if (cc == NULL || q == NULL || t == NULL || U == NULL || v == NULL || omega == NULL)
+    return SWARF_ERR_ARG;
   cc->len = cc->ncomp = 0;
   if (cc->start_cap == 0) {
-    if ((cc->start = malloc(8 * sizeof *cc->start)) == NULL) return -1;
+    if ((cc->start = malloc(8 * sizeof *cc->start)) == NULL) return SWARF_ERR_MEMORY;
     cc->start_cap = 8;
   }
   cc->start[0] = 0;
@@ -259,8 +261,8 @@ int swarf_char_curve_compute_qss_general(swarf_char_curve *cc, const swarf_qss_g
     big += fabs(v[i]) + fabs(omega[i]) * sc, tiny += fabs(L[i]);
   for (int i = 0; i < 9; i++)
     tiny += fabs(M[i]);
-  if (!(tiny > 1e-13 * big)) return 0; /* still, or the whole sphere */
-  if (swarf_gen_sweep_init(&s, M, L) != 0) return -1;
+  if (!(tiny > 1e-13 * big)) return SWARF_OK; /* still, or the whole sphere: no component */
+  if (swarf_gen_sweep_init(&s, M, L) != 0) return SWARF_ERR_INTERNAL;
   r = trace(&b);
-  return r == 0 ? (int)cc->ncomp : -1;
+  return r == 0 ? SWARF_OK : SWARF_ERR_INTERNAL;
 }

@@ -13,13 +13,15 @@
 
 #include "engine_private.h"
 
-static int fail(const char **why, const char *reason) {
-  if (why != NULL) *why = reason;
-  return -1;
+/* The dimensions are impossible: err gets the reason, and the letter of the
+ * tool spec's number that is wrong (D, R or L) as its word. */
+static swarf_status fail(swarf_error *err, const char *letter, const char *reason) {
+  swarf_error_at(err, NULL, 0, 0, letter);
+  return swarf_error_set(err, SWARF_ERR_TOOL, "%s", reason);
 }
 
 /* Corner radius for the shape, or a negative value when impossible. */
-static double corner_for(swarf_cutter_shape shape, double d, double r, const char **why) {
+static double corner_for(swarf_cutter_shape shape, double d, double r, swarf_error *err) {
   switch (shape) {
   case SWARF_CUTTER_FLAT:
     return 0.0;
@@ -27,19 +29,20 @@ static double corner_for(swarf_cutter_shape shape, double d, double r, const cha
     return 0.5 * d;
   case SWARF_CUTTER_BULL:
     if (!isfinite(r) || r <= 0.0) {
-      fail(why, "a bull nose cutter needs a corner radius > 0");
+      fail(err, "R", "a bull nose cutter needs a corner radius > 0");
       return -1.0;
     }
     if (r >= 0.5 * d) {
-      fail(why, "the corner radius of a bull nose cutter must be below half the diameter "
-                "(use a ball cutter for R = D/2)");
+      fail(err, "R",
+           "the corner radius of a bull nose cutter must be below half the diameter "
+           "(use a ball cutter for R = D/2)");
       return -1.0;
     }
     return r;
   default:
     break;
   }
-  fail(why, "unknown cutter shape");
+  fail(err, "D", "unknown cutter shape");
   return -1.0;
 }
 
@@ -59,20 +62,22 @@ static void classic_piece(swarf_cutter *c) {
   c->zmin = 0.0;
 }
 
-int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
-                      double corner_radius, double length, const char **why) {
+swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
+                               double corner_radius, double length, swarf_error *err) {
   double r;
-  if (c == NULL) return fail(why, "no cutter to fill");
-  if (!isfinite(diameter) || diameter <= 0.0) return fail(why, "the diameter must be > 0");
-  r = corner_for(shape, diameter, corner_radius, why);
-  if (r < 0.0) return -1;
-  if (isnan(length) || length == INFINITY) return fail(why, "the length must be a finite number");
+  if (c == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no cutter to fill");
+  if (!isfinite(diameter) || diameter <= 0.0) return fail(err, "D", "the diameter must be > 0");
+  r = corner_for(shape, diameter, corner_radius, err);
+  if (r < 0.0) return SWARF_ERR_TOOL;
+  if (isnan(length) || length == INFINITY)
+    return fail(err, "L", "the length must be a finite number");
   if (length <= 0.0) length = 4.0 * diameter;
   if (shape == SWARF_CUTTER_BALL && length < r)
-    return fail(why, "the cutting length of a ball cutter must be at least its radius");
+    return fail(err, "L", "the cutting length of a ball cutter must be at least its radius");
   if (shape == SWARF_CUTTER_BULL && length < 2.0 * r)
-    return fail(why, "the cutting length of a bull nose cutter must be at least twice its corner "
-                     "radius");
+    return fail(err, "R",
+                "the cutting length of a bull nose cutter must be at least twice its corner "
+                "radius");
   memset(c, 0, sizeof *c);
   for (int i = 0; i < 8; i++)
     c->param[i] = NAN;
@@ -83,7 +88,7 @@ int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter
   c->fast = length >= 2.0 * r;
   c->param[0] = diameter, c->param[1] = r, c->param[2] = length;
   classic_piece(c);
-  return 0;
+  return SWARF_OK;
 }
 
 /* ---- Support function and surface points -------------------------------- */

@@ -232,14 +232,11 @@ static swarf_status qss(swarf_cutter *c, const swarf_cutter_spec *s, swarf_error
 }
 
 static swarf_status classic(swarf_cutter *c, const swarf_cutter_spec *s, swarf_error *err) {
-  const char *why = NULL;
+  swarf_error e;
+  swarf_error_init(&e);
   if (swarf_cutter_init(c, s->shape, given(s->d) ? s->d : 0.0, given(s->r) ? s->r : 0.0,
-                        given(s->length) ? s->length : 0.0, &why) != 0) {
-    const char *letter = why != NULL && strstr(why, "corner")   ? "R"
-                         : why != NULL && strstr(why, "length") ? "L"
-                                                                : "D";
-    return bad(err, letter, "%s", why ? why : "impossible cutter");
-  }
+                        given(s->length) ? s->length : 0.0, &e) != SWARF_OK)
+    return bad(err, e.word[0] ? e.word : "D", "%s", e.message);
   return SWARF_OK;
 }
 

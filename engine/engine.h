@@ -137,10 +137,12 @@ typedef struct {
  * for flat and ball. length <= 0 selects the default, 4 * diameter. Flutes
  * shorter than the diameter are allowed (a face mill); a bull needs length
  * >= 2 R, a ball length >= R (below 2 R = D the ball is cut flat at the
- * top: a profile cutter, fast = 0). Returns 0, or -1 with a reason in `why`
- * (if not NULL) when the dimensions are impossible. */
-SWARF_API int swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
-                                double corner_radius, double length, const char **why);
+ * top: a profile cutter, fast = 0). SWARF_ERR_TOOL when the dimensions are
+ * impossible: *err (may be NULL) gets the reason and, as its word, the letter
+ * of the tool spec's number that is wrong (D, R or L); SWARF_ERR_ARG for a
+ * NULL cutter. */
+SWARF_API swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
+                                         double corner_radius, double length, swarf_error *err);
 
 /* A cutter of any named family from its numbers (mm, angles in DEGREES as
  * the tool world writes them); a field left NAN takes its default:
@@ -241,11 +243,13 @@ SWARF_API void swarf_char_curve_clear(swarf_char_curve *cc);
 /* The characteristic curve of cutter c at the pose (t, U) with moving-frame
  * velocity v and angular velocity omega (ENVELOPE.md, Fact 2), sampled so
  * that the chord error on the surface stays under `tol` mm. Replaces the
- * contents of cc. Returns the number of components (0 when the cutter does
- * not move, or only turns about its own axis), or -1 when out of memory. */
-SWARF_API int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c,
-                                       const double t[3], const double U[9], const double v[3],
-                                       const double omega[3], double tol);
+ * contents of cc; cc->ncomp is the number of components (0 when the cutter
+ * does not move, or only turns about its own axis). SWARF_ERR_MEMORY when
+ * out of memory, SWARF_ERR_ARG for a NULL argument. */
+SWARF_API swarf_status swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *c,
+                                                const double t[3], const double U[9],
+                                                const double v[3], const double omega[3],
+                                                double tol);
 
 /* Layout of the result of the compute functions: each component is a CLOSED
  * polyline that repeats its first point at its end. A component runs along
@@ -263,9 +267,10 @@ SWARF_API int swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter 
 /* A QSS of revolution about z: swarf_qss (declared with the cutters). */
 
 /* swarf_char_curve_compute for a QSS of revolution instead of a cutter. */
-SWARF_API int swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q,
-                                           const double t[3], const double U[9], const double v[3],
-                                           const double omega[3], double tol);
+SWARF_API swarf_status swarf_char_curve_compute_qss(swarf_char_curve *cc, const swarf_qss *q,
+                                                    const double t[3], const double U[9],
+                                                    const double v[3], const double omega[3],
+                                                    double tol);
 
 /* A general trivariate QSS: h(n) = n^T Q n + b . n + c on the unit sphere
  * (Q row-major; only its symmetric part counts). Its surface point is
@@ -276,21 +281,24 @@ typedef struct {
 
 /* swarf_char_curve_compute for a general QSS (engine/charqssgen.c): the
  * spherical quartic f = g = 0 traced by a sweep along a generic axis. Same
- * layout (closed polylines, chord error of x under tol). Returns the number of
- * components; 0 when f vanishes identically (still, or the whole sphere is
- * characteristic), when the curve is empty or only isolated points; -1 when
- * out of memory or when the sweep finds an inconsistent topology. */
-SWARF_API int swarf_char_curve_compute_qss_general(swarf_char_curve *cc, const swarf_qss_general *q,
-                                                   const double t[3], const double U[9],
-                                                   const double v[3], const double omega[3],
-                                                   double tol);
+ * layout (closed polylines, chord error of x under tol). cc->ncomp is the
+ * number of components; 0 when f vanishes identically (still, or the whole
+ * sphere is characteristic), when the curve is empty or only isolated
+ * points. SWARF_ERR_MEMORY when out of memory, SWARF_ERR_INTERNAL when the
+ * sweep finds an inconsistent topology. */
+SWARF_API swarf_status swarf_char_curve_compute_qss_general(swarf_char_curve *cc,
+                                                            const swarf_qss_general *q,
+                                                            const double t[3], const double U[9],
+                                                            const double v[3],
+                                                            const double omega[3], double tol);
 
 /* The same for the full revolution form of eq. 12, coef = a, b, c, d, e, f:
  * h = a (n_x^2 + n_y^2) + b n_z^2 + c n_x + d n_y + e n_z + f (its axis passes
  * through (c, d, 0)). Same contract; the exact counterpart is envelope_exact.h. */
-SWARF_API int swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6],
-                                             const double t[3], const double U[9],
-                                             const double v[3], const double omega[3], double tol);
+SWARF_API swarf_status swarf_char_curve_compute_qss12(swarf_char_curve *cc, const double coef[6],
+                                                      const double t[3], const double U[9],
+                                                      const double v[3], const double omega[3],
+                                                      double tol);
 
 /* The real branch points of the characteristic curve: the z in [-1, 1] where
  * Fact 2's Delta changes sign, sorted, to full double precision (branch
@@ -311,12 +319,14 @@ SWARF_API int swarf_char_gauss_slice(double dphi, const double v[3], const doubl
 /* ---- Swept volume of one move ------------------------------------------- */
 
 /* The volume swept by cutter c along motion m (a value; it points at both,
- * which must outlive it). */
+ * which must outlive it). The evaluator that applies and its per-move
+ * constants live in `internal_`, opaque storage typed in engine_private.h
+ * (swarf_sweep_data, which a static assertion keeps within it). */
+#define SWARF_SWEEP_STORAGE 17 /* doubles */
 typedef struct {
   const swarf_cutter *cutter;
   const swarf_motion *motion;
-  int method;     /* internal: which evaluator applies */
-  double aux[16]; /* internal: precomputed per-move constants */
+  double internal_[SWARF_SWEEP_STORAGE]; /* internal: do not touch */
 } swarf_sweep;
 
 SWARF_API void swarf_sweep_init(swarf_sweep *s, const swarf_cutter *c, const swarf_motion *m);
@@ -352,8 +362,8 @@ SWARF_API double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double
  * machine U = I, omega = 0 and v = dt/dalpha). The union over alpha of these
  * curves (world points w) is the envelope whose inside swarf_sweep_sdf
  * measures. Same contract as swarf_char_curve_compute. */
-SWARF_API int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,
-                                     swarf_char_curve *cc);
+SWARF_API swarf_status swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,
+                                              swarf_char_curve *cc);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,9 @@
  *   sweep_rigid.c   motions with rotation: time steps, characteristic
  *                   refinement, certification; sweep_rigid_setup.c its
  *                   per-move constants and bounds.
+ *   sweep_profile.c profile cutters: the union of convex pieces, each swept
+ *                   by the closed forms or the searches above.
+ *   sweep_general.c a non-convex QSS piece under any motion.
  *
  * Nothing here allocates; every function works on caller-owned values.
  */
@@ -122,7 +125,14 @@ void swarf_profile_hull_extent(swarf_profile_piece *pc);
 double swarf_profile_hull_sdf(const swarf_profile_piece *pc, double r, double z, double dz,
                               double g[2]);
 double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
+/* The same, with the nearest point of the profile curve in near; and the
+ * curve's point at parameter s = n_z in [-1, 1]. */
+double swarf_profile_qss_sdf_near(const swarf_profile_piece *pc, double r, double z, double g[2],
+                                  double near[2]);
+void swarf_profile_qss_point(const swarf_profile_piece *pc, double s, double y[2]);
 double swarf_profile_piece_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]);
+/* The same at a 3-D point q of the cutter frame, with the 3-D gradient. */
+double swarf_profile_piece_sdf_grad(const swarf_profile_piece *pc, const double q[3], double g[3]);
 
 /* swarf_cutter_add_hull cut flat at height top (above the widest part). */
 swarf_status swarf_cutter_add_hull_clipped(swarf_cutter *c, const double (*circles)[3], int n,
@@ -238,8 +248,106 @@ enum {
   SWARF_SWEEP_ARC,        /* planar arc about a vertical axis, angle < 2 pi */
   SWARF_SWEEP_RING,       /* planar full circle about a vertical axis */
   SWARF_SWEEP_HELIX,      /* any other helix: sampling and refinement */
-  SWARF_SWEEP_RIGID       /* motion with rotation (rotary machines) */
+  SWARF_SWEEP_RIGID,      /* motion with rotation (rotary machines) */
+  /* profile cutters (fast = 0; sweep_profile.c), convex pieces each: */
+  SWARF_SWEEP_P_SLOT,     /* horizontal line: the profile at the horizontal distance */
+  SWARF_SWEEP_P_PLUNGE,   /* vertical line: hulls stretched, QSS pieces minimised */
+  SWARF_SWEEP_P_RAMP,     /* other line: convex 1-D minimum per piece */
+  SWARF_SWEEP_P_HELIX,    /* helix: sweep_sampled.c per piece */
+  SWARF_SWEEP_P_RIGID,    /* rotation: sweep_rigid.c per piece */
+  SWARF_SWEEP_P_GENERAL   /* a non-convex QSS piece: sweep_general.c, any motion */
 };
+
+/* ---- The sweep's per-method data (swarf_sweep.internal_) ----------------- */
+
+/* PLUNGE: the tip goes from z0 straight up or down the axis (x, y). */
+typedef struct {
+  double x, y;     /* the axis */
+  double mid;      /* middle of the swept body, z */
+  double half;     /* half height of the swept core */
+  double z0;       /* tip at alpha = 0 */
+  double inv_dz;   /* 1 / (z1 - z0); 0 when the tip does not move */
+  double zlo, zhi; /* lowest and highest tip */
+} swarf_sweep_plunge;
+
+/* SLOT: a horizontal line p0 + alpha d. */
+typedef struct {
+  double p0[3];
+  double d[2];     /* horizontal displacement */
+  double inv_len2; /* 1 / |d|^2 */
+} swarf_sweep_slot;
+
+/* RAMP, RAMP_BALL: a climbing line, tip p0 + u (e, k) for u in [0, len]. */
+typedef struct {
+  double p0[3];
+  double e[2];     /* unit horizontal direction */
+  double len;      /* horizontal length */
+  double k;        /* climb per horizontal mm */
+  double core_mid; /* middle of the core above the tip */
+  double core_half;/* half height of the core */
+  double core;     /* core radius a */
+  double w;        /* 1 / (1 + k^2) */
+} swarf_sweep_ramp;
+
+/* ARC, RING: a planar arc about a vertical axis through (cx, cy) at height z0,
+ * from the direction e1 towards e2, ending at (x1, y1). */
+typedef struct {
+  double cx, cy, z0;
+  double e1[2], e2[2];
+  double radius, angle, cos_angle, sin_angle;
+  double x1, y1;
+} swarf_sweep_arc;
+
+/* HELIX: t(alpha) = c + radius (cos(angle alpha) e1 + sin(angle alpha) e2)
+ * + alpha rise axis; n samples `step` mm apart along the path of length len. */
+typedef struct {
+  double c[3], e1[3], e2[3];
+  double radius, angle, rise;
+  double step, len;
+  int n;
+} swarf_sweep_helix;
+
+/* RIGID: bounds lo, hi of the volume; n time steps; v, w bounds of |v|,
+ * |omega| and vd, wd of their alpha-derivatives; beyond `far` mm a lower
+ * bound is returned. */
+typedef struct {
+  double lo[3], hi[3];
+  double v, w, vd, wd;
+  double far;
+  int n;
+} swarf_sweep_rigid;
+
+/* P_SLOT, P_PLUNGE, P_RAMP (profile cutters): the line p0 + alpha d. */
+typedef struct {
+  double p0[3], d[3];
+  double inv_h2; /* 1 / |d_xy|^2, 0 for a plunge */
+} swarf_sweep_pline;
+
+typedef struct {
+  int method; /* SWARF_SWEEP_* */
+  union {
+    swarf_sweep_pline pline;
+    swarf_sweep_plunge plunge;
+    swarf_sweep_slot slot;
+    swarf_sweep_ramp ramp;
+    swarf_sweep_arc arc;
+    swarf_sweep_helix helix;
+    swarf_sweep_rigid rigid;
+  } u;
+} swarf_sweep_data;
+
+_Static_assert(sizeof(swarf_sweep_data) <= sizeof(((swarf_sweep *)0)->internal_),
+               "swarf_sweep_data must fit in swarf_sweep.internal_ (SWARF_SWEEP_STORAGE)");
+_Static_assert(_Alignof(swarf_sweep_data) <= _Alignof(double),
+               "swarf_sweep.internal_ is aligned for doubles");
+
+/* The typed data of a sweep (only engine code and tests use it). */
+static inline swarf_sweep_data *swarf_sweep_data_of(swarf_sweep *s) {
+  return (swarf_sweep_data *)(void *)s->internal_;
+}
+static inline const swarf_sweep_data *swarf_sweep_cdata(const swarf_sweep *s) {
+  return (const swarf_sweep_data *)(const void *)s->internal_;
+}
 
 void swarf_sweep_line_init(swarf_sweep *s, const double p0[3], const double p1[3]);
 double swarf_sweep_slot_sdf(const swarf_sweep *s, const double p[3], double *alpha);
@@ -247,21 +355,32 @@ double swarf_sweep_plunge_sdf(const swarf_sweep *s, const double p[3], double *a
 double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
-/* aux of SWARF_SWEEP_HELIX: t(alpha) = C + RAD (cos(ANG alpha) E1 + sin(ANG alpha) E2)
- * + alpha RISE axis; N samples STEP mm apart along the path of length LEN. */
-enum { SWARF_H_C, SWARF_H_E1 = 3, SWARF_H_E2 = 6, SWARF_H_RAD = 9, SWARF_H_ANG, SWARF_H_RISE,
-       SWARF_H_STEP, SWARF_H_N, SWARF_H_LEN };
-
 void swarf_sweep_helix_init(swarf_sweep *s);
+/* The helix search of sweep_sampled.c for a convex body (gradient callback),
+ * pruned by upper: returns the minimum if below upper - 1e-9, else a value
+ * >= upper - 1e-9 (nothing below it). */
+double swarf_sweep_helix_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                  const double p[3], double upper, double *alpha);
 double swarf_sweep_arc_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ring_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
-/* aux of SWARF_SWEEP_RIGID: bounds LO, HI of the volume; N time steps; V, W
- * bounds of |v|, |omega| and VD, WD of their alpha-derivatives; FAR mm. */
-enum { RG_LO, RG_HI = 3, RG_N = 6, RG_V, RG_W, RG_VD, RG_WD, RG_FAR };
-
 void swarf_sweep_rigid_init(swarf_sweep *s, double voxel);
+/* swarf_sweep_rigid_body_sdf pruned by upper: the minimum if it is below
+ * upper - 1e-6, else a value >= upper - 1e-6. Any motion kind. */
+double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                    const double p[3], double upper, double *alpha);
+
+/* Profile cutters (sweep_profile.c): init for any motion, bounds, sdf. */
+void swarf_sweep_profile_init(swarf_sweep *s, double voxel);
+double swarf_sweep_profile_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+/* Cutters with a non-convex QSS piece, any motion (sweep_general.c). */
+double swarf_sweep_general_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+/* The cutter's 2-D sdf at horizontal distance r and height z: the closed
+ * form of flat/ball/bull, or the minimum over the profile's pieces. */
+static inline double swarf_cutter_rz(const swarf_cutter *c, double r, double z) {
+  return c->fast ? swarf_cutter_sdf_rz(c, r, z) : swarf_cutter_sdf2(c, r, z, NULL);
+}
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 

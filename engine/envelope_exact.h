@@ -44,8 +44,8 @@ SWARF_API void swarf_qr_add(swarf_qr *z, const swarf_qr *x, const swarf_qr *y);
 SWARF_API void swarf_qr_sub(swarf_qr *z, const swarf_qr *x, const swarf_qr *y);
 SWARF_API void swarf_qr_mul(swarf_qr *z, const swarf_qr *x, const swarf_qr *y, const fmpz_t r);
 SWARF_API void swarf_qr_mul_fmpq(swarf_qr *z, const swarf_qr *x, const fmpq_t c);
-/* z = 1 / x; returns -1 (z unchanged) when x = 0. */
-SWARF_API int swarf_qr_inv(swarf_qr *z, const swarf_qr *x, const fmpz_t r);
+/* z = 1 / x; SWARF_ERR_ARG (z unchanged) when x = 0. */
+SWARF_API swarf_status swarf_qr_inv(swarf_qr *z, const swarf_qr *x, const fmpz_t r);
 SWARF_API int swarf_qr_is_zero(const swarf_qr *x);
 /* Sign of a + b sqrt(r), decided exactly. */
 SWARF_API int swarf_qr_sgn(const swarf_qr *x, const fmpz_t r);
@@ -132,8 +132,9 @@ typedef struct {
 
 SWARF_API void swarf_xmotion_init(swarf_xmotion *m);
 SWARF_API void swarf_xmotion_clear(swarf_xmotion *m);
-/* Returns 0, or -1 when w = 0 or |w| is irrational. */
-SWARF_API int swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot, const fmpq_t B);
+/* SWARF_ERR_ARG when w = 0 or |w| is irrational. */
+SWARF_API swarf_status swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot,
+                                         const fmpq_t B);
 
 /* f(n) = (v + omega x grad h(n)) . n, eq. 11 (ENVELOPE.md: grad h x n order). */
 SWARF_API void swarf_xquad_char(swarf_xquad *f, const swarf_xquad *h, const fmpq *v,
@@ -191,10 +192,11 @@ SWARF_API void swarf_envelope_exact_init(swarf_envelope_exact *E);
 SWARF_API void swarf_envelope_exact_clear(swarf_envelope_exact *E);
 
 /* Compute f, Delta and its roots, and (for a curve) the ELM steps, for the
- * support function h moving with v and omega (rational). Returns 0, or -1
- * when out of memory; E->kind names the case. */
-SWARF_API int swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h,
-                                           const fmpq *v, const fmpq *omega);
+ * support function h moving with v and omega (rational); E->kind names the
+ * case. SWARF_ERR_MEMORY when out of memory, SWARF_ERR_ARG for a NULL
+ * argument. */
+SWARF_API swarf_status swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h,
+                                                    const fmpq *v, const fmpq *omega);
 
 /* The slice z (rational): the Gauss points in Q(sqrt r_z) (r_z returned in
  * rz), n[0] on branch s = +1, n[1] on s = -1 (Fact 2's formula). Returns 2,
@@ -203,10 +205,10 @@ SWARF_API int swarf_envelope_exact_slice(const swarf_envelope_exact *E, const fm
                                          swarf_qr n[2][3]);
 
 /* A point of the ELM parameterization (double precision from the exact
- * coefficients): pencil parameter s, root sign (+1/-1). Returns 0, or -1
- * where l(s) < 0 or m(s) = 0. */
-SWARF_API int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign,
-                                             double n[3]);
+ * coefficients): pencil parameter s, root sign (+1/-1). SWARF_ERR_ARG where
+ * there is no point (l(s) < 0 or m(s) = 0, or no ELM). */
+SWARF_API swarf_status swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s,
+                                                      int sign, double n[3]);
 
 /* The back-projection of Theorem 2 checked as polynomial identities in
  * Q(sqrt r)[s, w] / (w^2 - l(s)): with Q(s) = R + (k + w)/m (1 - R_xi, s - R_eta),

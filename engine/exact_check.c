@@ -60,14 +60,15 @@ int swarf_envelope_exact_slice(const swarf_envelope_exact *E, const fmpq_t z, fm
   return sgn > 0 ? 2 : 1;
 }
 
-int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign, double n[3]) {
+swarf_status swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int sign,
+                                            double n[3]) {
   const fmpz *r = E->r;
   double k, l, m, t, P[3], Q[3], e[3], pe = 0.0, ee = 0.0;
-  if (E->kind != SWARF_ENV_CURVE) return -1;
+  if (E->kind != SWARF_ENV_CURVE) return SWARF_ERR_ARG;
   k = swarf_qr_poly_evaluate_d(&E->k, r, s);
   l = swarf_qr_poly_evaluate_d(&E->l, r, s);
   m = swarf_qr_poly_evaluate_d(&E->m, r, s);
-  if (l < 0.0 || m == 0.0) return -1;
+  if (l < 0.0 || m == 0.0) return SWARF_ERR_ARG;
   t = (k + sign * sqrt(l)) / m;
   for (int i = 0; i < 3; i++)
     P[i] = swarf_qr_get_d(&E->P[i], r);
@@ -81,10 +82,10 @@ int swarf_envelope_exact_elm_point(const swarf_envelope_exact *E, double s, int 
     pe += P[i] * e[i];
     ee += e[i] * e[i];
   }
-  if (!(ee > 0.0)) return -1;
+  if (!(ee > 0.0)) return SWARF_ERR_ARG;
   for (int i = 0; i < 3; i++)
     n[i] = P[i] - 2.0 * pe / ee * e[i];
-  return 0;
+  return SWARF_OK;
 }
 
 /* ---- The ring Q(sqrt r)[s][w] / (w^2 - l) -------------------------------- */

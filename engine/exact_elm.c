@@ -169,7 +169,7 @@ static int tangent_point(swarf_envelope_exact *E) {
     swarf_qr_mul(&b, &g[j], &E->P[i], r);
     swarf_qr_sub(&E->T[k], &a, &b);
   }
-  if (swarf_qr_inv(&lam, &E->T[2], r) == 0) {
+  if (swarf_qr_inv(&lam, &E->T[2], r) == SWARF_OK) {
     swarf_qr_mul(&lam, &lam, &E->P[2], r);
     for (int k = 0; k < 2; k++) {
       swarf_qr_mul(&a, &lam, &E->T[k], r);

@@ -76,7 +76,7 @@ static void rotation_entry(fmpq_t out, int i, int j, const fmpq *k, const fmpq_t
   fmpq_clear(t);
 }
 
-int swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot, const fmpq_t B) {
+swarf_status swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot, const fmpq_t B) {
   fmpq_t len, c, s, d;
   int ok;
   fmpq_init(len);
@@ -109,5 +109,5 @@ int swarf_xmotion_set(swarf_xmotion *m, const fmpq *w, const fmpq *tdot, const f
   fmpq_clear(c);
   fmpq_clear(s);
   fmpq_clear(d);
-  return ok ? 0 : -1;
+  return ok ? SWARF_OK : SWARF_ERR_ARG;
 }

@@ -83,9 +83,9 @@ static void qr_norm(fmpq_t out, const swarf_qr *x, const fmpz_t r) {
   fmpq_clear(t);
 }
 
-int swarf_qr_inv(swarf_qr *z, const swarf_qr *x, const fmpz_t r) {
+swarf_status swarf_qr_inv(swarf_qr *z, const swarf_qr *x, const fmpz_t r) {
   fmpq_t nrm;
-  if (swarf_qr_is_zero(x)) return -1;
+  if (swarf_qr_is_zero(x)) return SWARF_ERR_ARG;
   fmpq_init(nrm);
   qr_norm(nrm, x, r);
   fmpq_inv(nrm, nrm);
@@ -93,7 +93,7 @@ int swarf_qr_inv(swarf_qr *z, const swarf_qr *x, const fmpz_t r) {
   fmpq_mul(z->b, x->b, nrm);
   fmpq_neg(z->b, z->b);
   fmpq_clear(nrm);
-  return 0;
+  return SWARF_OK;
 }
 
 int swarf_qr_sgn(const swarf_qr *x, const fmpz_t r) {

@@ -68,24 +68,24 @@ static swarf_env_kind kind_of_zero_f(const swarf_xquad *h) {
   return iso ? SWARF_ENV_SPHERE : SWARF_ENV_SPIN;
 }
 
-int swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h, const fmpq *v,
-                                 const fmpq *omega) {
-  if (E == NULL || h == NULL || v == NULL || omega == NULL) return -1;
+swarf_status swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h,
+                                          const fmpq *v, const fmpq *omega) {
+  if (E == NULL || h == NULL || v == NULL || omega == NULL) return SWARF_ERR_ARG;
   E->ncomp = 0;
   if (all_zero(v, 3) && all_zero(omega, 3)) {
     E->kind = SWARF_ENV_STILL;
-    return 0;
+    return SWARF_OK;
   }
   swarf_xquad_char(&E->f, h, v, omega);
   if (all_zero(E->f.c, SWARF_QUAD_TERMS)) {
     E->kind = kind_of_zero_f(h);
-    return 0;
+    return SWARF_OK;
   }
   if (swarf_exact_slice_lines(E) != 0) {
     E->kind = SWARF_ENV_NOT_REVOLUTION;
-    return 0;
+    return SWARF_OK;
   }
-  if (swarf_exact_delta_roots(E) != 0) return -1;
+  if (swarf_exact_delta_roots(E) != 0) return SWARF_ERR_MEMORY;
   if (fmpq_poly_is_zero(E->A) && fmpq_poly_is_zero(E->B))
     E->kind = SWARF_ENV_CIRCLES;
   else if (all_zero(E->f.c, SWARF_X))
@@ -95,7 +95,7 @@ int swarf_envelope_exact_compute(swarf_envelope_exact *E, const swarf_xquad *h, 
   else
     E->kind = E->nroots > 0 ? SWARF_ENV_POINTS : SWARF_ENV_EMPTY;
   if (E->kind == SWARF_ENV_CURVE && swarf_exact_elm(E) != 0) E->kind = SWARF_ENV_POINTS;
-  return 0;
+  return SWARF_OK;
 }
 
 /* ---- Report --------------------------------------------------------------- */

@@ -267,7 +267,71 @@ double swarf_profile_hull_sdf(const swarf_profile_piece *pc, double r, double z,
 
 /* ---- QSS distance --------------------------------------------------------- */
 
-static void qss_point(const swarf_profile_piece *pc, double s, double y[2]) {
+static double horner(const double *c, int deg, double x) {
+  double p = c[deg];
+  for (int i = deg - 1; i >= 0; i--)
+    p = p * x + c[i];
+  return p;
+}
+
+/* The sign change of c in (a, b) (f(a), f(b) of opposite signs): Newton
+ * steps kept inside the bracket, bisection otherwise, to adjacent doubles. */
+static double root_in(const double *c, int deg, double a, double b) {
+  double fa = horner(c, deg, a), x = 0.5 * (a + b);
+  for (int it = 0; it < 100; it++) {
+    double f = 0.0, df = 0.0, m = 0.0, ax = fabs(x), nx;
+    for (int i = deg; i >= 0; i--)
+      df = df * x + f, f = f * x + c[i], m = m * ax + fabs(c[i]);
+    if (fabs(f) <= 8e-16 * m) return x; /* within the rounding of the evaluation */
+    if ((f < 0.0) == (fa < 0.0))
+      a = x, fa = f;
+    else
+      b = x;
+    nx = df != 0.0 ? x - f / df : 0.5 * (a + b);
+    if (!(nx > a && nx < b)) nx = 0.5 * (a + b);
+    if (fabs(nx - x) <= 4e-16 * fmax(1.0, ax) || b - a <= 2.5e-16 * fmax(1.0, ax)) return nx;
+    x = nx;
+  }
+  return x;
+}
+
+/* Sign changes of the polynomial c (degree <= 4) in (lo, hi), ascending:
+ * monotone pieces between the derivative's roots. */
+static int roots_fast(const double *c, int deg, double lo, double hi, double *out) {
+  double d[4], ends[6];
+  int n = 0, ne;
+  while (deg > 0 && c[deg] == 0.0)
+    deg--;
+  if (deg <= 0) return 0;
+  if (deg == 1) {
+    double x = -c[0] / c[1];
+    if (x > lo && x < hi) out[n++] = x;
+    return n;
+  }
+  if (deg == 2) { /* closed form, without cancellation */
+    double disc = c[1] * c[1] - 4.0 * c[2] * c[0], q, x0, x1;
+    if (!(disc > 0.0)) return 0;
+    q = -0.5 * (c[1] + copysign(sqrt(disc), c[1]));
+    x0 = q / c[2], x1 = q != 0.0 ? c[0] / q : x0;
+    if (x0 > x1) q = x0, x0 = x1, x1 = q;
+    if (x0 > lo && x0 < hi) out[n++] = x0;
+    if (x1 > lo && x1 < hi) out[n++] = x1;
+    return n;
+  }
+  for (int i = 1; i <= deg; i++)
+    d[i - 1] = i * c[i];
+  ends[0] = lo;
+  ne = 1 + roots_fast(d, deg - 1, lo, hi, ends + 1);
+  ends[ne++] = hi;
+  for (int i = 0; i + 1 < ne; i++) {
+    double fa = horner(c, deg, ends[i]), fb = horner(c, deg, ends[i + 1]);
+    if (fa == 0.0 || fb == 0.0 || (fa < 0.0) == (fb < 0.0)) continue;
+    out[n++] = root_in(c, deg, ends[i], ends[i + 1]);
+  }
+  return n;
+}
+
+void swarf_profile_qss_point(const swarf_profile_piece *pc, double s, double y[2]) {
   double c2 = 1.0 - s * s;
   y[0] = sqrt(c2 > 0.0 ? c2 : 0.0) * (pc->q0 - pc->q2 * s * s);
   y[1] = (-pc->q2 * s * s + pc->q0 + 2.0 * pc->q2) * s + pc->q1 + pc->lift;
@@ -276,20 +340,21 @@ static void qss_point(const swarf_profile_piece *pc, double s, double y[2]) {
 /* Crossings of the ray from (r, z) toward r = +inf with the profile curve. */
 static int qss_inside(const swarf_profile_piece *pc, double r, double z) {
   double c[4] = {pc->q1 + pc->lift - z, pc->q0 + 2.0 * pc->q2, 0.0, -pc->q2}, s[3];
-  int n = swarf_char_poly_roots(c, 3, -1.0, 1.0, s, 3), cross = 0;
+  int n = roots_fast(c, 3, -1.0, 1.0, s), cross = 0;
   for (int i = 0; i < n; i++) {
     double y[2];
-    qss_point(pc, s[i], y);
+    swarf_profile_qss_point(pc, s[i], y);
     cross += y[0] > r;
   }
   return cross & 1;
 }
 
-double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]) {
+double swarf_profile_qss_sdf_near(const swarf_profile_piece *pc, double r, double z, double g[2],
+                                  double near[2]) {
   double w = z - pc->lift - pc->q1, k = 2.0 * pc->q2;
   double c[5] = {w * w, -2.0 * w * k, k * k - w * w - r * r, 2.0 * w * k, -k * k};
   double cand[10], best = INFINITY, by[2] = {0, 0}, d, cusp;
-  int n = swarf_char_poly_roots(c, 4, -1.0, 1.0, cand, 4), in;
+  int n = roots_fast(c, 4, -1.0, 1.0, cand), in;
   cand[n++] = -1.0;
   cand[n++] = 1.0;
   if (pc->q2 != 0.0 && (cusp = (pc->q0 + 2.0 * pc->q2) / (3.0 * pc->q2)) > 0.0 && cusp < 1.0) {
@@ -298,12 +363,13 @@ double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, 
   }
   for (int i = 0; i < n; i++) {
     double y[2], dd;
-    qss_point(pc, cand[i], y);
+    swarf_profile_qss_point(pc, cand[i], y);
     dd = (r - y[0]) * (r - y[0]) + (z - y[1]) * (z - y[1]);
     if (dd < best) best = dd, by[0] = y[0], by[1] = y[1];
   }
   d = sqrt(best);
   in = qss_inside(pc, r, z);
+  if (near != NULL) near[0] = by[0], near[1] = by[1];
   if (g != NULL) {
     double kk = d > 0.0 ? (in ? -1.0 : 1.0) / d : 0.0;
     g[0] = d > 0.0 ? (r - by[0]) * kk : 1.0;
@@ -312,7 +378,23 @@ double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, 
   return in ? -d : d;
 }
 
+double swarf_profile_qss_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]) {
+  return swarf_profile_qss_sdf_near(pc, r, z, g, NULL);
+}
+
 double swarf_profile_piece_sdf(const swarf_profile_piece *pc, double r, double z, double g[2]) {
   if (pc->kind == SWARF_PIECE_QSS) return swarf_profile_qss_sdf(pc, r, z, g);
   return swarf_profile_hull_sdf(pc, r, z, 0.0, g);
+}
+
+double swarf_profile_piece_sdf_grad(const swarf_profile_piece *pc, const double q[3], double g[3]) {
+  double r = sqrt(q[0] * q[0] + q[1] * q[1]), g2[2], d = swarf_profile_piece_sdf(pc, r, q[2], g2);
+  if (r > 0.0) {
+    double k = g2[0] / r;
+    g[0] = k * q[0], g[1] = k * q[1];
+  } else {
+    g[0] = g2[0], g[1] = 0.0;
+  }
+  g[2] = g2[1];
+  return d;
 }

@@ -3,7 +3,7 @@
  *
  * A swarf_sweep is a value that points at a cutter and a motion owned by the
  * caller; init picks the evaluator (engine_private.h lists them) and stores
- * its per-move constants in aux. The evaluators live in sweep_line.c,
+ * its per-move constants, typed per method (swarf_sweep_data). The evaluators live in sweep_line.c,
  * sweep_helix.c and (motions with rotation) sweep_rigid.c.
  */
 #include <math.h>
@@ -21,8 +21,9 @@ void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_m
   s->cutter = c;
   s->motion = m;
   if (c == NULL || m == NULL) return;
-  /* Profile cutters: the certified time search for now (closed forms to come). */
-  if (m->kind == SWARF_MOTION_RIGID || !c->fast)
+  if (!c->fast)
+    swarf_sweep_profile_init(s, voxel > 0 ? voxel : 0.1);
+  else if (m->kind == SWARF_MOTION_RIGID)
     swarf_sweep_rigid_init(s, voxel > 0 ? voxel : 0.1);
   else if (m->kind == SWARF_MOTION_LINE)
     swarf_sweep_line_init(s, m->p0, m->p1);
@@ -32,7 +33,9 @@ void swarf_sweep_init_voxel(swarf_sweep *s, const swarf_cutter *c, const swarf_m
 
 void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
   double r = 0.5 * s->cutter->diameter;
-  if (s->method == SWARF_SWEEP_RIGID) {
+  int method = swarf_sweep_cdata(s)->method;
+  if (method == SWARF_SWEEP_RIGID || method == SWARF_SWEEP_P_RIGID ||
+      method == SWARF_SWEEP_P_GENERAL) {
     swarf_sweep_rigid_bounds(s, lo, hi);
     return;
   }
@@ -41,11 +44,14 @@ void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
     lo[k] -= r;
     hi[k] += r;
   }
+  lo[2] += s->cutter->zmin;
   hi[2] += s->cutter->length;
 }
 
 double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  switch (s->method) {
+  int method = swarf_sweep_cdata(s)->method;
+  if (method >= SWARF_SWEEP_P_SLOT) return swarf_sweep_profile_sdf(s, p, alpha);
+  switch (method) {
   case SWARF_SWEEP_SLOT:
     return swarf_sweep_slot_sdf(s, p, alpha);
   case SWARF_SWEEP_RAMP_BALL:
@@ -65,9 +71,10 @@ double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   }
 }
 
-int swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol, swarf_char_curve *cc) {
+swarf_status swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,
+                                    swarf_char_curve *cc) {
   double t[3], U[9], tdot[3], v[3], omega[3];
-  if (s == NULL || s->cutter == NULL || s->motion == NULL || cc == NULL) return -1;
+  if (s == NULL || s->cutter == NULL || s->motion == NULL || cc == NULL) return SWARF_ERR_ARG;
   swarf_motion_eval(s->motion, alpha, t, U);
   swarf_motion_velocity(s->motion, alpha, tdot, v, omega);
   return swarf_char_curve_compute(cc, s->cutter, t, U, v, omega, tol);

@@ -10,7 +10,7 @@
  *     tip offset u of a convex C1 function, found by safeguarded Newton; exact
  *     outside; inside, the depth of the deepest single instance (a lower bound
  *     of the true depth, exact near the surface to second order).
- * aux layouts are set by swarf_sweep_line_init and read here only.
+ * The per-method data (engine_private.h) is set by swarf_sweep_line_init.
  */
 #include <math.h>
 
@@ -20,63 +20,76 @@ static double clamp(double x, double lo, double hi) { return x < lo ? lo : x > h
 
 static void plunge_init(swarf_sweep *s, const double p0[3], const double p1[3]) {
   const swarf_cutter *c = s->cutter;
+  swarf_sweep_data *sd = swarf_sweep_data_of(s);
+  swarf_sweep_plunge *x = &sd->u.plunge;
   double zlo = fmin(p0[2], p1[2]), zhi = fmax(p0[2], p1[2]), dz = p1[2] - p0[2];
-  s->method = SWARF_SWEEP_PLUNGE;
-  s->aux[0] = p0[0];
-  s->aux[1] = p0[1];
-  s->aux[2] = 0.5 * (zlo + zhi + c->length);                      /* middle of the body */
-  s->aux[3] = 0.5 * (zhi - zlo + c->length) - c->corner_radius;  /* core half height */
-  s->aux[4] = p0[2];
-  s->aux[5] = dz != 0.0 ? 1.0 / dz : 0.0;
-  s->aux[6] = zlo;
-  s->aux[7] = zhi;
+  sd->method = SWARF_SWEEP_PLUNGE;
+  x->x = p0[0];
+  x->y = p0[1];
+  x->mid = 0.5 * (zlo + zhi + c->length);
+  x->half = 0.5 * (zhi - zlo + c->length) - c->corner_radius;
+  x->z0 = p0[2];
+  x->inv_dz = dz != 0.0 ? 1.0 / dz : 0.0;
+  x->zlo = zlo;
+  x->zhi = zhi;
+}
+
+static void slot_init(swarf_sweep *s, const double p0[3], const double d[3], double U) {
+  swarf_sweep_data *sd = swarf_sweep_data_of(s);
+  swarf_sweep_slot *x = &sd->u.slot;
+  sd->method = SWARF_SWEEP_SLOT;
+  for (int k = 0; k < 3; k++)
+    x->p0[k] = p0[k];
+  x->d[0] = d[0];
+  x->d[1] = d[1];
+  x->inv_len2 = 1.0 / (U * U);
 }
 
 void swarf_sweep_line_init(swarf_sweep *s, const double p0[3], const double p1[3]) {
   const swarf_cutter *c = s->cutter;
+  swarf_sweep_data *sd = swarf_sweep_data_of(s);
+  swarf_sweep_ramp *x = &sd->u.ramp;
   double d[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
   double U = sqrt(d[0] * d[0] + d[1] * d[1]);
   if (d[0] == 0.0 && d[1] == 0.0) {
     plunge_init(s, p0, p1);
     return;
   }
-  for (int k = 0; k < 3; k++) s->aux[k] = p0[k];
-  s->aux[7] = 0.5 * c->length;                       /* core middle above the tip */
-  s->aux[8] = 0.5 * c->length - c->corner_radius;    /* core half height */
   if (d[2] == 0.0) {
-    s->method = SWARF_SWEEP_SLOT;
-    s->aux[3] = d[0];
-    s->aux[4] = d[1];
-    s->aux[5] = 1.0 / (U * U);
+    slot_init(s, p0, d, U);
     return;
   }
-  s->method = swarf_cutter_core(c) > 0.0 ? SWARF_SWEEP_RAMP : SWARF_SWEEP_RAMP_BALL;
-  s->aux[3] = d[0] / U; /* e: unit horizontal direction */
-  s->aux[4] = d[1] / U;
-  s->aux[5] = U;
-  s->aux[6] = d[2] / U; /* k: climb per horizontal mm */
-  s->aux[9] = swarf_cutter_core(c);
-  s->aux[10] = 1.0 / (1.0 + s->aux[6] * s->aux[6]);
+  sd->method = swarf_cutter_core(c) > 0.0 ? SWARF_SWEEP_RAMP : SWARF_SWEEP_RAMP_BALL;
+  for (int k = 0; k < 3; k++)
+    x->p0[k] = p0[k];
+  x->core_mid = 0.5 * c->length;
+  x->core_half = 0.5 * c->length - c->corner_radius;
+  x->e[0] = d[0] / U;
+  x->e[1] = d[1] / U;
+  x->len = U;
+  x->k = d[2] / U;
+  x->core = swarf_cutter_core(c);
+  x->w = 1.0 / (1.0 + x->k * x->k);
 }
 
 double swarf_sweep_slot_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  const double *x = s->aux;
-  double wx = p[0] - x[0], wy = p[1] - x[1];
-  double t = clamp((wx * x[3] + wy * x[4]) * x[5], 0.0, 1.0);
-  double ex = wx - t * x[3], ey = wy - t * x[4];
+  const swarf_sweep_slot *x = &swarf_sweep_cdata(s)->u.slot;
+  double wx = p[0] - x->p0[0], wy = p[1] - x->p0[1];
+  double t = clamp((wx * x->d[0] + wy * x->d[1]) * x->inv_len2, 0.0, 1.0);
+  double ex = wx - t * x->d[0], ey = wy - t * x->d[1];
   if (alpha != NULL) *alpha = t;
-  return swarf_cutter_sdf_rz(s->cutter, sqrt(ex * ex + ey * ey), p[2] - x[2]);
+  return swarf_cutter_sdf_rz(s->cutter, sqrt(ex * ex + ey * ey), p[2] - x->p0[2]);
 }
 
 double swarf_sweep_plunge_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
-  const double *x = s->aux;
+  const swarf_sweep_plunge *x = &swarf_sweep_cdata(s)->u.plunge;
   const swarf_cutter *c = s->cutter;
-  double ex = p[0] - x[0], ey = p[1] - x[1], r = sqrt(ex * ex + ey * ey);
-  double d = swarf_box2(r - swarf_cutter_core(c), fabs(p[2] - x[2]) - x[3]) - c->corner_radius;
+  double ex = p[0] - x->x, ey = p[1] - x->y, r = sqrt(ex * ex + ey * ey);
+  double d = swarf_box2(r - swarf_cutter_core(c), fabs(p[2] - x->mid) - x->half) - c->corner_radius;
   /* Every instance level with p is nearest to a point beside the side: pick
    * the one whose lower rim is at p's height (the rims are the curve). */
   double lift = d > 0.0 ? c->corner_radius : 0.5 * c->length;
-  if (alpha != NULL) *alpha = (clamp(p[2] - lift, x[6], x[7]) - x[4]) * x[5];
+  if (alpha != NULL) *alpha = (clamp(p[2] - lift, x->zlo, x->zhi) - x->z0) * x->inv_dz;
   return d;
 }
 
@@ -87,15 +100,15 @@ typedef struct {
 } ramp_point;
 
 static void ramp_frame(const swarf_sweep *s, const double p[3], ramp_point *rp) {
-  const double *x = s->aux;
-  double wx = p[0] - x[0], wy = p[1] - x[1];
-  rp->xi = wx * x[3] + wy * x[4];
-  rp->eta = wy * x[3] - wx * x[4];
-  rp->zp = p[2] - x[2] - x[7];
-  rp->k = x[6];
-  rp->hh = x[8];
-  rp->a = x[9];
-  rp->U = x[5];
+  const swarf_sweep_ramp *x = &swarf_sweep_cdata(s)->u.ramp;
+  double wx = p[0] - x->p0[0], wy = p[1] - x->p0[1];
+  rp->xi = wx * x->e[0] + wy * x->e[1];
+  rp->eta = wy * x->e[0] - wx * x->e[1];
+  rp->zp = p[2] - x->p0[2] - x->core_mid;
+  rp->k = x->k;
+  rp->hh = x->core_half;
+  rp->a = x->core;
+  rp->U = x->len;
 }
 
 /* Ball cutter: squared distance to the parallelogram at tip offset u. */
@@ -109,7 +122,7 @@ double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double
   ramp_point rp;
   double cand[3], best = INFINITY, ubest = 0.0, w;
   ramp_frame(s, p, &rp);
-  w = s->aux[10];
+  w = swarf_sweep_cdata(s)->u.ramp.w;
   cand[0] = rp.xi;                                    /* inside the height band */
   cand[1] = (rp.xi + rp.k * (rp.zp - rp.hh)) * w;     /* above it */
   cand[2] = (rp.xi + rp.k * (rp.zp + rp.hh)) * w;     /* below it */

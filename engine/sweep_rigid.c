@@ -102,16 +102,16 @@ static rsample reval(rctx *h, double a) {
 
 /* The Lipschitz part of the lower bound over [A.a, B.a]. */
 static inline double rbound_lip(const rctx *h, const rsample *A, const rsample *B) {
-  const double *x = h->s->aux;
-  double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x[RG_V] * w;
-  return 0.5 * (A->g + B->g - (x[RG_V] + x[RG_W] * Q) * w);
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(h->s)->u.rigid;
+  double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x->v * w;
+  return 0.5 * (A->g + B->g - (x->v + x->w * Q) * w);
 }
 
 /* Lower bound of g over [A.a, B.a] (see the top of the file). */
 static double rbound(const rctx *h, const rsample *A, const rsample *B) {
-  const double *x = h->s->aux;
-  double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x[RG_V] * w;
-  double K = (x[RG_WD] + x[RG_W] * x[RG_W]) * Q + x[RG_W] * x[RG_V] + x[RG_VD];
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(h->s)->u.rigid;
+  double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x->v * w;
+  double K = (x->wd + x->w * x->w) * Q + x->w * x->v + x->vd;
   return max2(swarf_semiconvex_bound(A->g, A->dg, B->g, B->dg, w, K), rbound_lip(h, A, B));
 }
 
@@ -212,7 +212,7 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
   memset(have, 0, (size_t)n + 1);
   nc = rcoarse(h, table, n, S, smp, have, order, lbc);
   *lb = lbc[order[0]];
-  if (*lb > h->s->aux[RG_FAR]) return -1;
+  if (*lb > swarf_sweep_cdata(h->s)->u.rigid.far) return -1;
   for (int k = 0; k < nc; k++) {
     int j = order[k], i1 = (j + 1) * S < n ? (j + 1) * S : n;
     if (lbc[j] >= h->best.g - EPS) break;
@@ -224,25 +224,31 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
   return m - 1;
 }
 
-double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
-                                  const double p[3], double *alpha) {
+double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                    const double p[3], double upper, double *alpha) {
   rsample smp[MAXN + 1];
   const swarf_pose *table;
   rctx h;
   int n;
   double lb;
-  if (s == NULL || s->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL) return NAN;
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
-  h.best.a = 0.0, h.best.g = INFINITY, h.best.dg = 0.0, h.best.dist = 0.0;
-  n = (int)s->aux[RG_N];
+  h.best.a = 0.0, h.best.g = upper, h.best.dg = 0.0, h.best.dist = 0.0;
+  n = swarf_sweep_cdata(s)->u.rigid.n;
   swarf_motion_pose_table(s->motion, n, &table); /* NULL when out of memory: poses computed */
   n = rsteps(&h, table, n, smp, &lb);
   if (alpha != NULL) *alpha = h.best.a;
-  if (n < 0) return lb;
+  if (n < 0) return fmin(lb, upper);
   h.evals = 0;
   rcertify(&h, smp, n);
   if (alpha != NULL) *alpha = h.best.a;
   return h.best.g;
+}
+
+double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                  const double p[3], double *alpha) {
+  if (s == NULL || swarf_sweep_cdata(s)->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL)
+    return NAN;
+  return swarf_sweep_rigid_body_below(s, body, ctx, p, INFINITY, alpha);
 }
 
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha) {

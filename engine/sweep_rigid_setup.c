@@ -26,22 +26,25 @@ static double dist3(const double a[3], const double b[3]) {
 }
 
 /* Widen the box by the cutter's axis segment at the pose (t, U). */
-static void include_pose(double *x, const swarf_cutter *c, const double t[3], const double U[9]) {
+static void include_pose(swarf_sweep_rigid *x, const swarf_cutter *c, const double t[3],
+                         const double U[9]) {
   for (int k = 0; k < 3; k++) {
     double top = t[k] + c->length * U[3 * k + 2];
-    x[RG_LO + k] = fmin(x[RG_LO + k], fmin(t[k], top));
-    x[RG_HI + k] = fmax(x[RG_HI + k], fmax(t[k], top));
+    x->lo[k] = fmin(x->lo[k], fmin(t[k], top));
+    x->hi[k] = fmax(x->hi[k], fmax(t[k], top));
   }
 }
 
 void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
   const swarf_cutter *c = s->cutter;
-  double *x = s->aux, t[3], U[9], v[3], w[3], pv[3] = {0}, pw[3] = {0};
+  swarf_sweep_data *sd = swarf_sweep_data_of(s);
+  swarf_sweep_rigid *x = &sd->u.rigid;
+  double t[3], U[9], v[3], w[3], pv[3] = {0}, pw[3] = {0};
   double r = 0.5 * c->diameter, reach = hypot(r, c->length), tol = 0.1 * voxel;
   double V = 0, W = 0, VD = 0, WD = 0, step, travel, pad;
-  s->method = SWARF_SWEEP_RIGID;
+  sd->method = SWARF_SWEEP_RIGID;
   for (int k = 0; k < 3; k++)
-    x[RG_LO + k] = INFINITY, x[RG_HI + k] = -INFINITY;
+    x->lo[k] = INFINITY, x->hi[k] = -INFINITY;
   for (int i = 0; i <= PROBE; i++) {
     double a = (double)i / PROBE;
     swarf_motion_eval(s->motion, a, t, U);
@@ -53,20 +56,21 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
     memcpy(pv, v, sizeof v);
     memcpy(pw, w, sizeof w);
   }
-  x[RG_V] = 1.25 * V + 1e-12;
-  x[RG_W] = 1.25 * W;
-  x[RG_VD] = 1.5 * VD + 1e-9 * V;
-  x[RG_WD] = 1.5 * WD;
-  travel = x[RG_V] + x[RG_W] * reach; /* mm per unit alpha, any cutter point */
+  x->v = 1.25 * V + 1e-12;
+  x->w = 1.25 * W;
+  x->vd = 1.5 * VD + 1e-9 * V;
+  x->wd = 1.5 * WD;
+  travel = x->v + x->w * reach; /* mm per unit alpha, any cutter point */
   step = sqrt(8.0 * r * tol);
-  x[RG_N] = fmin(MAXN, fmax(2.0, ceil(travel / step)));
-  x[RG_FAR] = 72.0 * voxel;
+  x->n = (int)fmin(MAXN, fmax(2.0, ceil(travel / step)));
+  x->far = 72.0 * voxel;
   pad = r + travel / PROBE;
   for (int k = 0; k < 3; k++)
-    x[RG_LO + k] -= pad, x[RG_HI + k] += pad;
+    x->lo[k] -= pad, x->hi[k] += pad;
 }
 
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
   for (int k = 0; k < 3; k++)
-    lo[k] = s->aux[RG_LO + k], hi[k] = s->aux[RG_HI + k];
+    lo[k] = x->lo[k], hi[k] = x->hi[k];
 }

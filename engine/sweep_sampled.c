@@ -26,17 +26,19 @@
 
 #include "engine_private.h"
 
-#define EPS 1e-9       /* certified accuracy, mm */
-#define CACHE 63       /* samples kept between the two steps (bit masks) */
-#define HEAP 96        /* intervals waiting in step 2 */
-#define MAX_DEPTH 40   /* splits of one sample interval */
-#define MAX_EVALS 600  /* evaluations of g per call */
+#define EPS 1e-9      /* certified accuracy, mm */
+#define CACHE 63      /* samples kept between the two steps (bit masks) */
+#define HEAP 96       /* intervals waiting in step 2 */
+#define MAX_DEPTH 40  /* splits of one sample interval */
+#define MAX_EVALS 600 /* evaluations of g per call */
 
 typedef swarf_tsample sample; /* time, g(a), g'(a) */
 typedef swarf_tspan span;
 
 typedef struct {
   const swarf_sweep *s;
+  swarf_body_sdf_fn body;
+  const void *body_ctx;
   const double *p;
   double K, len, step;
   int n, evals;
@@ -51,16 +53,17 @@ typedef struct {
 /* g and g' at a; the best value is kept (among values equal to rounding, the
  * flatter point: the converged stationary point rather than an iterate). */
 static sample eval(hctx *h, double a) {
-  const double *x = h->s->aux, *ax = h->s->motion->axis;
-  double th = a * x[SWARF_H_ANG], c = cos(th), sn = sin(th), q[3], td[3], gr[3];
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(h->s)->u.helix;
+  const double *ax = h->s->motion->axis;
+  double th = a * x->angle, c = cos(th), sn = sin(th), q[3], td[3], gr[3];
   sample r = {a, 0.0, 0.0, 0.0};
   for (int k = 0; k < 3; k++) {
-    double u = c * x[SWARF_H_E1 + k] + sn * x[SWARF_H_E2 + k];
-    double du = c * x[SWARF_H_E2 + k] - sn * x[SWARF_H_E1 + k];
-    q[k] = h->p[k] - x[SWARF_H_C + k] - x[SWARF_H_RAD] * u - a * x[SWARF_H_RISE] * ax[k];
-    td[k] = x[SWARF_H_RAD] * x[SWARF_H_ANG] * du + x[SWARF_H_RISE] * ax[k];
+    double u = c * x->e1[k] + sn * x->e2[k];
+    double du = c * x->e2[k] - sn * x->e1[k];
+    q[k] = h->p[k] - x->c[k] - x->radius * u - a * x->rise * ax[k];
+    td[k] = x->radius * x->angle * du + x->rise * ax[k];
   }
-  r.g = swarf_cutter_sdf_grad(h->s->cutter, q, gr);
+  r.g = h->body(h->body_ctx, q, gr);
   r.dg = -(gr[0] * td[0] + gr[1] * td[1] + gr[2] * td[2]);
   h->evals++;
   {
@@ -107,7 +110,9 @@ static sample refine(hctx *h, sample lo, sample hi) {
   return m;
 }
 
-static double max2(double a, double b) { return a > b ? a : b; }
+static double max2(double a, double b) {
+  return a > b ? a : b;
+}
 
 /* Lower bound of g over [A.a, B.a]: the semiconvex bound (engine_private.h)
  * or the Lipschitz one, whichever is higher. */
@@ -123,7 +128,9 @@ static void push(hctx *h, sample lo, sample hi, int depth) {
   swarf_tspan_push(h->heap, &h->nheap, sp);
 }
 
-static span pop(hctx *h) { return swarf_tspan_pop(h->heap, &h->nheap); }
+static span pop(hctx *h) {
+  return swarf_tspan_pop(h->heap, &h->nheap);
+}
 
 /* From sample i (value *si), skip the samples that the Lipschitz bound of
  * an earlier one puts above best - margin: returns the first index whose
@@ -195,18 +202,25 @@ static void certify(hctx *h) {
   }
 }
 
-double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+static double cutter_body(const void *ctx, const double q[3], double grad[3]) {
+  return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
+}
+
+double swarf_sweep_helix_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                  const double p[3], double upper, double *alpha) {
   hctx h;
-  const double *x = s->aux;
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(s)->u.helix;
   h.s = s;
+  h.body = body;
+  h.body_ctx = ctx;
   h.p = p;
-  h.K = x[SWARF_H_RAD] * x[SWARF_H_ANG] * x[SWARF_H_ANG];
-  h.len = x[SWARF_H_LEN];
-  h.step = x[SWARF_H_STEP];
-  h.n = (int)x[SWARF_H_N];
+  h.K = x->radius * x->angle * x->angle;
+  h.len = x->len;
+  h.step = x->step;
+  h.n = x->n;
   h.evals = 0;
   h.best.a = 0.0;
-  h.best.g = INFINITY;
+  h.best.g = upper;
   h.best.dg = 0.0;
   h.best_slope = INFINITY;
   h.nheap = 0;
@@ -215,4 +229,8 @@ double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *al
   certify(&h);
   if (alpha != NULL) *alpha = h.best.a;
   return h.best.g;
+}
+
+double swarf_sweep_helix_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  return swarf_sweep_helix_body_sdf(s, cutter_body, s->cutter, p, INFINITY, alpha);
 }

@@ -16,8 +16,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -39,13 +41,13 @@ public:
   }
 };
 
-/// Throw Error(IO) unless `path` names an existing regular file.
+/// Throw Error(OPEN) unless `path` names an existing regular file.
 void check_readable(const char *path) {
   struct stat st;
   if (::stat(path, &st) != 0)
-    throw Error(SWARF_STOCK_ERR_IO, std::string("cannot open ") + path + ": " + std::strerror(errno));
+    throw Error(SWARF_ERR_OPEN, std::string("cannot open ") + path + ": " + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
-    throw Error(SWARF_STOCK_ERR_IO, std::string("cannot read ") + path + ": not a regular file");
+    throw Error(SWARF_ERR_OPEN, std::string("cannot read ") + path + ": not a regular file");
 }
 
 bool is_float_level_set(const openvdb::GridBase &g) {
@@ -69,10 +71,11 @@ std::string pick_grid(openvdb::io::File &file) {
 /// (corrupt or truncated data) becomes Error(FORMAT).
 openvdb::FloatGrid::Ptr read_open_file(openvdb::io::File &file, const std::string &path) {
   const std::string name = pick_grid(file);
-  if (name.empty()) throw Error(SWARF_STOCK_ERR_FORMAT, path + ": no float level-set grid");
+  if (name.empty()) throw Error(SWARF_ERR_FORMAT, path + ": no float level-set grid");
   openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(name));
   file.close();
-  if (!grid || !is_float_level_set(*grid)) throw Error(SWARF_STOCK_ERR_FORMAT, path + ": no float level-set grid");
+  if (!grid || !is_float_level_set(*grid))
+    throw Error(SWARF_ERR_FORMAT, path + ": no float level-set grid");
   return grid;
 }
 
@@ -83,7 +86,7 @@ openvdb::FloatGrid::Ptr read_grid_here(const std::string &path) {
   } catch (const std::bad_alloc &) {
     throw;
   } catch (const std::exception &e) {
-    throw Error(SWARF_STOCK_ERR_FORMAT, path + ": not a readable VDB file (" + e.what() + ")");
+    throw Error(SWARF_ERR_FORMAT, path + ": not a readable VDB file (" + e.what() + ")");
   }
   try {
     return read_open_file(file, path);
@@ -92,7 +95,7 @@ openvdb::FloatGrid::Ptr read_grid_here(const std::string &path) {
   } catch (const std::bad_alloc &) {
     throw;
   } catch (const std::exception &e) {
-    throw Error(SWARF_STOCK_ERR_FORMAT, path + ": corrupt or truncated VDB file (" + e.what() + ")");
+    throw Error(SWARF_ERR_FORMAT, path + ": corrupt or truncated VDB file (" + e.what() + ")");
   }
 }
 
@@ -118,8 +121,21 @@ size_t reader_address_space(const std::string &path) {
   return pages * size_t(::sysconf(_SC_PAGESIZE)) + (size_t(2) << 30) + 64 * file;
 }
 
-/// Read the stock grid of `path` in a child process (see the file comment).
+/// Whether reads run in a child: -1 follow SWARF_VDB_ISOLATE (default on),
+/// 0 off, 1 on (swarf_stock_set_read_isolation).
+std::atomic<int> read_isolation{-1};
+
+bool isolate_reads() {
+  const int set = read_isolation.load();
+  if (set >= 0) return set != 0;
+  const char *env = std::getenv("SWARF_VDB_ISOLATE");
+  return env == nullptr || std::strcmp(env, "0") != 0;
+}
+
+/// Read the stock grid of `path` in a child process (see the file comment),
+/// unless the embedding program turned that off.
 openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
+  if (!isolate_reads()) return read_grid_here(path);
   const IsolateLimits limits = {120, reader_address_space(path)};
   std::string bytes;
   run_isolated("reading " + path, limits, [&] {
@@ -131,7 +147,7 @@ openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   openvdb::GridPtrVecPtr grids = openvdb::io::Stream(is).getGrids();
   openvdb::FloatGrid::Ptr grid;
   if (grids && grids->size() == 1) grid = openvdb::gridPtrCast<openvdb::FloatGrid>(grids->front());
-  if (!grid) throw Error(SWARF_STOCK_ERR_INTERNAL, path + ": the reader's copy did not arrive whole");
+  if (!grid) throw Error(SWARF_ERR_INTERNAL, path + ": the reader's copy did not arrive whole");
   return grid;
 }
 
@@ -220,37 +236,41 @@ void write_stl_body(std::ostream &os, const Mesh &m) {
 
 using swarf::Error;
 
-extern "C" swarf_stock *swarf_stock_read(const char *path, char *msg, size_t msglen) {
-  swarf_stock *s = nullptr;
-  swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_read(const char *path, swarf_stock **out, swarf_error *err) {
+  if (out == nullptr) return swarf::set_error(err, SWARF_ERR_ARG, path, "out is NULL");
+  *out = nullptr;
+  return swarf::guard(err, path, [&] {
     swarf::check_path(path);
     swarf::check_readable(path);
     swarf::init_openvdb();
-    s = swarf::wrap_grid(swarf::read_grid(path));
+    *out = swarf::wrap_grid(swarf::read_grid(path));
   });
-  return s;
 }
 
-extern "C" int swarf_stock_write_vdb(const swarf_stock *s, const char *path, char *msg,
-                                     size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+extern "C" void swarf_stock_set_read_isolation(int on) { swarf::read_isolation.store(on ? 1 : 0); }
+
+extern "C" int swarf_stock_read_isolation(void) { return swarf::isolate_reads() ? 1 : 0; }
+
+extern "C" swarf_status swarf_stock_write_vdb(const swarf_stock *s, const char *path,
+                                              swarf_error *err) {
+  return swarf::guard(err, path, [&] {
+    if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
     swarf::check_path(path);
     const openvdb::GridCPtrVec grids{swarf::grid_for_output(*s)};
     swarf::write_atomic(path, [&](std::ostream &os) { swarf::StreamArchive().write_to(os, grids); });
   });
 }
 
-extern "C" int swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri,
-                                     char *msg, size_t msglen) {
+extern "C" swarf_status swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri,
+                                              swarf_error *err) {
   if (ntri) *ntri = 0;
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+  return swarf::guard(err, path, [&] {
+    if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
     swarf::check_path(path);
     swarf::Mesh m;
     openvdb::tools::volumeToMesh(*s->grid, m.points, m.triangles, m.quads, 0.0, 0.0);
     m.triangulate();
-    if (m.count() > UINT32_MAX) throw Error(SWARF_STOCK_ERR_ARG, "mesh has too many triangles for STL");
+    if (m.count() > UINT32_MAX) throw Error(SWARF_ERR_ARG, "mesh has too many triangles for STL");
     swarf::write_atomic(path, [&](std::ostream &os) { swarf::write_stl_body(os, m); });
     if (ntri) *ntri = m.count();
   });

@@ -378,24 +378,25 @@ namespace {
 /// Check one cut: an sdf, finite bounds, lo < hi on every axis.
 void check_cut(const swarf_stock_cut &c, size_t i) {
   const std::string at = "cut " + std::to_string(i) + ": ";
-  if (c.sdf == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, at + "sdf is NULL");
+  if (c.sdf == nullptr) throw swarf::Error(SWARF_ERR_ARG, at + "sdf is NULL");
   for (int k = 0; k < 3; k++) {
     if (!std::isfinite(c.lo[k]) || !std::isfinite(c.hi[k]))
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, at + "bounds are not finite");
-    if (!(c.lo[k] < c.hi[k])) throw swarf::Error(SWARF_STOCK_ERR_ARG, at + "bounds need lo < hi");
+      throw swarf::Error(SWARF_ERR_ARG, at + "bounds are not finite");
+    if (!(c.lo[k] < c.hi[k])) throw swarf::Error(SWARF_ERR_ARG, at + "bounds need lo < hi");
   }
 }
 
 }  // namespace
 
-extern "C" int swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
-                                  swarf_stock_sdf_fn sdf, const void *ctx, char *msg,
-                                  size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
+                                           swarf_stock_sdf_fn sdf, const void *ctx,
+                                           swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || lo == nullptr || hi == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, lo or hi is NULL");
+      throw swarf::Error(SWARF_ERR_ARG, "stock, lo or hi is NULL");
     swarf_stock_cut cut;
-    for (int k = 0; k < 3; k++) cut.lo[k] = lo[k], cut.hi[k] = hi[k];
+    for (int k = 0; k < 3; k++)
+      cut.lo[k] = lo[k], cut.hi[k] = hi[k];
     cut.sdf = sdf;
     cut.ctx = ctx;
     check_cut(cut, 0);
@@ -403,20 +404,21 @@ extern "C" int swarf_stock_remove(swarf_stock *s, const double lo[3], const doub
   });
 }
 
-extern "C" int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut,
-                                    double depth, int *hit, double where[3], char *msg,
-                                    size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut,
+                                             double depth, int *hit, double where[3],
+                                             swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || cut == nullptr || hit == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, cut or hit is NULL");
+      throw swarf::Error(SWARF_ERR_ARG, "stock, cut or hit is NULL");
     *hit = 0;
     check_cut(*cut, 0);
     if (!(depth >= 0.0 && depth < s->background))
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be >= 0 and below the band half-width");
+      throw swarf::Error(SWARF_ERR_ARG, "depth must be >= 0 and below the band half-width");
     openvdb::Vec3d q;
     *hit = swarf::cut_overlaps(*s, *cut, depth, q) ? 1 : 0;
     if (*hit && where != nullptr)
-      for (int k = 0; k < 3; k++) where[k] = q[k];
+      for (int k = 0; k < 3; k++)
+        where[k] = q[k];
   });
 }
 
@@ -424,36 +426,31 @@ extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf
                                                const swarf_stock_cut *clear, size_t nclear,
                                                double depth, int *hit, double where[3],
                                                swarf_error *err) {
-  char msg[256];
-  const int rc = swarf::guard(msg, sizeof msg, [&] {
+  return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || cut == nullptr || hit == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, cut or hit is NULL");
+      throw swarf::Error(SWARF_ERR_ARG, "stock, cut or hit is NULL");
     *hit = 0;
     check_cut(*cut, 0);
     if (!(depth >= 0.0 && std::isfinite(depth)))
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be finite and >= 0");
+      throw swarf::Error(SWARF_ERR_ARG, "depth must be finite and >= 0");
     openvdb::Vec3d q;
-    if (nclear > 0 && clear == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "clear is NULL");
+    if (nclear > 0 && clear == nullptr) throw swarf::Error(SWARF_ERR_ARG, "clear is NULL");
     for (size_t i = 0; i < nclear; i++) check_cut(clear[i], i);
     *hit = swarf::cut_penetrates(*s, *cut, clear, nclear, depth, q) ? 1 : 0;
     if (*hit && where != nullptr)
       for (int k = 0; k < 3; k++) where[k] = q[k];
   });
-  if (rc == SWARF_STOCK_OK) return SWARF_OK;
-  const swarf_status st = rc == SWARF_STOCK_ERR_ARG      ? SWARF_ERR_ARG
-                          : rc == SWARF_STOCK_ERR_MEMORY ? SWARF_ERR_MEMORY
-                                                         : SWARF_ERR_INTERNAL;
-  return swarf_error_set(err, st, "swarf_stock_penetrates: %s", msg);
 }
 
-extern "C" int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
-                                        size_t ncuts, char *msg, size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+extern "C" swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
+                                                 size_t ncuts, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     if (ncuts == 0) return;
-    if (cuts == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "cuts is NULL");
-    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_STOCK_ERR_ARG, "too many cuts in one batch");
-    for (size_t i = 0; i < ncuts; i++) check_cut(cuts[i], i);
+    if (cuts == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts is NULL");
+    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
+    for (size_t i = 0; i < ncuts; i++)
+      check_cut(cuts[i], i);
     swarf::remove_cuts(*s, cuts, ncuts);
   });
 }

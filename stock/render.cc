@@ -126,15 +126,15 @@ std::vector<unsigned char> to_rgb8(const Film &film) {
 }  // namespace
 }  // namespace swarf
 
-extern "C" int swarf_stock_write_png(const swarf_stock *s, const char *path, int width, int height,
-                                     char *msg, size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+extern "C" swarf_status swarf_stock_write_png(const swarf_stock *s, const char *path, int width,
+                                              int height, swarf_error *err) {
+  return swarf::guard(err, path, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     swarf::check_path(path);
     if (width < 1 || height < 1 || width > swarf::kMaxSide || height > swarf::kMaxSide)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "image size must be 1 to 16384 pixels a side");
+      throw swarf::Error(SWARF_ERR_ARG, "image size must be 1 to 16384 pixels a side");
     if (long(width) * height > swarf::kMaxPixels)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "image larger than 2^26 pixels");
+      throw swarf::Error(SWARF_ERR_ARG, "image larger than 2^26 pixels");
     openvdb::tools::Film film{static_cast<size_t>(width), static_cast<size_t>(height)};
     swarf::fill_background(film);
     swarf::trace(*s, film);

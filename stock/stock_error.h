@@ -11,17 +11,17 @@
 
 namespace swarf {
 
-/// An error carrying a swarf_stock_status; thrown inside the module and turned
-/// into a status and a message at the C boundary (see guard() in stock_private.h).
+/// An error carrying a swarf_status; thrown inside the module and turned into
+/// a status and a swarf_error at the C boundary (see guard() in stock_private.h).
 class Error : public std::runtime_error {
 public:
-  Error(int status, const std::string &what) : std::runtime_error(what), status(status) {}
-  int status;
+  Error(swarf_status status, const std::string &what) : std::runtime_error(what), status(status) {}
+  swarf_status status;
 };
 
-/// Throw Error(SWARF_STOCK_ERR_ARG) unless `path` is a usable file name (not NULL, not empty).
+/// Throw Error(SWARF_ERR_ARG) unless `path` is a usable file name (not NULL, not empty).
 inline void check_path(const char *path) {
-  if (path == nullptr || path[0] == '\0') throw Error(SWARF_STOCK_ERR_ARG, "path is NULL or empty");
+  if (path == nullptr || path[0] == '\0') throw Error(SWARF_ERR_ARG, "path is NULL or empty");
 }
 
 }  // namespace swarf

@@ -48,33 +48,30 @@ struct RemoveScratch {
 /// Call openvdb::initialize() once per process (thread-safe).
 void init_openvdb();
 
-/// Copy `text` into msg (at most msglen bytes, NUL-terminated); NULL msg is fine.
-void set_message(char *msg, size_t msglen, const std::string &text);
+/// Fill err (may be NULL) with a failure: cleared, then the status, the
+/// message `text` and the file (NULL: none). Returns status.
+swarf_status set_error(swarf_error *err, swarf_status status, const char *file,
+                       const std::string &text) noexcept;
 
-/// Run `body` and translate every exception into a status and a message; on
-/// success msg is set to the empty string. Never throws.
-template <class F> int guard(char *msg, size_t msglen, F &&body) noexcept {
+/// Run `body` and translate every exception into a status and err (may be
+/// NULL; `file`, may be NULL, is the file the call reads or writes). err is
+/// left as it is on success. Never throws.
+template <class F> swarf_status guard(swarf_error *err, const char *file, F &&body) noexcept {
   try {
     try {
       body();
-      set_message(msg, msglen, "");
-      return SWARF_STOCK_OK;
+      return SWARF_OK;
     } catch (const Error &e) {
-      set_message(msg, msglen, e.what());
-      return e.status;
+      return set_error(err, e.status, file, e.what());
     } catch (const std::bad_alloc &) {
-      set_message(msg, msglen, "out of memory");
-      return SWARF_STOCK_ERR_MEMORY;
+      return set_error(err, SWARF_ERR_MEMORY, file, "out of memory");
     } catch (const openvdb::Exception &e) {
-      set_message(msg, msglen, std::string("OpenVDB: ") + e.what());
-      return SWARF_STOCK_ERR_INTERNAL;
+      return set_error(err, SWARF_ERR_INTERNAL, file, std::string("OpenVDB: ") + e.what());
     } catch (const std::exception &e) {
-      set_message(msg, msglen, std::string("internal error: ") + e.what());
-      return SWARF_STOCK_ERR_INTERNAL;
+      return set_error(err, SWARF_ERR_INTERNAL, file, std::string("internal error: ") + e.what());
     }
   } catch (...) {
-    set_message(msg, msglen, "internal error: unknown exception");
-    return SWARF_STOCK_ERR_INTERNAL;
+    return set_error(err, SWARF_ERR_INTERNAL, file, "internal error: unknown exception");
   }
 }
 
@@ -96,7 +93,7 @@ namespace swarf {
 /// Wrap a float level-set grid into a new handle, after checking what the rest
 /// of the module relies on: linear transform, uniform axis-aligned positive
 /// scale, finite positive voxel and background, index box within +-2^30.
-/// Throws Error(SWARF_STOCK_ERR_FORMAT) with the reason otherwise.
+/// Throws Error(SWARF_ERR_FORMAT) with the reason otherwise.
 swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid);
 
 /// Apply stock = max(stock, -sdf) for every cut (remove.cc). Arguments are

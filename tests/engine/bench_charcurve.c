@@ -31,12 +31,19 @@ typedef struct {
 
 static int fast_curve(const job *j, double tol, swarf_char_curve *cc) {
   const double *h = j->h6;
-  if (j->cutter) return swarf_char_curve_compute(cc, j->cutter, zero3, I3, j->v, j->w, tol);
+  if (j->cutter)
+    return (swarf_char_curve_compute(cc, j->cutter, zero3, I3, j->v, j->w, tol) == SWARF_OK
+                ? (int)cc->ncomp
+                : -1);
   if (j->general) {
     swarf_qss_general q = {{h[0], 0, 0, 0, h[0], 0, 0, 0, h[1]}, {h[2], h[3], h[4]}, h[5]};
-    return swarf_char_curve_compute_qss_general(cc, &q, zero3, I3, j->v, j->w, tol);
+    return (swarf_char_curve_compute_qss_general(cc, &q, zero3, I3, j->v, j->w, tol) == SWARF_OK
+                ? (int)cc->ncomp
+                : -1);
   }
-  return swarf_char_curve_compute_qss12(cc, h, zero3, I3, j->v, j->w, tol);
+  return (swarf_char_curve_compute_qss12(cc, h, zero3, I3, j->v, j->w, tol) == SWARF_OK
+              ? (int)cc->ncomp
+              : -1);
 }
 
 /* The tolerance giving about 64 points (bisection on its logarithm). */

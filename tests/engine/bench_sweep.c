@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <time.h>
 
+#include "engine_private.h" /* the sweep's typed data */
 #include "testkit.h"
 
 #define GRID 40       /* points per axis for the evaluators */
@@ -67,7 +68,7 @@ static void run(const char *name, const swarf_cutter *c, swarf_motion m) {
   swarf_sweep_bounds(&s, lo, hi);
   fast = time_sdf(&s, lo, hi);
   slow = time_brute(c, &m, lo, hi);
-  printf("%-22s method %d  %8.1f ns/eval   brute(%d) %10.0f ns/eval   x%.0f\n", name, s.method,
+  printf("%-22s method %d  %8.1f ns/eval   brute(%d) %10.0f ns/eval   x%.0f\n", name, swarf_sweep_cdata(&s)->method,
          fast, BRUTE_N + 1, slow, slow / fast);
 }
 

@@ -49,7 +49,9 @@ static void test_example2(void) {
     CHECK(fmin(d0, d1) < 1e-14, "P of eq. 20 is one of them (%.3g)", fmin(d0, d1));
   }
   swarf_char_curve_init(&cc);
-  CHECK(swarf_char_curve_compute_qss(&cc, &q, zero3, I3, v, w, 1e-4) == 1, "one component");
+  CHECK((swarf_char_curve_compute_qss(&cc, &q, zero3, I3, v, w, 1e-4) == SWARF_OK ? (int)cc.ncomp
+                                                                                  : -1) == 1,
+        "one component");
   check_layout(&cc, 1, "Example 2");
   for (size_t i = 0; i < cc.len; i++) {
     const double *m = cc.pts[i].n, *x = cc.pts[i].x;
@@ -214,7 +216,9 @@ static void test_translation(const swarf_cutter *c, const double v[3], const cha
   double worst_on = 0, worst_nv = 0, worst_cover = 0, worst_chord = 0;
   ref_build(&ref, c, v);
   swarf_char_curve_init(&cc);
-  CHECK(swarf_char_curve_compute(&cc, c, zero3, I3, v, zero3, tol) >= 1, "%s: a curve", what);
+  CHECK((swarf_char_curve_compute(&cc, c, zero3, I3, v, zero3, tol) == SWARF_OK ? (int)cc.ncomp
+                                                                                : -1) >= 1,
+        "%s: a curve", what);
   for (size_t i = 0; i < cc.len; i++) {
     worst_nv = fmax(worst_nv, fabs(tk_dot(cc.pts[i].n, v)) / sqrt(tk_dot(v, v)));
     worst_on = fmax(worst_on, fabs(swarf_cutter_sdf(c, cc.pts[i].x)));
@@ -320,7 +324,7 @@ static void test_rotation(const swarf_cutter *c, const double v[3], const double
   double t[3] = {1, 2, 3}, U[9] = {0, -1, 0, 1, 0, 0, 0, 0, 1};
   int n;
   swarf_char_curve_init(&cc);
-  n = swarf_char_curve_compute(&cc, c, t, U, v, w, 1e-3);
+  n = (swarf_char_curve_compute(&cc, c, t, U, v, w, 1e-3) == SWARF_OK ? (int)cc.ncomp : -1);
   CHECK(n >= 1, "%s: components (%d)", what, n);
   for (size_t i = 0; i < cc.len; i++) {
     const swarf_char_point *p = &cc.pts[i];
@@ -346,10 +350,16 @@ static void test_degenerate(const swarf_cutter *c) {
   swarf_char_curve cc;
   const double spin[3] = {0, 0, 2.5}, down[3] = {0, 0, -3};
   swarf_char_curve_init(&cc);
-  CHECK(swarf_char_curve_compute(&cc, c, zero3, I3, zero3, zero3, 1e-3) == 0, "still: none");
-  CHECK(swarf_char_curve_compute(&cc, c, zero3, I3, zero3, spin, 1e-3) == 0, "spin: none");
+  CHECK((swarf_char_curve_compute(&cc, c, zero3, I3, zero3, zero3, 1e-3) == SWARF_OK ? (int)cc.ncomp
+                                                                                     : -1) == 0,
+        "still: none");
+  CHECK((swarf_char_curve_compute(&cc, c, zero3, I3, zero3, spin, 1e-3) == SWARF_OK ? (int)cc.ncomp
+                                                                                    : -1) == 0,
+        "spin: none");
   int rims = c->length > c->diameter ? 2 : 1;
-  CHECK(swarf_char_curve_compute(&cc, c, zero3, I3, down, spin, 1e-3) == rims, "plunge: rims");
+  CHECK((swarf_char_curve_compute(&cc, c, zero3, I3, down, spin, 1e-3) == SWARF_OK ? (int)cc.ncomp
+                                                                                   : -1) == rims,
+        "plunge: rims");
   check_layout(&cc, rims, "plunge rims");
   for (size_t i = 0; i < cc.len; i++) {
     CHECK(fabs(swarf_cutter_sdf(c, cc.pts[i].x)) < 1e-12, "rim on the cutter");

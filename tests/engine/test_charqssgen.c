@@ -138,7 +138,9 @@ static void test_general(void) {
     int n;
     random_qss(&rng, &q);
     random_motion(&rng, v, w);
-    n = swarf_char_curve_compute_qss_general(&cc, &q, zero3, I3, v, w, TOL);
+    n = (swarf_char_curve_compute_qss_general(&cc, &q, zero3, I3, v, w, TOL) == SWARF_OK
+             ? (int)cc.ncomp
+             : -1);
     if (n < 0) {
       fails++;
       continue;
@@ -252,7 +254,9 @@ static void test_revolution(void) {
     if (exact_ok(&E)) {
       turned_qss(hd, R, &q);
       mat_vec(R, v, vr), mat_vec(R, w, wr);
-      n = swarf_char_curve_compute_qss_general(&cg, &q, zero3, I3, vr, wr, TOL);
+      n = (swarf_char_curve_compute_qss_general(&cg, &q, zero3, I3, vr, wr, TOL) == SWARF_OK
+               ? (int)cg.ncomp
+               : -1);
       compared++;
       if (n != E.ncomp) {
         bad++;
@@ -260,7 +264,9 @@ static void test_revolution(void) {
       }
       if (!turn && n == E.ncomp) {
         double g = INFINITY;
-        if (swarf_char_curve_compute_qss12(&cr, hd, zero3, I3, v, w, TOL) == n)
+        if ((swarf_char_curve_compute_qss12(&cr, hd, zero3, I3, v, w, TOL) == SWARF_OK
+                 ? (int)cr.ncomp
+                 : -1) == n)
           g = fmax(curve_gap(&cg, R, &cr), curve_gap(&cr, I3, &cg));
         worst_gap = fmax(worst_gap, g);
         gap_compared++;

@@ -11,22 +11,28 @@
 
 static void test_init(void) {
   swarf_cutter c;
-  const char *why = NULL;
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 1.0, 0.0, &why) == 0, "flat");
+  swarf_error why;
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 1.0, 0.0, &why) == SWARF_OK, "flat");
   CHECK(c.corner_radius == 0.0 && c.length == 24.0, "flat: R = 0, default length 4 D");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BALL, 3.175, 0.0, 12.0, &why) == 0, "ball");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BALL, 3.175, 0.0, 12.0, &why) == SWARF_OK, "ball");
   CHECK(c.corner_radius == 0.5 * 3.175 && c.length == 12.0, "ball: R = D/2");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10.0, 2.0, 25.0, &why) == 0, "bull");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10.0, 2.0, 25.0, &why) == SWARF_OK, "bull");
   CHECK(c.corner_radius == 2.0, "bull keeps R");
-  why = NULL;
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10.0, 5.0, 25.0, &why) == -1 && why != NULL,
+  swarf_error_init(&why);
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10.0, 5.0, 25.0, &why) == SWARF_ERR_TOOL &&
+            why.message[0] != '\0' && why.status == SWARF_ERR_TOOL && strcmp(why.word, "R") == 0,
         "bull with R = D/2 refused");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10.0, 0.0, 25.0, &why) == -1, "bull R = 0");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 0.0, 0.0, 25.0, &why) == -1, "D = 0");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, NAN, 0.0, 25.0, &why) == -1, "D = NaN");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 0.0, 5.0, &why) == 0, "length < D: a short-fluted flat is real");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 0.0, NAN, &why) == -1, "length NaN");
-  CHECK(swarf_cutter_init(NULL, SWARF_CUTTER_FLAT, 6.0, 0.0, 0.0, &why) == -1, "NULL cutter");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10.0, 0.0, 25.0, &why) == SWARF_ERR_TOOL,
+        "bull R = 0");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 0.0, 0.0, 25.0, &why) == SWARF_ERR_TOOL, "D = 0");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, NAN, 0.0, 25.0, &why) == SWARF_ERR_TOOL,
+        "D = NaN");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 0.0, 5.0, &why) == SWARF_OK,
+        "length < D: a short-fluted flat is real");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 6.0, 0.0, NAN, &why) == SWARF_ERR_TOOL,
+        "length NaN");
+  CHECK(swarf_cutter_init(NULL, SWARF_CUTTER_FLAT, 6.0, 0.0, 0.0, &why) == SWARF_ERR_ARG,
+        "NULL cutter");
 }
 
 /* Independent exact sdf: clamp into the core's (r, z) rectangle. */

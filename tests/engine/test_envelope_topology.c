@@ -69,7 +69,9 @@ int main(void) {
       for (int k = 0; k < 3; k++)
         vp[k] = v[k] + wp[k];
       nf = swarf_char_branch_points_qss(&sq, vp, w, zf, 8);
-      nc = swarf_char_curve_compute_qss12(&cc, hd, zero3, I3, v, w, 1e-3);
+      nc = (swarf_char_curve_compute_qss12(&cc, hd, zero3, I3, v, w, 1e-3) == SWARF_OK
+                ? (int)cc.ncomp
+                : -1);
       compared++;
       comp_bad += nc != E.ncomp;
       if (nf != ne || nc != E.ncomp) {

@@ -328,7 +328,6 @@ static void test_errors(void) {
   swarf_cutter_spec s;
   swarf_cutter c;
   swarf_error err;
-  const char *why;
   swarf_cutter_spec_init(&s);
   s.shape = SWARF_CUTTER_VEE, s.d = 6;
   expect_bad(s, "A", "vee without angle");
@@ -356,10 +355,13 @@ static void test_errors(void) {
   CHECK(swarf_cutter_make(&c, &s, &err) == SWARF_ERR_TOOL, "qss crossing its axis rejected");
   printf("  rejected qss -1,1,0,0              %s\n", err.message);
   /* real tools accepted: a 2" face mill with 1.5" flutes, a 6 mm flat with 4 mm flutes */
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 50.8, 0, 38.1, &why) == 0, "face mill accepted");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_FLAT, 50.8, 0, 38.1, &err) == SWARF_OK,
+        "face mill accepted");
   CHECK(c.fast && c.length == 38.1, "face mill keeps the closed forms");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 50.8, 0.8, 38.1, &why) == 0, "bull face mill");
-  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10, 2, 3, &why) != 0, "bull L < 2R rejected");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 50.8, 0.8, 38.1, &err) == SWARF_OK,
+        "bull face mill");
+  CHECK(swarf_cutter_init(&c, SWARF_CUTTER_BULL, 10, 2, 3, &err) != SWARF_OK,
+        "bull L < 2R rejected");
 }
 
 /* A body that is not a cutter: a holder-like stack of frustums above z = 30. */

@@ -20,6 +20,7 @@
 
 #include "check.h"
 #include "stock.h"
+#include "engine_private.h" /* the sweep's typed data */
 #include "testkit.h"
 
 #define VOXEL 0.05    /* mm: the point tests */
@@ -240,7 +241,9 @@ static double char_distance(const swarf_motion *m, const double p[3], double d, 
   for (int k = 0; k < 3; k++)
     x[k] = p[k] - d * nw[k];
   swarf_char_curve_init(&cc);
-  if (swarf_char_curve_compute_qss(&cc, &qss, t, U, v, w, 1e-3) <= 0) best = -1;
+  if ((swarf_char_curve_compute_qss(&cc, &qss, t, U, v, w, 1e-3) == SWARF_OK ? (int)cc.ncomp
+                                                                             : -1) <= 0)
+    best = -1;
   for (size_t j = 0; best >= 0 && j + 1 < cc.len; j++)
     best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
   swarf_char_curve_clear(&cc);
@@ -249,7 +252,7 @@ static double char_distance(const swarf_motion *m, const double p[3], double d, 
 
 static void test_points(const swarf_sweep *s, const swarf_motion *m) {
   tk_rng r = {2024};
-  int n = (int)s->aux[6 /* RG_N */];
+  int n = swarf_sweep_cdata(s)->u.rigid.n;
   double max_err = 0, mean_err = 0, max_st = 0, mean_st = 0;
   for (int i = 0; i < NPTS; i++) {
     double p[3];
@@ -312,7 +315,8 @@ static double stamped_volume(const double lo[3], const double hi[3], const swarf
                              int half) {
   static vol_ctx ctx[20001];
   static swarf_stock_cut cuts[20001];
-  swarf_stock *st = swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, NULL, 0);
+  swarf_stock *st = NULL;
+  swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, &st, NULL);
   double v0 = swarf_stock_volume(st), v;
   for (int i = 0; i <= n; i++) {
     if (half)
@@ -323,7 +327,7 @@ static double stamped_volume(const double lo[3], const double hi[3], const swarf
       cuts[i].lo[k] = ctx[i].t[k] - 1.51, cuts[i].hi[k] = ctx[i].t[k] + 1.51;
     cuts[i].sdf = pose_cut, cuts[i].ctx = &ctx[i];
   }
-  CHECK(swarf_stock_remove_batch(st, cuts, (size_t)n + 1, NULL, 0) == 0, "stamps removed");
+  CHECK(swarf_stock_remove_batch(st, cuts, (size_t)n + 1, NULL) == SWARF_OK, "stamps removed");
   v = swarf_stock_volume(st);
   swarf_stock_free(st);
   return v0 - v;
@@ -338,12 +342,13 @@ static void test_volume(const swarf_motion *m) {
   swarf_sweep_bounds(&s, lo, hi);
   for (int k = 0; k < 3; k++)
     lo[k] -= 0.5, hi[k] += 0.5;
-  int n = (int)s.aux[6];
+  int n = swarf_sweep_cdata(&s)->u.rigid.n;
   vol_ctx ctx = {&s, m, {0}, {0}};
-  swarf_stock *st = swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, NULL, 0);
+  swarf_stock *st = NULL;
+  swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, &st, NULL);
   CHECK(st != NULL, "stock");
   v0 = swarf_stock_volume(st);
-  CHECK(swarf_stock_remove(st, lo, hi, sweep_cut, &ctx, NULL, 0) == 0, "sweep removed");
+  CHECK(swarf_stock_remove(st, lo, hi, sweep_cut, &ctx, NULL) == SWARF_OK, "sweep removed");
   vs = v0 - swarf_stock_volume(st);
   swarf_stock_free(st);
   vt = stamped_volume(lo, hi, m, FINE_VOL * n, 1);

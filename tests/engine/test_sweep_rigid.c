@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "engine_private.h" /* the sweep's typed data */
 #include "testkit.h"
 
 #define VOXEL 0.1
@@ -90,7 +91,7 @@ static errors compare(const char *name, const swarf_cutter *c, const swarf_motio
   tk_rng r = {0x9e3779b97f4a7c15ull * (unsigned)seed + 1};
   errors e = {0, 0, 0, 0};
   swarf_sweep_init_voxel(&s, c, m, VOXEL);
-  e.steps = (int)s.aux[6 /* RG_N */];
+  e.steps = swarf_sweep_cdata(&s)->u.rigid.n;
   for (int i = 0; i < NPTS; i++) {
     double p[3], a, lo[3], hi[3];
     near_point(&r, c, m, p);
@@ -208,7 +209,7 @@ static void test_on_characteristic(void) {
     }
     for (int k = 0; k < 3; k++)
       x[k] = p[k] - d * gw[k];
-    if (swarf_sweep_char_curve(&s, a, 1e-3, &cc) <= 0) continue;
+    if ((swarf_sweep_char_curve(&s, a, 1e-3, &cc) == SWARF_OK ? (int)cc.ncomp : -1) <= 0) continue;
     for (size_t j = 0; j + 1 < cc.len; j++)
       best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
     worst = fmax(worst, best);

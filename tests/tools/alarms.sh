@@ -14,7 +14,7 @@ trap 'rm -rf "$dir"' EXIT
 pass=0 fail=0
 ok() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL $1"; fi; }
 
-printf 'G0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y10\nG0 X35\nG0 Z5\nG0 X5 Y20\nG0 Z-1\nG0 X20\nG0 Z5\nG0 X10 Y10\nG0 Z-2\nG0 X25\nG0 Z5\n' > "$dir/p.ngc"
+printf 'G21 G0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y10\nG0 X35\nG0 Z5\nG0 X5 Y20\nG0 Z-1\nG0 X20\nG0 Z5\nG0 X10 Y10\nG0 Z-2\nG0 X25\nG0 Z5\n' > "$dir/p.ngc"
 "$swarf" simulate "$dir/p.ngc" --stock box:0,0,-10,40,30,0 --tool T1=ball,D3,L12 --voxel 0.25 \
   --out "$dir/out.vdb" > "$dir/summary" 2> "$dir/stderr"
 rc=$?
@@ -23,7 +23,7 @@ ok "exits 0 (alarms are warnings)" '[ $rc -eq 0 ] && [ -s "$dir/out.vdb" ]'
 ok "three alarms in the summary" 'grep -q "alarms 3 " "$dir/summary"'
 ok "the lines of the alarms" '[ "$(grep -o "p.ngc:[0-9]*:[0-9]*: warning: rapid" "$dir/stderr" | cut -d: -f2 | tr "\n" " ")" = "5 8 9 " ]'
 
-printf 'G0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y10\nG0 Z5\nG0 X0 Y0\n' > "$dir/clean.ngc"
+printf 'G21 G0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y10\nG0 Z5\nG0 X0 Y0\n' > "$dir/clean.ngc"
 "$swarf" simulate "$dir/clean.ngc" --stock box:0,0,-10,40,30,0 --tool T1=ball,D3,L12 --voxel 0.25 \
   --out "$dir/out.vdb" > "$dir/summary" 2> "$dir/stderr"
 ok "a clean program has no alarm" 'grep -q "alarms 0 " "$dir/summary" && ! grep -q warning "$dir/stderr"'

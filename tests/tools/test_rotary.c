@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "engine_private.h" /* the sweep's typed data */
 #include "move_motion.h"
 #include "swarf_sim.h"
 
@@ -103,7 +104,7 @@ static swarf_stock *reference(const swarf_sim_config *cfg, const char *pre, cons
   if (s == NULL) return NULL;
   swarf_sweep_init_voxel(&sw, c, m, VOXEL);
   swarf_sweep_bounds(&sw, lo, hi);
-  CHECK(swarf_stock_remove(s, lo, hi, pose_sdf, &ps, NULL, 0) == 0, "reference removal");
+  CHECK(swarf_stock_remove(s, lo, hi, pose_sdf, &ps, NULL) == SWARF_OK, "reference removal");
   return s;
 }
 
@@ -144,7 +145,7 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   memcpy(mv.end, e6, sizeof mv.end);
   CHECK(swarf_machine_motion(&cfg.machine, &mv, &m, NULL) == SWARF_OK, "motion");
   swarf_sweep_init_voxel(&sw, &cfg.tools[0].cutter, &m, VOXEL);
-  int n = (int)sw.aux[6]; /* the production's time steps */
+  int n = swarf_sweep_cdata(&sw)->u.rigid.n; /* the production's time steps */
   const swarf_cutter *c = &cfg.tools[0].cutter;
   double dt = 0.0,
          reach = hypot(0.5 * c->diameter, c->length) + fabs(s6[0]) + fabs(s6[1]) + fabs(s6[2]) + 6;

@@ -237,7 +237,9 @@ static int fast_summary(const pose *p, double *lo, double *hi, int max) {
   swarf_qss q = {p->h[0], p->h[1], p->h[4], p->h[5]};
   int nb = swarf_char_branch_points_qss(&q, vp, p->omega, z + 1, 64), nr = 0, nc;
   swarf_char_curve_init(&cc);
-  nc = swarf_char_curve_compute_qss12(&cc, p->h, p->t, p->U, p->v, p->omega, 1e-3);
+  nc = (swarf_char_curve_compute_qss12(&cc, p->h, p->t, p->U, p->v, p->omega, 1e-3) == SWARF_OK
+            ? (int)cc.ncomp
+            : -1);
   printf("fast: components %d, points %zu (chord tolerance 1e-3)\nfast: branch points", nc, cc.len);
   nb = nb > 64 ? 64 : nb;
   for (int i = 1; i <= nb; i++)
@@ -260,9 +262,9 @@ static int run_exact(const options *o, const pose *p, swarf_envelope_exact *E) {
   swarf_xquad_init(&q);
   swarf_xmotion_init(&m);
   swarf_xquad_set_revolution(&q, o->h);
-  if (swarf_xmotion_set(&m, o->w, o->td, o->B) != 0)
+  if (swarf_xmotion_set(&m, o->w, o->td, o->B) != SWARF_OK)
     rc = 2;
-  else if (swarf_envelope_exact_compute(E, &q, m.v, m.omega) != 0)
+  else if (swarf_envelope_exact_compute(E, &q, m.v, m.omega) != SWARF_OK)
     rc = 1;
   if (rc == 2)
     fprintf(stderr, "swarf envelope: --axis: --exact needs an axis of rational length "

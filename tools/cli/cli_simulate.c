@@ -15,10 +15,11 @@
 #include "cli.h"
 #include "modbus_service.h"
 #include "swarf_sim.h"
+#include "verify.h"
 
 static const char help[] =
     "usage: swarf simulate PROGRAM --stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\n"
-    "                      --tool T<n>=<shape>,D<diameter>[,R<corner>][,L<length>] ...\n"
+    "                      --tool T<n>=<family>,<fields> ...\n"
     "                      --out FILE.vdb [--mesh FILE.stl] [--image FILE.png]\n"
     "                      [--voxel MM] [--band VOXELS] [--machine NAME[,k=v...]] [--quiet]\n"
     "\n"
@@ -32,14 +33,30 @@ static const char help[] =
     "  --machine NAME   xyz (default); xyza[,pivot=Y,Z] (rotary table about X);\n"
     "                   xyzac-trt or xyzbc-trt[,mode=tcp|joint][,pivot=X,Y,Z] (5-axis\n"
     "                   table-rotary-tilting, tool-centre-point mode by default)\n"
-    "  --tool T1=ball,D3.175,L25   a cutter: shape ball, flat or bull; D diameter,\n"
-    "                   R corner radius (bull), L cutting length above the tip\n"
-    "                   (default 4*D). Repeat for several tools; a single tool is\n"
-    "                   loaded at the start, otherwise T<n> M6 selects one.\n"
-    "                   The controlled point is the tool tip (bottom centre).\n"
-    "                   Assembly: S<mm> stick-out (tip to holder face) and\n"
+    "  --tool T1=ball,D3.175,L25   a cutter: T number = family, fields (mm, angles in\n"
+    "                   degrees; L is the cutting length above the tip, default 4*D):\n"
+    "     flat|ball|bull,D<d>[,R<corner>][,L]   end mills (bull needs R; flutes may be\n"
+    "                   shorter than D)\n"
+    "     vee,D<d>,A<included angle>[,L]        V-bit / engraver, sharp tip\n"
+    "     drill,D<d>[,A<point angle, 118>][,L]  twist drill\n"
+    "     spot,D<d>[,A<point angle, 90>][,L]    spot drill\n"
+    "     chamfer,D<d>,A<included angle>[,T<tip diameter, 0>][,L]   chamfer mill\n"
+    "     taper,D<tip diameter>,A<half-angle>[,R<tip radius>][,L]  tapered flat/ball\n"
+    "     apt,D,R,E,F,A<alpha>,B<beta>,H        APT 7-parameter cutter: corner circle\n"
+    "                   (E, F, R), bottom at alpha through the tip (F = (R + E sin A)/\n"
+    "                   cos A), side at beta from the axis (D = 2 (E + R/cos B)) to H\n"
+    "     lollipop,D<sphere>,K<neck diameter>[,L]       undercut ball (non-convex)\n"
+    "     dovetail,D<bottom>,A<flank to base>,H<flank height>[,K<neck>][,L]\n"
+    "     tslot,D<d>,H<disk thickness>,K<neck diameter>[,L]\n"
+    "     qss,a,b,e,f   the paper's QSS of revolution h = a(x^2+y^2) + b z^2 + e z + f\n"
+    "                   (mm), its lowest point at the tip (convex or not, e.g. 2,3,0,0\n"
+    "                   or 3,-3,0,0)\n"
+    "                   Repeat for several tools; a single tool is loaded at the start,\n"
+    "                   otherwise T<n> M6 selects one. The controlled point is the\n"
+    "                   tool tip (bottom centre).\n"
+    "                   Assembly fields: S<mm> stick-out (tip to holder face) and\n"
     "                   N<mm> shank diameter (default D) from L to S, e.g.\n"
-    "                   T1=flat,D6,L10,S25: the shank and holder never cut; entering\n"
+    "                   T1=flat,D6,L10,S25: shank and holder never cut; entering\n"
     "                   material is a collision. Without S nothing above L exists.\n"
     "  --holder T1=20x40,20-32x10   the holder of T1: cylinders DxH and cones\n"
     "                   D1-D2xH (bottom-top diameter), stacked up from the holder\n"
@@ -68,8 +85,8 @@ static const char help[] =
     "\n"
     "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ..., or\n"
     "FILE:LINE: for tool tables and libraries), 1 on an internal failure, 3 aborted\n"
-    "by a Modbus command, 4 with --fail-on collision. Nothing is written unless the\n"
-    "whole program ran.\n";
+    "by a Modbus command, 4 with --fail-on gouge or --fail-on collision when one was\n"
+    "found. Nothing is written unless the whole program ran.\n";
 
 #define MAX_SPECS 128
 
@@ -78,6 +95,7 @@ typedef struct {
   int quiet, fail_on_collision;
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
+  swarf_verify verify;
   /* tool descriptions, applied in this order once all options are read */
   const char *tool_table, *tool_library;
   double table_mm_per_unit;
@@ -92,11 +110,12 @@ typedef struct {
   long n, cap, dropped;
 } alarm_list;
 
-/* What the run's callbacks reach: the progress bar, the Modbus service and
- * the alarms. */
+/* What the run's callbacks reach: the progress bar, the Modbus service, the
+ * verification (alarms, lines). */
 typedef struct {
   swarf_progress *bar; /* NULL when quiet */
   swarf_modbus_service *modbus;
+  swarf_verify *verify;
   alarm_list alarms;
 } sim_clients;
 
@@ -123,6 +142,9 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   double d;
   int rc = swarf_modbus_option(&o->modbus, flag, val, i);
   if (rc >= 0) return rc;
+  if (!strcmp(flag, "--fail-on") && val != NULL && !strcmp(val, "collision"))
+    return (*i)++, o->fail_on_collision = 1, 0;
+  if ((rc = swarf_verify_option(&o->verify, flag, val, i)) >= 0) return rc;
   if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
   if (val == NULL) {
     snprintf(msg, sizeof msg, "%s needs a value", flag);
@@ -182,10 +204,6 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     if (read_double(flag, val, 0, &d) || d != floor(d) || d > 1e9)
       return usage_error("--collision-depths: give a whole number (0: all)");
     return o->cfg.collision_depths = (long)d, 0;
-  }
-  if (!strcmp(flag, "--fail-on")) {
-    if (strcmp(val, "collision")) return usage_error("--fail-on: give collision");
-    return o->fail_on_collision = 1, 0;
   }
   snprintf(msg, sizeof msg, "unknown option \"%s\"", flag);
   return usage_error(msg);
@@ -249,7 +267,7 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   o->table_mm_per_unit = 1.0;
   o->cfg.collision_depths = 100; /* the warnings printed; the rest are counted */
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_modbus_help, stdout), 1;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
       if (o->program) return usage_error("give one PROGRAM only");
       o->program = argv[i];
@@ -287,27 +305,12 @@ static int check_size(const swarf_sim_config *cfg) {
 }
 
 static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
-  char msg[512];
-  int rc = swarf_stock_write_vdb(stock, o->out, msg, sizeof msg);
-  if (rc == 0 && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, msg, sizeof msg);
-  if (rc == 0 && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, msg, sizeof msg);
-  if (rc != 0) fprintf(stderr, "swarf simulate: %s\n", msg);
-  return rc == 0 ? 0 : 1;
-}
-
-static void on_alarm(void *user, const swarf_alarm *a) {
-  alarm_list *l = &((sim_clients *)user)->alarms;
-  if (l->n == l->cap) {
-    long cap = l->cap ? 2 * l->cap : 64;
-    swarf_alarm *p = cap <= MAX_KEPT_ALARMS ? realloc(l->a, sizeof *p * (size_t)cap) : NULL;
-    if (p == NULL) {
-      l->dropped++;
-      return;
-    }
-    l->a = p;
-    l->cap = cap;
-  }
-  l->a[l->n++] = *a;
+  swarf_error err;
+  swarf_status rc = swarf_stock_write_vdb(stock, o->out, &err);
+  if (rc == SWARF_OK && o->mesh) rc = swarf_stock_write_stl(stock, o->mesh, ntri, &err);
+  if (rc == SWARF_OK && o->image) rc = swarf_stock_write_png(stock, o->image, 1024, 768, &err);
+  if (rc != SWARF_OK) fprintf(stderr, "swarf simulate: %s\n", err.message);
+  return rc == SWARF_OK ? 0 : 1;
 }
 
 static void print_alarm(const sim_options *o, const swarf_alarm *a) {
@@ -341,10 +344,11 @@ static void print_alarms(const sim_options *o, const alarm_list *l, const swarf_
   long told[5] = {0};
   for (long i = 0; i < l->n; i++) {
     const swarf_alarm *a = &l->a[i];
-    if ((unsigned)a->kind >= 5 || told[a->kind]++ >= 100) continue;
+    if ((unsigned)a->kind >= 5 || a->kind == SWARF_ALARM_GOUGE || told[a->kind]++ >= 100)
+      continue;
     print_alarm(o, a);
   }
-  for (int k = 0; k < 5; k++) {
+  for (int k = 0; k < SWARF_ALARM_GOUGE; k++) {
     long shown = told[k] < 100 ? told[k] : 100;
     if (r->alarm_count[k] > shown)
       fprintf(stderr, "%s: warning: %ld more %s\n", o->program, r->alarm_count[k] - shown,
@@ -363,10 +367,10 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
   printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
          r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
          r->volume_after);
-  printf("  alarms %ld (%ld rapid moves cutting into material, %ld collisions: %ld shank, %ld "
-         "holder, %ld fixture)\n",
-         r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->collisions,
-         r->alarm_count[SWARF_ALARM_SHANK], r->alarm_count[SWARF_ALARM_HOLDER],
+  printf("  alarms %ld (%ld rapid moves cutting into material, %ld moves gouging the design, %ld "
+         "collisions: %ld shank, %ld holder, %ld fixture)\n",
+         r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE],
+         r->collisions, r->alarm_count[SWARF_ALARM_SHANK], r->alarm_count[SWARF_ALARM_HOLDER],
          r->alarm_count[SWARF_ALARM_FIXTURE]);
   if (r->collision_s > 0) printf("  collision check %.2f s CPU\n", r->collision_s);
   printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
@@ -383,6 +387,27 @@ static int on_progress(void *user, const swarf_sim_progress *p) {
   sim_clients *c = user;
   if (c->bar != NULL) swarf_progress_update(c->bar, p->fraction, p->report->moves);
   return swarf_modbus_observe(c->modbus, p);
+}
+
+static void on_alarm(void *user, const swarf_alarm *a) {
+  sim_clients *c = user;
+  alarm_list *l = &c->alarms;
+  swarf_verify_alarm(c->verify, a);
+  if (l->n == l->cap) {
+    long cap = l->cap ? 2 * l->cap : 64;
+    swarf_alarm *p = cap <= MAX_KEPT_ALARMS ? realloc(l->a, sizeof *p * (size_t)cap) : NULL;
+    if (p == NULL) {
+      l->dropped++;
+      return;
+    }
+    l->a = p;
+    l->cap = cap;
+  }
+  l->a[l->n++] = *a;
+}
+
+static void on_line(void *user, const swarf_line_result *l) {
+  swarf_verify_line(((sim_clients *)user)->verify, l);
 }
 
 /* The run's failure on stderr; returns the exit status. */
@@ -408,31 +433,40 @@ int swarf_cli_simulate(int argc, char **argv) {
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
   if (rc || (rc = check_size(&o.cfg))) return rc;
-  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb))) return rc;
+  if ((rc = swarf_verify_prepare(&o.verify, &o.cfg))) return swarf_verify_free(&o.verify), rc;
+  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb))) return swarf_verify_free(&o.verify), rc;
   swarf_progress_init(&pb);
-  sim_clients clients = {o.quiet ? NULL : &pb, mb, {NULL, 0, 0, 0}};
+  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}};
   o.cfg.cb.progress = on_progress;
   o.cfg.cb.alarm = on_alarm;
+  if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
   o.cfg.cb.user = &clients;
   swarf_error_init(&err);
   if (swarf_sim_run(&o.cfg, o.program, &stock, &rep, &err) != SWARF_OK) {
     swarf_progress_finish(&pb);
     rc = report_failure(&err, mb);
     swarf_modbus_finish(mb, rc, &rep);
+    swarf_verify_free(&o.verify);
     free(clients.alarms.a);
     return rc;
   }
   swarf_progress_finish(&pb);
   print_alarms(&o, &clients.alarms, &rep);
   free(clients.alarms.a);
+  swarf_verify_warn(&o.verify, o.program, &rep);
   rc = write_outputs(&o, stock, &ntri);
-  if (rc == 0 && !o.quiet) print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
-  swarf_modbus_finish(mb, rc, &rep);
-  swarf_stock_free(stock);
+  if (rc == 0 && !o.quiet) {
+    print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
+    swarf_verify_summary(&o.verify, &rep);
+  }
+  if (rc == 0) rc = swarf_verify_finish(&o.verify, o.program, &o.cfg, &rep);
   if (rc == 0 && o.fail_on_collision && rep.collisions > 0) {
     fprintf(stderr, "%s: %ld collisions (--fail-on collision): exit status 4\n", o.program,
             rep.collisions);
-    return 4;
+    rc = 4;
   }
+  swarf_modbus_finish(mb, rc == 4 ? 0 : rc, &rep); /* a gouge is the part's, not the run's */
+  swarf_stock_free(stock);
+  swarf_verify_free(&o.verify);
   return rc;
 }

@@ -57,7 +57,11 @@ int swarf_sim_batch_init(swarf_sim *s) {
   s->stamps = malloc(sizeof *s->stamps * (size_t)s->cap);
   s->pending_cap = s->cap;
   s->pending = malloc(sizeof *s->pending * (size_t)s->pending_cap);
-  return s->motions && s->sweeps && s->cuts && s->stamps && s->pending ? 0 : -1;
+  s->cut_id = malloc(sizeof *s->cut_id * (size_t)s->cap);
+  s->effects = malloc(sizeof *s->effects * (size_t)s->cap);
+  return s->motions && s->sweeps && s->cuts && s->stamps && s->pending && s->cut_id && s->effects
+             ? 0
+             : -1;
 }
 
 void swarf_sim_batch_clear(swarf_sim *s) {
@@ -66,13 +70,50 @@ void swarf_sim_batch_clear(swarf_sim *s) {
   free(s->cuts);
   free(s->stamps);
   free(s->pending);
+  free(s->cut_id);
+  free(s->effects);
+}
+
+/* A gouge of cut i: one alarm, told at once. */
+static void raise_gouge(swarf_sim *s, int i) {
+  const swarf_motion *m = &s->motions[i];
+  const swarf_stock_cut_effect *e = &s->effects[i];
+  int tool = m->tool != 0 ? m->tool : s->cfg.ntools == 1 ? s->cfg.tools[0].number : 0;
+  swarf_alarm a = {SWARF_ALARM_GOUGE,
+                   m->line,
+                   m->column,
+                   tool,
+                   e->gouge_depth,
+                   {e->gouge_at[0], e->gouge_at[1], e->gouge_at[2]},
+                   0};
+  swarf_sim_raise(s, &a);
+}
+
+/* The batch, measuring each cut: its removed volume goes to its line, a
+ * gouge into the design raises an alarm (in program order). */
+static int flush_measured(swarf_sim *s) {
+  swarf_error err;
+  swarf_error_init(&err);
+  if (swarf_stock_remove_batch_measured(s->stock, s->cuts, (size_t)s->n, s->cfg.design,
+                                        s->tolerance, s->effects, &err) != SWARF_OK) {
+    swarf_sim_fail(s, err.status, 0, 0, "%s", err.message);
+    return 1;
+  }
+  for (int i = 0; i < s->n; i++) {
+    swarf_sim_lines_removed(s, s->cut_id[i], s->effects[i].removed);
+    if (s->effects[i].gouge_depth > 0) raise_gouge(s, i);
+  }
+  return 0;
 }
 
 int swarf_sim_batch_flush(swarf_sim *s) {
-  char msg[512];
-  if (s->n > 0) {
-    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, msg, sizeof msg) != 0) {
-      swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", msg);
+  swarf_error e;
+  if (s->n > 0 && s->measured) {
+    if (flush_measured(s) != 0) return 1;
+    s->n = 0;
+  } else if (s->n > 0) {
+    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, &e) != SWARF_OK) {
+      swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
       return 1;
     }
     s->n = 0;
@@ -98,11 +139,11 @@ static int boxes_overlap(const double alo[3], const double ahi[3], const double 
 
 /* The rapid in slot 0 against the stock as it stands. */
 static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *c) {
-  char msg[512];
+  swarf_error e;
   int hit = 0;
   double where[3];
-  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, msg, sizeof msg) != 0) {
-    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", msg);
+  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, &e) != SWARF_OK) {
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", e.message);
     return 1;
   }
   if (hit) {
@@ -149,6 +190,7 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     c->ctx = &s->stamps[s->n];
   }
   s->rep.cutting_moves++;
+  s->cut_id[s->n] = s->cur_id;
   if (m->rapid && check_rapid(s, m, c) != 0) return 1;
   if (++s->n == s->cap) return swarf_sim_batch_flush(s);
   return 0;

@@ -4,7 +4,9 @@
  * the open line is closed and waits in `pending` until the batch holding
  * its moves has been removed, then the line callback hears of it. The
  * pending list is as long as the batch: when it is full, the batch is
- * removed early. Removed volumes are NaN unless measured (cfg.line_volumes).
+ * removed early. Removed volumes are NaN unless measured (cfg.line_volumes):
+ * each cut of a batch carries the id of its line (cur_id when queued), and
+ * the measured removal adds its volume to that line before it is told.
  */
 #include <math.h>
 #include <string.h>
@@ -15,7 +17,17 @@ static void open_line(swarf_sim *s, const swarf_motion *m, int tool) {
   memset(&s->cur, 0, sizeof s->cur);
   s->cur.line = m->line;
   s->cur.tool = tool;
-  s->cur.removed = NAN;
+  s->cur.removed = s->measured && s->cfg.line_volumes ? 0.0 : NAN;
+  s->cur_id++;
+}
+
+void swarf_sim_lines_removed(swarf_sim *s, long id, double removed) {
+  long j = id - (s->cur_id - s->npending);
+  if (s->cfg.cb.line == NULL || !s->cfg.line_volumes) return;
+  if (j >= 0 && j < s->npending)
+    s->pending[j].removed += removed;
+  else if (id == s->cur_id && s->cur.moves > 0)
+    s->cur.removed += removed;
 }
 
 int swarf_sim_lines_add(swarf_sim *s, const swarf_motion *m, int tool) {

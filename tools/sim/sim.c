@@ -130,14 +130,16 @@ static const swarf_move *tip_move(swarf_sim *s, const swarf_move *mv, swarf_move
   return buf;
 }
 
-static int on_move(const swarf_move *mv, void *user) {
+static int on_move(const swarf_move *machine_mv, void *user) {
   swarf_sim *s = user;
   swarf_motion m;
-  swarf_move tip;
-  if (mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, mv);
-  if (mv->kind == SWARF_MOVE_DWELL) return 0;
+  swarf_move w, tip, *mv = &w;
+  if (machine_mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, machine_mv);
+  if (machine_mv->kind == SWARF_MOVE_DWELL) return 0;
+  swarf_sim_to_workpiece(s, tip_move(s, machine_mv, &tip), &w);
+  swarf_sim_check_units(s, mv);
   swarf_error e;
-  swarf_status rc = swarf_machine_motion(&s->cfg.machine, tip_move(s, mv, &tip), &m, &e);
+  swarf_status rc = swarf_machine_motion(&s->cfg.machine, mv, &m, &e);
   if (rc == SWARF_ERR_MACHINE) {
     swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column, "%s", e.message);
     return 1;
@@ -158,14 +160,15 @@ static void set_tool_table(swarf_sim *s) {
 
 static swarf_stock *build_stock(const swarf_sim_config *cfg, swarf_error *err) {
   const swarf_sim_stock_spec *k = &cfg->stock;
-  char msg[512] = "";
-  swarf_stock *st;
+  swarf_error e = {0};
+  swarf_stock *st = NULL;
+  swarf_status rc;
   if (k->kind == SWARF_SIM_STOCK_CYLINDER)
-    st = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
-                                  cfg->half_width, msg, sizeof msg);
+    rc = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
+                                  cfg->half_width, &st, &e);
   else
-    st = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, msg, sizeof msg);
-  if (st == NULL) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", msg);
+    rc = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, &st, &e);
+  if (rc != SWARF_OK) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", e.message);
   return st;
 }
 
@@ -181,6 +184,8 @@ static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
     swarf_stock_bounds(s->stock, lo, hi);
     band = swarf_stock_voxel(s->stock);
   }
+  memcpy(s->mat_lo, lo, sizeof lo);
+  memcpy(s->mat_hi, hi, sizeof hi);
   for (int k = 0; k < 3; k++) {
     s->pad_lo[k] = lo[k] - band;
     s->pad_hi[k] = hi[k] + band;
@@ -188,10 +193,13 @@ static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
 }
 
 static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
+  swarf_status st;
   if (swarf_gcode_parser_new(s->name, on_move, s, &s->parser) != SWARF_OK ||
       swarf_sim_batch_init(s) != 0)
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   set_tool_table(s);
+  if ((st = swarf_sim_setup(s, err)) != SWARF_OK || (st = swarf_sim_design_init(s, err)) != SWARF_OK)
+    return st;
   if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
   if (swarf_sim_collide_init(s) != 0) {
     if (err != NULL) *err = s->err;
@@ -328,8 +336,10 @@ swarf_status swarf_sim_finish(swarf_sim *s) {
   if (st != SWARF_OK) return st;
   st = parser_outcome(s, swarf_gcode_parser_finish(s->parser));
   s->rep.lines = swarf_gcode_parser_lines(s->parser);
+  s->rep.units_line = swarf_gcode_parser_units_line(s->parser);
   if (st == SWARF_OK && swarf_sim_batch_flush(s) != 0) st = s->err.status;
   if (st == SWARF_OK && swarf_sim_lines_flush(s, 1) != 0) st = s->err.status;
+  if (st == SWARF_OK) st = swarf_sim_design_compare(s);
   s->rep.seconds = now_seconds() - s->t0;
   if (st != SWARF_OK) return st;
   s->rep.volume_after = swarf_stock_volume(s->stock);
@@ -364,6 +374,7 @@ void swarf_sim_free(swarf_sim *s) {
   swarf_sim_collide_clear(s);
   swarf_sim_batch_clear(s);
   swarf_stock_free(s->stock);
+  swarf_stock_free(s->initial);
   free(s);
 }
 

@@ -37,12 +37,22 @@ struct swarf_sim {
   swarf_sim_stamp *stamps;
   int n, cap;
   double pad_lo[3], pad_hi[3]; /* material box grown by the narrow band */
+  double mat_lo[3], mat_hi[3]; /* material box: the spec's, or the stock's active voxels */
   /* per-line results: the open line and the closed ones not yet told */
   swarf_line_result cur;
   swarf_line_result *pending;
   int npending, pending_cap;
   swarf_sim_collide col; /* collisions (collide.c) */
   int moved;             /* a motion move was seen (the start position is the tip's) */
+  long cur_id;   /* lines opened so far: cur's id; pending[i]'s is cur_id - npending + i */
+  long *cut_id;  /* batch: the line each cut belongs to (measured removal) */
+  swarf_stock_cut_effect *effects; /* batch: what each cut did (measured removal) */
+  int measured;  /* removal measures each cut (line volumes or a design) */
+  double tolerance; /* gouges deeper than this, mm */
+  swarf_stock *initial; /* the stock before the run, for the design comparison */
+  /* the workpiece frame: machine = Rz(frame_rot) workpiece + frame_origin */
+  double frame_origin[3], frame_cos, frame_sin;
+  int units_checked; /* the first move was checked for a units word */
 };
 
 /* Record the first failure (status, place, message) and return its status. */
@@ -61,9 +71,22 @@ int swarf_sim_batch_flush(swarf_sim *s);
 /* An alarm: counted in the report (the first SWARF_SIM_MAX_ALARMS kept) and told. */
 void swarf_sim_raise(swarf_sim *s, const swarf_alarm *a);
 
+/* setup.c: the machine's setup on the parser and the start (from new), the
+ * moves into the workpiece frame, the first move's units check. Return
+ * SWARF_OK or the status, with err filled. */
+swarf_status swarf_sim_setup(swarf_sim *s, swarf_error *err);
+void swarf_sim_to_workpiece(const swarf_sim *s, const swarf_move *in, swarf_move *out);
+void swarf_sim_check_units(swarf_sim *s, const swarf_move *mv);
+/* The design: checked against the stock and the initial stock kept (new);
+ * the comparison (finish). */
+swarf_status swarf_sim_design_init(swarf_sim *s, swarf_error *err);
+swarf_status swarf_sim_design_compare(swarf_sim *s);
+
 /* lines.c: count a motion in its line; tell the closed lines (all, at the end). */
 int swarf_sim_lines_add(swarf_sim *s, const swarf_motion *m, int tool);
 int swarf_sim_lines_flush(swarf_sim *s, int at_end);
+/* Add what a removed cut of line `id` did to that line's result. */
+void swarf_sim_lines_removed(swarf_sim *s, long id, double removed);
 
 /* collide.c: init after the stock (fixtures as level sets), clear; check a
  * motion's shank, holder and fixtures (w: its cutter sweep, own: its cut when

@@ -2,7 +2,7 @@
  *
  *   box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX        (mm)
  *   cylinder:AXIS,RADIUS,START,END           (AXIS x, y or z through the origin; mm)
- *   T<n>=<ball|flat|bull>,D<d>[,R<r>][,L<l>]  (mm)
+ *   T<n>=<family>,<fields>   (mm, angles in degrees; engine.h, swarf_cutter_make)
  *
  * Every number must be finite and complete; messages say what to write.
  */
@@ -92,39 +92,87 @@ swarf_status swarf_sim_parse_stock(const char *spec, swarf_sim_stock_spec *out, 
   return parse_box(spec, out->lo, out->hi, err);
 }
 
-static int parse_shape(const char **s, swarf_cutter_shape *shape) {
-  static const struct {
-    const char *name;
-    swarf_cutter_shape shape;
-  } shapes[] = {
-      {"ball", SWARF_CUTTER_BALL}, {"flat", SWARF_CUTTER_FLAT}, {"bull", SWARF_CUTTER_BULL}};
-  for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
-    size_t n = strlen(shapes[i].name);
-    if (strncmp(*s, shapes[i].name, n) == 0 && ((*s)[n] == ',' || (*s)[n] == '\0')) {
-      *shape = shapes[i].shape;
+/* The families and the letters each takes (engine.h, swarf_cutter_spec). */
+static const struct {
+  const char *name;
+  swarf_cutter_shape shape;
+  const char *letters;
+} families[] = {{"flat", SWARF_CUTTER_FLAT, "DRL"},
+                {"ball", SWARF_CUTTER_BALL, "DRL"},
+                {"bull", SWARF_CUTTER_BULL, "DRL"},
+                {"vee", SWARF_CUTTER_VEE, "DAL"},
+                {"drill", SWARF_CUTTER_DRILL, "DAL"},
+                {"spot", SWARF_CUTTER_SPOT, "DAL"},
+                {"chamfer", SWARF_CUTTER_CHAMFER, "DATL"},
+                {"taper", SWARF_CUTTER_TAPER, "DARL"},
+                {"apt", SWARF_CUTTER_APT, "DREFABH"},
+                {"lollipop", SWARF_CUTTER_LOLLIPOP, "DKL"},
+                {"dovetail", SWARF_CUTTER_DOVETAIL, "DAHKL"},
+                {"tslot", SWARF_CUTTER_TSLOT, "DHKL"},
+                {"qss", SWARF_CUTTER_QSS, ""}};
+
+static int parse_family(const char **s) {
+  for (size_t i = 0; i < sizeof families / sizeof families[0]; i++) {
+    size_t n = strlen(families[i].name);
+    if (strncmp(*s, families[i].name, n) == 0 && ((*s)[n] == ',' || (*s)[n] == '\0')) {
       *s += n;
-      return 0;
+      return (int)i;
     }
   }
   return -1;
 }
 
-/* Read ",D<d>", ",R<r>", ",L<l>" fields into dims[0..2]. */
-static int parse_dims(const char *s, double dims[3], char *bad, size_t badlen) {
+static double *field(swarf_cutter_spec *sp, char letter) {
+  switch (letter) {
+  case 'D':
+    return &sp->d;
+  case 'R':
+    return &sp->r;
+  case 'L':
+    return &sp->length;
+  case 'A':
+    return &sp->angle;
+  case 'T':
+    return &sp->tip;
+  case 'E':
+    return &sp->e;
+  case 'F':
+    return &sp->f;
+  case 'B':
+    return &sp->beta;
+  case 'H':
+    return &sp->h;
+  case 'K':
+    return &sp->neck;
+  default:
+    return NULL;
+  }
+}
+
+/* ",X<number>" fields with the family's letters (each at most once). */
+static int parse_fields(const char *s, int fam, swarf_cutter_spec *sp, char *bad, size_t badlen) {
+  const char *letters = families[fam].letters;
+  char seen[16] = "";
   while (*s == ',') {
     const char *key = ++s;
-    const char *p = strchr("DRL", toupper((unsigned char)*key));
+    char k = (char)toupper((unsigned char)*key);
     double v;
-    if (*key == '\0' || p == NULL) {
-      snprintf(bad, badlen, "unknown field \"%.20s\" (use D, R, L)", key);
+    if (*key == '\0' || strchr(letters, k) == NULL || k == '\0') {
+      snprintf(bad, badlen, "unknown field \"%.20s\" for %s (use %s)", key, families[fam].name,
+               letters);
       return -1;
     }
+    if (strchr(seen, k) != NULL) {
+      snprintf(bad, badlen, "%c given twice", k);
+      return -1;
+    }
+    strncat(seen, &k, 1);
     s++;
-    if (read_number(&s, &v) != 0 || (*s != ',' && *s != '\0') || v < 0) {
-      snprintf(bad, badlen, "bad value for %c", toupper((unsigned char)*key));
+    if (read_number(&s, &v) != 0 || (*s != ',' && *s != '\0')) {
+      snprintf(bad, badlen, "bad value for %c (a number)", k);
       return -1;
     }
-    dims[p - "DRL"] = v;
+    *field(sp, k) = v;
   }
   if (*s != '\0') {
     snprintf(bad, badlen, "unexpected \"%.20s\"", s);
@@ -133,10 +181,26 @@ static int parse_dims(const char *s, double dims[3], char *bad, size_t badlen) {
   return 0;
 }
 
+/* qss,a,b,e,f: four numbers. */
+static int parse_qss(const char *s, swarf_cutter_spec *sp, char *bad, size_t badlen) {
+  double *dst[4] = {&sp->qa, &sp->qb, &sp->qe, &sp->qf};
+  for (int i = 0; i < 4; i++) {
+    if (*s++ != ',' || read_number(&s, dst[i]) != 0 || (*s != ',' && *s != '\0') ||
+        (i == 3 && *s != '\0')) {
+      snprintf(bad, badlen,
+               "qss takes four numbers a,b,e,f (h = a(x^2+y^2) + b z^2 + e z + f, mm)");
+      return -1;
+    }
+  }
+  return 0;
+}
+
+#define TOOL_USAGE                                                                                 \
+  "write --tool T<n>=<family>,<fields>: flat|ball|bull,D,R,L; vee|drill|spot,D,A,L; "              \
+  "chamfer,D,A,T,L; taper,D,A,R,L; apt,D,R,E,F,A,B,H; lollipop,D,K,L; dovetail,D,A,H,K,L; "        \
+  "tslot,D,H,K,L; qss,a,b,e,f (swarf simulate --help)"
+
 swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_error *err) {
-  static const char usage[] =
-      "write --tool T<n>=<ball|flat|bull>,D<diameter>[,R<corner>][,L<length>][,S<stick-out>]"
-      "[,N<shank diameter>]";
   char cutter_spec[512];
   double stickout, shank;
   swarf_status st = swarf_sim_split_assembly(spec, cutter_spec, sizeof cutter_spec, &stickout,
@@ -147,29 +211,33 @@ swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_e
   out->shank = shank;
   const char *given = spec;
   spec = cutter_spec;
-  const char *s = spec, *why = NULL;
-  double dims[3] = {0, 0, 0};
-  char bad[96];
+  const char *s = spec;
+  char bad[160];
   long n;
   char *end;
-  swarf_cutter_shape shape;
+  int fam;
+  swarf_cutter_spec sp;
+  swarf_error sub;
   swarf_error_at(err, NULL, 0, 0, "--tool");
   if (spec == NULL || (*s != 'T' && *s != 't')) goto usage_err;
   errno = 0;
   n = strtol(s + 1, &end, 10);
   if (end == s + 1 || *end != '=' || n < 1 || n > 99999 || errno) goto usage_err;
   s = end + 1;
-  if (parse_shape(&s, &shape) != 0) goto usage_err;
-  if (parse_dims(s, dims, bad, sizeof bad) != 0) {
-    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, given, usage);
-  }
-  if (swarf_cutter_init(&out->cutter, shape, dims[0], dims[1], dims[2], &why) != 0) {
-    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"",
-                           why ? why : "impossible cutter", given);
-  }
+  if ((fam = parse_family(&s)) < 0) goto usage_err;
+  swarf_cutter_spec_init(&sp);
+  sp.shape = families[fam].shape;
+  if ((sp.shape == SWARF_CUTTER_QSS ? parse_qss(s, &sp, bad, sizeof bad)
+                                    : parse_fields(s, fam, &sp, bad, sizeof bad)) != 0)
+    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, given,
+                           TOOL_USAGE);
+  swarf_error_init(&sub);
+  if (swarf_cutter_make(&out->cutter, &sp, &sub) != SWARF_OK)
+    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"", sub.message, given);
   out->number = (int)n;
   out->length = 0.0;
   return SWARF_OK;
 usage_err:
-  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", given, usage);
+  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", given,
+                         TOOL_USAGE);
 }

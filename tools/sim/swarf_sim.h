@@ -169,7 +169,32 @@ typedef struct {
    * stamped at poses stamp_step mm apart, as stamping simulators do. */
   double stamp_step;
   swarf_sim_callbacks cb;
+  /* The machine's setup. The workpiece frame (the stock's, the design's,
+   * the motions', the report's) is G54's as set up here before the program
+   * runs: machine = Rz(G54 rotation) workpiece + G54 origin. Zero values: a
+   * metric machine, no offsets, the tool at X0 Y0 at a safe height. */
+  int units;                /* swarf_gcode_units: the machine's length unit (programs
+                             * without G20/G21 run in it; offsets_file holds it); 0: mm */
+  const char *offsets_file; /* LinuxCNC parameter file (gcode.h), read by new (borrowed
+                             * until it returns); NULL: none */
+  int g54_set;              /* 1: G54's origin is g54 (after offsets_file) */
+  double g54[3];            /* mm, machine frame */
+  int start_set;            /* 1: the tool tip starts at start; 0: X0 Y0, Z
+                             * SWARF_SIM_CLEARANCE above the stock (a rotary machine:
+                             * above the stock's sphere about the pivot) */
+  double start[3];          /* mm, workpiece frame */
+  /* The part as designed (a level set, stock.h): each move that removes
+   * material deeper than `tolerance` inside it raises SWARF_ALARM_GOUGE
+   * (depth: that move's deepest, as measured against the stock as it stood,
+   * so a gouge is the first move's that cut into the design), and finish
+   * compares the result with it (report.deviation). Borrowed: it must
+   * outlive the handle. NULL: none. */
+  const swarf_stock *design;
+  double tolerance; /* mm; <= 0: half the stock's voxel */
 } swarf_sim_config;
+
+/* How far above the stock the tool starts by default, mm. */
+#define SWARF_SIM_CLEARANCE 10.0
 
 /* Defaults: xyz machine, 0.2 mm voxel, band 3, batch 128, no tools, no stock
  * (a stock or an existing stock handle must be given). */
@@ -231,6 +256,13 @@ struct swarf_sim_report {
   long collisions;                         /* among them: SHANK, HOLDER and FIXTURE alarms */
   double collision_s;                      /* CPU time checking for collisions, s */
   swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */
+  double start[3];         /* where the tool tip started, workpiece frame, mm */
+  int start_default;       /* 1: the default start (not cfg.start) */
+  long units_line;         /* the program's first G20/G21 (0: none) */
+  long units_missing_line; /* the first move run before any G20/G21 (0: none): it ran */
+  int units_missing_column; /* in the machine's unit */
+  int has_deviation;       /* 1: deviation holds the comparison with cfg.design */
+  swarf_stock_deviation deviation; /* after finish (stock.h) */
 };
 SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);
 

@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# install.sh BUILD_DIR SOURCE_DIR PREFIX CC CXX -- `cmake --install` into a
+# fresh PREFIX and use it as someone else would:
+#   - the layout (headers under include/swarf/, libswarf.so with its SONAME
+#     beside libswarf.a, swarf.pc, the CMake package, bin/swarf, swarf.1, the
+#     Python module);
+#   - libswarf.so exports exactly the SWARF_API functions its headers declare;
+#   - every public header compiles on its own, as C11 and as C++17, with
+#     -pedantic -Wall -Wextra -Werror;
+#   - consumer.c built with pkg-config (shared, and static with --static) and
+#     with CMake's find_package (swarf::swarf, swarf::swarf_static) runs and
+#     checks a simulated volume against the analytic one;
+#   - the man page formats without warnings and holds every command.
+# PREFIX stays for the Python test (FIXTURES_SETUP swarf_install). (No `| grep -q`:
+# under pipefail its early exit fails the pipe.)
+set -euo pipefail
+build=$1 src=$2 prefix=$3 cc=$4 cxx=$5
+work=$prefix.work
+rm -rf "$prefix" "$work"
+mkdir -p "$work"
+fail() { echo "install.sh: $*" >&2; exit 1; }
+
+cmake --install "$build" --prefix "$prefix" >"$work/install.log" || {
+  cat "$work/install.log"; fail "cmake --install failed"; }
+
+# ---- Layout ------------------------------------------------------------------
+pc=$(find "$prefix" -name swarf.pc -path '*/pkgconfig/*')
+[ -n "$pc" ] || fail "no swarf.pc installed"
+libdir=$(dirname "$(dirname "$pc")")
+for f in include/swarf/swarf.h include/swarf/swarf_version.h include/swarf/swarf_sim.h \
+         include/swarf/swarf_status.h include/swarf/status.def include/swarf/stock.h \
+         bin/swarf share/man/man1/swarf.1 lib/python3/dist-packages/swarf/__init__.py \
+         lib/python3/dist-packages/swarf/_abi.py; do
+  [ -f "$prefix/$f" ] || fail "$f not installed"
+done
+for f in libswarf.a libswarf.so cmake/swarf/swarfConfig.cmake cmake/swarf/swarfConfigVersion.cmake \
+         cmake/swarf/swarfTargets.cmake; do
+  [ -e "$libdir/$f" ] || fail "$libdir/$f not installed"
+done
+version=$(sed -n 's/^#define SWARF_VERSION_STRING "\(.*\)"$/\1/p' "$prefix/include/swarf/swarf_version.h")
+[ -n "$version" ] || fail "no SWARF_VERSION_STRING in swarf_version.h"
+soname=$(readelf -d "$libdir/libswarf.so" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p')
+case "$version" in
+  0.*) want=libswarf.so.$(echo "$version" | cut -d. -f1,2) ;;
+  *) want=libswarf.so.$(echo "$version" | cut -d. -f1) ;;
+esac
+[ "$soname" = "$want" ] || fail "SONAME $soname, expected $want"
+[ -e "$libdir/$soname" ] || fail "$soname not installed"
+[ "$(readlink -f "$libdir/libswarf.so")" = "$(readlink -f "$libdir/libswarf.so.$version")" ] ||
+  fail "libswarf.so does not lead to libswarf.so.$version"
+ar t "$libdir/libswarf.a" | grep '^sim\.c\.o$' >/dev/null || fail "libswarf.a lacks the driver"
+ar t "$libdir/libswarf.a" | grep '^io\.cc\.o$' >/dev/null || fail "libswarf.a lacks the stock"
+ar t "$libdir/libswarf.a" | grep '^interp\.c\.o$' >/dev/null || fail "libswarf.a lacks the interpreter"
+
+# ---- Exports: exactly the declared API -----------------------------------------
+grep -h '^SWARF_API ' "$prefix"/include/swarf/*.h | sed 's/(.*//; s/.*[ *]//' | sort -u \
+  >"$work/declared"
+nm -D --defined-only "$libdir/libswarf.so" | awk '$2 ~ /^[TWDBRV]$/ {print $3}' | sort -u \
+  >"$work/exported"
+[ "$(wc -l <"$work/declared")" -gt 100 ] || fail "only $(wc -l <"$work/declared") declarations found"
+if ! diff "$work/declared" "$work/exported" >"$work/exports.diff"; then
+  echo "< declared in the headers but not exported, > exported but not declared:" >&2
+  cat "$work/exports.diff" >&2
+  fail "libswarf.so's exports differ from the SWARF_API declarations"
+fi
+echo "exports: $(wc -l <"$work/exported") functions, all declared SWARF_API"
+
+# ---- Each header alone, as C and as C++ ----------------------------------------
+for h in "$prefix"/include/swarf/*.h; do
+  name=$(basename "$h")
+  echo "#include <swarf/$name>" >"$work/h.c"
+  "$cc" -std=c11 -pedantic -Wall -Wextra -Werror -fsyntax-only -I"$prefix/include" "$work/h.c" ||
+    fail "$name does not compile alone as C11"
+  "$cxx" -x c++ -std=c++17 -pedantic -Wall -Wextra -Werror -fsyntax-only -I"$prefix/include" \
+    "$work/h.c" || fail "$name does not compile alone as C++17"
+done
+echo "headers: $(ls "$prefix"/include/swarf/*.h | wc -l) compile alone as C11 and C++17"
+
+# ---- pkg-config ---------------------------------------------------------------
+export PKG_CONFIG_PATH=$libdir/pkgconfig
+[ "$(pkg-config --modversion swarf)" = "$version" ] || fail "pkg-config --modversion"
+pkg-config --print-requires-private swarf | grep '^gmp' >/dev/null || fail "swarf.pc: gmp not in Requires.private"
+pkg-config --static --libs swarf | grep -- '-lopenvdb' >/dev/null || fail "swarf.pc: no -lopenvdb in Libs.private"
+# shellcheck disable=SC2046
+"$cc" -std=c11 -Wall -Werror -o "$work/pc_shared" "$src/tests/tools/libswarf/consumer.c" \
+  $(pkg-config --cflags --libs swarf) -lm -Wl,-rpath,"$libdir"
+ldd "$work/pc_shared" >"$work/ldd_shared"
+grep -q "$soname" "$work/ldd_shared" || fail "pc_shared does not use $soname"
+"$work/pc_shared"
+# Static: libswarf.a by name, then its private requirements.
+static_libs=$(pkg-config --static --libs swarf | sed 's/\(^\| \)-lswarf\( \|$\)/ /')
+# shellcheck disable=SC2086,SC2046
+"$cc" -std=c11 -Wall -Werror -o "$work/pc_static" "$src/tests/tools/libswarf/consumer.c" \
+  $(pkg-config --cflags swarf) "$libdir/libswarf.a" $static_libs
+ldd "$work/pc_static" >"$work/ldd_static"
+if grep -q libswarf "$work/ldd_static"; then fail "pc_static uses the shared library"; fi
+"$work/pc_static"
+
+# ---- CMake package --------------------------------------------------------------
+cmake -S "$src/tests/tools/libswarf" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$prefix" \
+  -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=Release \
+  >"$work/cmake.log" || { cat "$work/cmake.log"; fail "find_package(swarf) project failed"; }
+cmake --build "$work/cmake" >"$work/build.log" 2>&1 || {
+  cat "$work/build.log"; fail "building the find_package(swarf) consumer failed"; }
+"$work/cmake/consumer_shared"
+"$work/cmake/consumer_static"
+"$work/cmake/consumer_cxx"
+# A version the package is not compatible with is refused.
+sed 's/find_package(swarf 0.1 REQUIRED)/find_package(swarf 9.0 REQUIRED)/' \
+  "$src/tests/tools/libswarf/CMakeLists.txt" >"$work/CMakeLists.v9"
+mkdir -p "$work/v9" && cp "$work/CMakeLists.v9" "$work/v9/CMakeLists.txt"
+if cmake -S "$work/v9" -B "$work/v9/build" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null 2>&1; then
+  fail "find_package(swarf 9.0) accepted version $version"
+fi
+
+# ---- The command and its man page -------------------------------------------------
+"$prefix/bin/swarf" --help >/dev/null || fail "installed swarf --help"
+warnings=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -ww -z "$prefix/share/man/man1/swarf.1" 2>&1)
+[ -z "$warnings" ] || fail "swarf.1: $warnings"
+page=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -P-cbou "$prefix/share/man/man1/swarf.1")
+for c in simulate parse info render envelope; do
+  printf '%s\n' "$page" | grep "usage: swarf $c" >/dev/null || fail "swarf.1 lacks the $c command"
+done
+printf '%s\n' "$page" | grep -- "--stock box:" >/dev/null || fail "swarf.1 lacks simulate's options"
+echo "install.sh: all checks passed (libswarf $version in $prefix)"

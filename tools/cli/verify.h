@@ -1,0 +1,73 @@
+/* verify.h -- `swarf simulate`'s verification options: the machine's setup
+ * (--start, --g54, --offsets, --units), the design (--design, --tolerance,
+ * --fail-on gouge) and the JSON report (--report).
+ *
+ * Role: the part of the command line that turns these options into the
+ * driver's configuration, collects what its alarm and line callbacks say,
+ * and after the run prints the located warnings (gouges, a missing units
+ * word) and the summary lines (start, design, peak removal rate) and writes
+ * the report. The caller owns the swarf_verify value; swarf_verify_free
+ * releases what it holds. Units: mm. One thread.
+ */
+#ifndef SWARF_CLI_VERIFY_H
+#define SWARF_CLI_VERIFY_H
+
+#include "report.h"
+#include "swarf_sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+  /* the options */
+  const char *report_path, *design_path, *offsets, *units;
+  double tolerance; /* <= 0: half a voxel */
+  int fail_on_gouge;
+  int start_set, g54_set;
+  double start[3], g54[3];
+  /* the inputs as given, for the report */
+  const char *stock_spec, *machine_spec;
+  const char *tool_specs[SWARF_SIM_MAX_TOOLS];
+  int ntools;
+  /* the run */
+  swarf_stock *design;
+  swarf_report *report;
+} swarf_verify;
+
+extern const char swarf_verify_help[];
+
+/* Option `flag` with value `val` (NULL if none) at argv[*i]: 0 taken (*i
+ * past its value), 2 bad (the message on stderr names the flag), -1 not
+ * one of these. Also records --stock, --tool and --machine for the report
+ * (returning -1: the caller handles them). */
+int swarf_verify_option(swarf_verify *v, const char *flag, const char *val, int *i);
+
+/* Before the run: refuses an unwritable --report folder, reads the design at
+ * the stock's voxel, puts the setup and design into cfg. 0, or the exit
+ * status (2 bad input, 1 internal) after a message. */
+int swarf_verify_prepare(swarf_verify *v, swarf_sim_config *cfg);
+
+/* The driver's callbacks call these. */
+void swarf_verify_alarm(swarf_verify *v, const swarf_alarm *a);
+void swarf_verify_line(swarf_verify *v, const swarf_line_result *l);
+
+/* After a successful run: the warnings on stderr (a move before any units
+ * word unless --units was given; one gouge a program line, deepest first of
+ * its moves, in line order). */
+void swarf_verify_warn(swarf_verify *v, const char *program, const swarf_sim_report *r);
+
+/* The summary's lines (start, design comparison, peak removal rate). */
+void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r);
+
+/* Writes --report (if asked); then the exit status: 0, 1 (the report could
+ * not be written) or 4 (--fail-on gouge and a gouge was found). */
+int swarf_verify_finish(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
+                        const swarf_sim_report *r);
+
+void swarf_verify_free(swarf_verify *v);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,6 @@
+/* version.c -- the library's version at run time (swarf_version.h). */
+#include "swarf_version.h"
+
+const char *swarf_version(void) {
+  return SWARF_VERSION_STRING;
+}

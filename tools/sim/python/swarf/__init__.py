@@ -1,0 +1,533 @@
+"""swarf: CNC milling simulation from Python, on libswarf.
+
+Plays a G-code program (RS274/NGC, LinuxCNC dialect) through the machine,
+removes the exact volume swept by the cutter from a voxel stock (an OpenVDB
+level set) and gives back the remaining material, with the same options as
+the `swarf simulate` command:
+
+    import swarf
+    r = swarf.simulate("part.ngc", stock="box:0,0,-20,80,80,0",
+                       tools=["T1=ball,D3.175,L25"], voxel=0.2)
+    print(r.removed, r.report.machining_s, [(a.kind, a.line) for a in r.alarms])
+    r.write_vdb("remaining.vdb")     # pyopenvdb.read("remaining.vdb", "stock")
+    r.write_stl("remaining.stl")
+    r.write_png("remaining.png")
+
+Program text works too (simulate(text="G0 X0 ...")), and so does streaming
+(Simulation: feed, feed_file, finish). Callbacks: progress(Progress) after
+every move (return True to stop: swarf.Aborted), alarm(Alarm), line(LineResult)
+per source line once its moves are removed. Exceptions: SwarfError and its
+classes InputError (the program, a spec or a file is wrong: file, line,
+column, word and message say where), InternalError, Aborted.
+
+Units: mm, seconds. Calls release the GIL; callbacks run in the calling
+thread. One thread at a time per Simulation; distinct ones are independent.
+"""
+import os
+from ctypes import byref, c_size_t, c_void_p, create_string_buffer
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Tuple
+
+from . import _abi
+from ._ffi import S, const, lib, types
+
+__all__ = ["simulate", "Simulation", "Stock", "Result", "Report", "Alarm", "LineResult",
+           "Progress", "SwarfError", "InputError", "InternalError", "Aborted",
+           "set_read_isolation", "read_isolation", "library_version", "__version__"]
+
+__version__ = lib.swarf_version().decode()
+if __version__ != _abi.VERSION:
+    raise ImportError("swarf: the Python module is %s but libswarf is %s"
+                      % (_abi.VERSION, __version__))
+
+_OK = const["SWARF_OK"]
+_ALARM_KINDS = {const["SWARF_ALARM_" + k.upper()]: k
+                for k in ("rapid", "shank", "holder", "fixture", "gouge")}
+
+
+def library_version() -> str:
+    """The version of the libswarf shared library in use ("MAJOR.MINOR.PATCH")."""
+    return __version__
+
+
+# ---- Errors -----------------------------------------------------------------
+
+class SwarfError(Exception):
+    """A call failed. status is the code (an int), name its name
+    ("SWARF_ERR_SYNTAX"), code the exact error identity (0 if none); file,
+    line, column and word say where in the input (empty or 0 when unknown);
+    message is written for the user. str() is "file:line:col: message"."""
+
+    def __init__(self, status, message, file="", line=0, column=0, word="", code=0, text=None):
+        super().__init__(text or message)
+        self.status, self.message, self.code = status, message, code
+        self.file, self.line, self.column, self.word = file, line, column, word
+        self.name = lib.swarf_status_name(status).decode()
+
+
+class InputError(SwarfError, ValueError):
+    """The input is wrong (program, spec, file): the user can fix it."""
+
+
+class InternalError(SwarfError, RuntimeError):
+    """swarf or the system failed (memory, a disk, a bug)."""
+
+
+class Aborted(SwarfError):
+    """The run was stopped on request (a progress callback returned True)."""
+
+
+def _error_class(status):
+    cls = lib.swarf_status_classify(status)
+    if cls == const["SWARF_CLASS_INPUT"]:
+        return InputError
+    if cls == const["SWARF_CLASS_ABORTED"]:
+        return Aborted
+    return InternalError
+
+
+def _raise(err):
+    """Raises the SwarfError that a swarf_error record describes."""
+    buf = create_string_buffer(1024)
+    lib.swarf_error_format(byref(err), buf, len(buf))
+    status = err.status
+    raise _error_class(status)(status, err.message.decode(errors="replace"),
+                               err.file.decode(errors="replace"), err.line, err.column,
+                               err.word.decode(errors="replace"), err.code,
+                               buf.value.decode(errors="replace"))
+
+
+def _raise_msg(status_name, msg, word=""):
+    status = const[status_name]
+    text = msg if isinstance(msg, str) else msg.decode(errors="replace")
+    raise _error_class(status)(status, text, word=word)
+
+
+def _path(p):
+    return os.fsencode(os.fspath(p))
+
+
+# ---- Values -----------------------------------------------------------------
+
+@dataclass
+class Alarm:
+    """Something on a tool's way a machinist must hear about (the cut is still
+    made). kind: "rapid" (a G0 cuts material), "shank", "holder", "fixture",
+    "gouge"; line and column of the move; depth (mm, NaN when not measured),
+    at (mm, workpiece frame), index (FIXTURE: which fixture, 1-based)."""
+    kind: str
+    line: int
+    column: int
+    tool: int
+    depth: float
+    at: Tuple[float, float, float]
+    index: int
+
+    @classmethod
+    def _from(cls, a):
+        return cls(_ALARM_KINDS.get(a.kind, str(a.kind)), a.line, a.column, a.tool, a.depth,
+                   tuple(a.at), a.index)
+
+
+@dataclass
+class LineResult:
+    """A source line that moved the tool: its moves, time at programmed feeds
+    (s), tip path (mm) and the volume it removed (mm^3; NaN unless
+    line_volumes=True)."""
+    line: int
+    tool: int
+    moves: int
+    time_s: float
+    path_mm: float
+    removed: float
+
+    @classmethod
+    def _from(cls, r):
+        return cls(r.line, r.tool, r.moves, r.time_s, r.path_mm, r.removed)
+
+
+@dataclass
+class Report:
+    """Counts of a run (final after finish). Volumes in mm^3 (volume_after is
+    NaN before the end), path in mm, times in s; alarm_count by kind."""
+    lines: int
+    moves: int
+    cutting_moves: int
+    rapids: int
+    arcs: int
+    tool_changes: int
+    path_mm: float
+    machining_s: float
+    volume_before: float
+    volume_after: float
+    seconds: float
+    alarms: int
+    alarm_count: Dict[str, int] = field(default_factory=dict)
+    start: Tuple[float, float, float] = (0.0, 0.0, 0.0)  # where the tool tip started, mm
+    units_line: int = 0          # the program's first G20/G21 (0: none)
+    units_missing_line: int = 0  # the first move run before any G20/G21 (0: none)
+
+    @property
+    def removed(self) -> float:
+        """volume_before - volume_after, mm^3."""
+        return self.volume_before - self.volume_after
+
+    @classmethod
+    def _from(cls, r):
+        counts = {name: r.alarm_count[k] for k, name in _ALARM_KINDS.items()}
+        return cls(r.lines, r.moves, r.cutting_moves, r.rapids, r.arcs, r.tool_changes, r.path_mm,
+                   r.machining_s, r.volume_before, r.volume_after, r.seconds, r.alarms, counts,
+                   tuple(r.start), r.units_line, r.units_missing_line)
+
+
+@dataclass
+class Progress:
+    """After every move: fraction of the program read (0..1, < 0 while
+    unknown), the move's source line, the tool in the spindle, the counts so
+    far."""
+    fraction: float
+    line: int
+    tool: int
+    report: Report
+
+
+# ---- The stock --------------------------------------------------------------
+
+class Stock:
+    """A stock: an OpenVDB narrow-band level set (mm; negative inside the
+    material). Read one with Stock.read(path); a simulation's result holds
+    one. Writes are atomic (a temporary name, then a rename)."""
+
+    def __init__(self, handle):
+        if not handle:
+            raise ValueError("swarf.Stock: NULL handle")
+        self._h = c_void_p(handle)
+
+    @classmethod
+    def read(cls, path) -> "Stock":
+        """The grid named "stock" (or the first float level set) of a .vdb
+        file (read in a child process unless set_read_isolation(False))."""
+        err = S["swarf_error"]()
+        h = c_void_p()
+        if lib.swarf_stock_read(_path(path), byref(h), byref(err)) != 0:
+            _raise(err)
+        return cls(h.value)
+
+    def _handle(self):
+        if self._h is None or not self._h.value:
+            raise ValueError("swarf.Stock: closed (or given to a Simulation)")
+        return self._h
+
+    def _release(self):
+        """The C handle, now owned by the caller (the Stock is empty after)."""
+        h = self._handle()
+        self._h = None
+        return h
+
+    def close(self):
+        """Frees the grid now (also done when the object goes away)."""
+        if getattr(self, "_h", None) is not None and self._h.value:
+            lib.swarf_stock_free(self._h)
+        self._h = None
+
+    __del__ = close
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    @property
+    def volume(self) -> float:
+        """Enclosed volume, mm^3."""
+        return lib.swarf_stock_volume(self._handle())
+
+    @property
+    def voxel(self) -> float:
+        """Voxel edge, mm."""
+        return lib.swarf_stock_voxel(self._handle())
+
+    @property
+    def half_width(self) -> int:
+        """Narrow band half width, voxels."""
+        return lib.swarf_stock_half_width(self._handle())
+
+    @property
+    def active_voxels(self) -> int:
+        return lib.swarf_stock_active_voxels(self._handle())
+
+    @property
+    def bounds(self):
+        """((xmin, ymin, zmin), (xmax, ymax, zmax)) of the active voxels, mm."""
+        lo, hi = (types["c_double"] * 3)(), (types["c_double"] * 3)()
+        lib.swarf_stock_bounds(self._handle(), lo, hi)
+        return tuple(lo), tuple(hi)
+
+    def sample(self, x, y, z) -> float:
+        """Interpolated level-set value at a point (mm; < 0 inside material)."""
+        return lib.swarf_stock_sample(self._handle(), x, y, z)
+
+    def check(self):
+        """Raises InternalError unless the grid is a valid narrow-band level set."""
+        err = S["swarf_error"]()
+        if lib.swarf_stock_check(self._handle(), byref(err)) != 0:
+            _raise_msg("SWARF_ERR_INTERNAL", err.message)
+
+    def _write(self, fn, path, *args):
+        err = S["swarf_error"]()
+        if fn(self._handle(), _path(path), *args, byref(err)) != 0:
+            _raise(err)
+
+    def write_vdb(self, path):
+        """OpenVDB file with one float level-set grid named "stock"."""
+        self._write(lib.swarf_stock_write_vdb, path)
+
+    def write_stl(self, path) -> int:
+        """Binary STL of the surface; returns the triangle count."""
+        n = c_size_t(0)
+        self._write(lib.swarf_stock_write_stl, path, byref(n))
+        return n.value
+
+    def write_png(self, path, width=1024, height=768):
+        """Shaded picture (OpenVDB's level-set ray tracer)."""
+        self._write(lib.swarf_stock_write_png, path, int(width), int(height))
+
+
+def set_read_isolation(on: bool):
+    """Whether reading a .vdb runs OpenVDB's reader in a forked child process
+    (default on, or the environment's SWARF_VDB_ISOLATE). Process-wide."""
+    lib.swarf_stock_set_read_isolation(1 if on else 0)
+
+
+def read_isolation() -> bool:
+    return bool(lib.swarf_stock_read_isolation())
+
+
+# ---- A simulation -----------------------------------------------------------
+
+@dataclass
+class Result:
+    """The end of a run: the remaining stock (owned), the final report, every
+    alarm, every line that moved the tool."""
+    stock: Stock
+    report: Report
+    alarms: List[Alarm]
+    lines: List[LineResult]
+
+    @property
+    def removed(self) -> float:
+        """Volume removed from the stock, mm^3."""
+        return self.report.removed
+
+    def write_vdb(self, path):
+        self.stock.write_vdb(path)
+
+    def write_stl(self, path) -> int:
+        return self.stock.write_stl(path)
+
+    def write_png(self, path, width=1024, height=768):
+        self.stock.write_png(path, width, height)
+
+
+_UNITS = {"mm": "SWARF_GCODE_UNITS_MM", "in": "SWARF_GCODE_UNITS_INCH",
+          "inch": "SWARF_GCODE_UNITS_INCH"}
+
+
+def _point(value, what):
+    try:
+        x, y, z = (float(v) for v in value)
+    except (TypeError, ValueError):
+        _raise_msg("SWARF_ERR_ARG", "%s: give three numbers X, Y, Z (mm), not %r"
+                   % (what, value), what)
+    return x, y, z
+
+
+def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units, offsets):
+    """The swarf_sim_config of the options; also returns what it borrows."""
+    cfg = S["swarf_sim_config"]()
+    lib.swarf_sim_config_init(byref(cfg))
+    err = S["swarf_error"]()
+    if machine is not None:
+        if lib.swarf_machine_parse(byref(cfg.machine), machine.encode(), byref(err)) != _OK:
+            _raise(err)
+    if start is not None:
+        cfg.start_set, cfg.start[:] = 1, _point(start, "start")
+    if g54 is not None:
+        cfg.g54_set, cfg.g54[:] = 1, _point(g54, "g54")
+    if units is not None:
+        if units not in _UNITS:
+            _raise_msg("SWARF_ERR_ARG", "units: mm or in, not %r" % (units,), "units")
+        cfg.units = const[_UNITS[units]]
+    borrowed = None
+    if offsets is not None:
+        borrowed = _path(offsets)
+        cfg.offsets_file = borrowed
+    if voxel is not None:
+        cfg.voxel = float(voxel)
+    if band is not None:
+        cfg.half_width = int(band)
+    if batch is not None:
+        cfg.batch = int(batch)
+    cfg.line_volumes = 1 if line_volumes else 0
+    for spec in [tools] if isinstance(tools, str) else tools:
+        tool = S["swarf_sim_tool"]()
+        if lib.swarf_sim_parse_tool(spec.encode(), byref(tool), byref(err)) != _OK:
+            _raise(err)
+        if lib.swarf_sim_config_add_tool(byref(cfg), byref(tool), byref(err)) != _OK:
+            _raise(err)
+    return cfg, borrowed
+
+
+class Simulation:
+    """A streaming simulation (swarf_sim.h):
+
+        with swarf.Simulation("box:0,0,-10,40,40,0", ["T1=flat,D6"]) as sim:
+            sim.feed("G0 X0 Y0 Z5\\nG1 Z-1 F100\\n")
+            sim.feed("G1 X30\\n")
+            result = sim.finish()
+
+    stock: a spec ("box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" or
+    "cylinder:AXIS,RADIUS,START,END", mm) or a Stock (an earlier result, a
+    .vdb read back), which the simulation then owns. tools: spec strings
+    "T<n>=<shape>,D<diameter>[,R<corner>][,L<length>]" (ball, flat, bull).
+    voxel (mm, default 0.2), machine ("xyz", "xyza[,pivot=Y,Z]",
+    "xyzac-trt[,mode=tcp|joint][,pivot=X,Y,Z]", ...), band (voxels, >= 3),
+    line_volumes (measure each line's removed volume) as `swarf simulate`.
+    The machine's setup, as `swarf simulate` --start, --g54, --units,
+    --offsets: start (X, Y, Z: the tool tip when the program starts, mm,
+    workpiece frame; default X0 Y0 10 mm above the stock), g54 (G54's origin
+    in machine coordinates, mm), units ("mm" or "in": the machine's unit),
+    offsets (LinuxCNC's parameter file). name is the program's name in
+    messages."""
+
+    def __init__(self, stock, tools=(), *, voxel=None, machine=None, band=None, batch=None,
+                 line_volumes=False, start=None, g54=None, units=None, offsets=None,
+                 name="program", progress=None, alarm=None, line=None):
+        self._h = c_void_p()
+        self._exc = None
+        self._user = (progress, alarm, line)
+        self.alarms: List[Alarm] = []
+        self.lines: List[LineResult] = []
+        self.name = os.fsdecode(name)
+        cfg, borrowed = _config(tools, voxel, machine, band, batch, line_volumes, start, g54,
+                                units, offsets)
+        # The C callbacks; kept alive as long as the handle.
+        self._cbs = (types["PROGRESS_FN"](self._on_progress), types["ALARM_FN"](self._on_alarm),
+                     types["LINE_FN"](self._on_line))
+        cfg.cb.progress, cfg.cb.alarm, cfg.cb.line = self._cbs
+        err = S["swarf_error"]()
+        if isinstance(stock, Stock):
+            rc = lib.swarf_sim_new_with_stock(byref(cfg), self.name.encode(), stock._release(),
+                                              byref(self._h), byref(err))
+        else:
+            if lib.swarf_sim_parse_stock(str(stock).encode(), byref(cfg.stock),
+                                         byref(err)) != _OK:
+                _raise(err)
+            rc = lib.swarf_sim_new(byref(cfg), self.name.encode(), byref(self._h), byref(err))
+        del borrowed  # the offsets file's name: read by new
+        if rc != _OK:
+            self._h = c_void_p()
+            _raise(err)
+
+    # Callbacks from C: never let an exception escape into ctypes; the first
+    # one stops the run (progress returns 1) and is raised when the call returns.
+    def _on_progress(self, user, p):
+        if self._exc is not None:
+            return 1
+        fn = self._user[0]
+        try:
+            if fn is not None:
+                q = p.contents
+                if fn(Progress(q.fraction, q.line, q.tool, Report._from(q.report.contents))):
+                    return 1
+        except BaseException as e:  # noqa: B902 (Ctrl-C stops the run too)
+            self._exc = e
+            return 1
+        return 0
+
+    def _on_alarm(self, user, a):
+        try:
+            alarm = Alarm._from(a.contents)
+            self.alarms.append(alarm)
+            if self._user[1] is not None and self._exc is None:
+                self._user[1](alarm)
+        except BaseException as e:  # noqa: B902
+            self._exc = self._exc or e
+
+    def _on_line(self, user, r):
+        try:
+            result = LineResult._from(r.contents)
+            self.lines.append(result)
+            if self._user[2] is not None and self._exc is None:
+                self._user[2](result)
+        except BaseException as e:  # noqa: B902
+            self._exc = self._exc or e
+
+    def _handle(self):
+        if not self._h.value:
+            raise ValueError("swarf.Simulation: closed")
+        return self._h
+
+    def _check(self, rc):
+        if self._exc is not None:
+            e, self._exc = self._exc, None
+            raise e
+        if rc != _OK:
+            _raise(lib.swarf_sim_error(self._handle()).contents)
+
+    def feed(self, text):
+        """Program text (str or bytes, any split); complete lines run at once."""
+        data = text.encode() if isinstance(text, str) else bytes(text)
+        self._check(lib.swarf_sim_feed(self._handle(), data, len(data)))
+
+    def feed_file(self, path):
+        """The whole file at path (progress then has a fraction)."""
+        self._check(lib.swarf_sim_feed_file(self._handle(), _path(path)))
+
+    @property
+    def report(self) -> Report:
+        """The counts so far."""
+        return Report._from(lib.swarf_sim_get_report(self._handle()).contents)
+
+    def finish(self) -> Result:
+        """Ends the program (the last line, the last batch) and returns the
+        Result, which owns the stock; the simulation takes no more input."""
+        self._check(lib.swarf_sim_finish(self._handle()))
+        report = self.report
+        stock = Stock(lib.swarf_sim_take_stock(self._handle()))
+        return Result(stock, report, list(self.alarms), list(self.lines))
+
+    def close(self):
+        if getattr(self, "_h", None) is not None and self._h.value:
+            lib.swarf_sim_free(self._h)
+            self._h = c_void_p()
+
+    __del__ = close
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=None, band=None,
+             batch=None, line_volumes=False, start=None, g54=None, units=None, offsets=None,
+             name=None, progress=None, alarm=None, line=None) -> Result:
+    """Runs a program: the G-code file at `program`, or the string `text`.
+    Options as Simulation (and `swarf simulate`). Returns the Result; raises
+    InputError with file, line and column for a bad program or option."""
+    if (program is None) == (text is None):
+        raise TypeError("swarf.simulate: give a program path or text=, not both")
+    if name is None:
+        name = os.fspath(program) if program is not None else "<text>"
+    with Simulation(stock, tools, voxel=voxel, machine=machine, band=band, batch=batch,
+                    line_volumes=line_volumes, start=start, g54=g54, units=units,
+                    offsets=offsets, name=name, progress=progress, alarm=alarm,
+                    line=line) as sim:
+        if text is not None:
+            sim.feed(text)
+        else:
+            sim.feed_file(program)
+        return sim.finish()

@@ -31,10 +31,10 @@ static int penetrates(const swarf_stock *s, const box_shape *b, double depth, do
 }
 
 int main(void) {
-  char msg[256];
+  swarf_error e;
   const double lo[3] = {0, 0, -10}, hi[3] = {20, 10, 0}, h = 0.1;
-  swarf_stock *s = swarf_stock_new_box(lo, hi, h, 3, msg, sizeof msg);
-  CHECK(s != NULL, "box: %s", msg);
+  swarf_stock *s = NULL;
+  CHECK(swarf_stock_new_box(lo, hi, h, 3, &s, &e) == SWARF_OK, "box: %s", e.message);
   if (!s) return check_done();
   const double vol0 = swarf_stock_volume(s);
   double where[3];
@@ -79,7 +79,7 @@ int main(void) {
   /* a pocket 2 mm deep cut away first: the same body 1 mm into its floor only */
   capsule_shape pocket = {{10.0, 5.0, 0.0}, {16.0, 5.0, 0.0}, 2.0};
   swarf_stock_cut pc = capsule_cut(&pocket);
-  CHECK(swarf_stock_remove_batch(s, &pc, 1, msg, sizeof msg) == 0, "pocket: %s", msg);
+  CHECK(swarf_stock_remove_batch(s, &pc, 1, &e) == SWARF_OK, "pocket: %s", e.message);
   box_shape inside = {{11.0, 4.5, -1.0}, {15.0, 5.5, 3.0}};
   CHECK(penetrates(s, &inside, 0.0, where) == 0, "a body inside the pocket is not found");
   /* bad arguments */

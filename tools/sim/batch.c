@@ -85,6 +85,7 @@ static void raise_gouge(swarf_sim *s, int i) {
                    tool,
                    e->gouge_depth,
                    {e->gouge_at[0], e->gouge_at[1], e->gouge_at[2]},
+                   0,
                    0};
   swarf_sim_raise(s, &a);
 }

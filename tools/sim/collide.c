@@ -63,9 +63,9 @@ typedef struct {
 static int part_sweep_init(part_sweep *ps, double z0, double z1, double d0, double d1,
                            double lift, const swarf_motion *m, double voxel) {
   swarf_error err;
-  const char *why = NULL;
   if (d0 == d1 && swarf_sim_shift_motion(m, z0 + lift, &ps->motion) == 0) {
-    if (swarf_cutter_init(&ps->body, SWARF_CUTTER_FLAT, d0, 0, z1 - z0, &why) != 0) return -1;
+    if (swarf_cutter_init(&ps->body, SWARF_CUTTER_FLAT, d0, 0, z1 - z0, &err) != SWARF_OK)
+      return -1;
   } else {
     ps->motion = *m;
     swarf_cutter_begin(&ps->body);
@@ -292,7 +292,6 @@ static int fixtures(swarf_sim *s, const swarf_motion *m, const swarf_sim_part *p
 
 int swarf_sim_collide_init(swarf_sim *s) {
   swarf_sim_collide *c = &s->col;
-  char msg[256];
   memset(c, 0, sizeof *c);
   c->last_line[0] = c->last_line[1] = -1;
   for (int f = 0; f < SWARF_SIM_MAX_FIXTURES; f++)
@@ -301,10 +300,10 @@ int swarf_sim_collide_init(swarf_sim *s) {
   if (c->clear == NULL) return -1;
   for (int f = 0; f < s->cfg.nfixtures; f++) {
     const swarf_sim_fixture *fx = &s->cfg.fixtures[f];
-    c->fixture[f] = swarf_stock_new_box(fx->lo, fx->hi, swarf_stock_voxel(s->stock),
-                                        swarf_stock_half_width(s->stock), msg, sizeof msg);
-    if (c->fixture[f] == NULL) {
-      swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "fixture %d: %s", f + 1, msg);
+    swarf_error e;
+    if (swarf_stock_new_box(fx->lo, fx->hi, swarf_stock_voxel(s->stock),
+                            swarf_stock_half_width(s->stock), &c->fixture[f], &e) != SWARF_OK) {
+      swarf_sim_fail(s, e.status, 0, 0, "fixture %d: %s", f + 1, e.message);
       return 1;
     }
   }

@@ -112,7 +112,7 @@ static swarf_status table_line(const table_place *at, char *text, double mm_per_
 static swarf_status merge_entry(swarf_sim_config *cfg, const table_place *at,
                                 const table_entry *e) {
   swarf_sim_tool *t = swarf_sim_tool_slot(cfg, e->number, 0);
-  const char *why = NULL;
+  swarf_error why;
   if (t != NULL) {
     t->length = e->length;
     return SWARF_OK;
@@ -121,9 +121,9 @@ static swarf_status merge_entry(swarf_sim_config *cfg, const table_place *at,
   if (t == NULL) return bad(at, "", "too many tools (at most %d)", SWARF_SIM_MAX_TOOLS);
   t->length = e->length;
   if (e->diameter > 0 &&
-      swarf_cutter_init(&t->cutter, SWARF_CUTTER_FLAT, e->diameter, 0, 0, &why) != 0) {
+      swarf_cutter_init(&t->cutter, SWARF_CUTTER_FLAT, e->diameter, 0, 0, &why) != SWARF_OK) {
     swarf_sim_tool_drop(cfg, e->number);
-    return bad(at, "", "%s", why ? why : "impossible cutter");
+    return bad(at, "", "%s", why.message);
   }
   return SWARF_OK;
 }

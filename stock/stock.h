@@ -93,6 +93,28 @@ SWARF_API swarf_status swarf_stock_overlaps(const swarf_stock *s, const swarf_st
                                             double depth, int *hit, double where[3],
                                             swarf_error *err);
 
+/* Whether the volume {sdf < 0} of `cut` penetrates the material by more than
+ * `depth` mm (>= 0): at some voxel centre p the two signed depths add up to
+ * more, -v - sdf(p) > depth (v: the stock value). This is max over points of
+ * "how deep p lies in the material plus how deep in the body": negative
+ * (minus the gap) for bodies apart, the thickness of the overlap where the
+ * two surfaces are parallel (a holder's face entering a flat face: the same
+ * at every point between them), a lower bound of the depth elsewhere;
+ * deeper than the band, v is -band and the sum a lower bound again. Only
+ * voxel centres inside the material or at most half a voxel outside it are
+ * looked at: outside, a cut stock's values are distances only near faces
+ * (beside an edge cut by max(), they are short by up to 30 %), and a layer
+ * of half a voxel is what an overlap of half a voxel needs to hold a voxel
+ * centre in [-thickness, voxel/2]. `clear` (may be NULL; its bounds are not
+ * used) is a volume cut away but not removed from the grid yet: the
+ * material is then the stock minus it, its depth min(-v, clear sdf).
+ * Read-only; *hit gets 1 or 0, where (may be NULL) the first such voxel
+ * centre found. For the non-cutting parts of a tool (tools/sim/collide.c). */
+SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
+                                             const swarf_stock_cut *clear, size_t nclear,
+                                             double depth, int *hit, double where[3],
+                                             swarf_error *err);
+
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);
 SWARF_API int swarf_stock_half_width(const swarf_stock *s);

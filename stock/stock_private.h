@@ -106,6 +106,11 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts);
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth,
                   openvdb::Vec3d &where);
 
+/// True if the cut (checked) penetrates the material by more than depth (mm):
+/// a voxel centre inside both where the two depths add up to more (remove.cc).
+bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
+                    size_t nclear, double depth, openvdb::Vec3d &where);
+
 /// World position (mm) of the centre of voxel ijk.
 inline openvdb::Vec3d index_to_world(const swarf_stock &s, const openvdb::Coord &ijk) {
   return s.origin + s.voxel * ijk.asVec3d();

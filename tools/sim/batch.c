@@ -85,6 +85,7 @@ static void raise_gouge(swarf_sim *s, int i) {
                    tool,
                    e->gouge_depth,
                    {e->gouge_at[0], e->gouge_at[1], e->gouge_at[2]},
+                   0,
                    0};
   swarf_sim_raise(s, &a);
 }
@@ -153,6 +154,7 @@ static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cu
                      s->tool->number,
                      NAN,
                      {where[0], where[1], where[2]},
+                     0,
                      0};
     swarf_sim_raise(s, &a);
   }
@@ -175,11 +177,14 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
   *m = *mv;
   swarf_sweep_init_voxel(w, &s->tool->cutter, m, s->cfg.voxel);
   swarf_sweep_bounds(w, c->lo, c->hi);
-  if (!boxes_overlap(c->lo, c->hi, s->pad_lo, s->pad_hi)) return 0;
-  if (m->rapid && s->n > 0) /* checked against the stock as it stands: from slot 0 */
+  const int reach = boxes_overlap(c->lo, c->hi, s->pad_lo, s->pad_hi);
+  if (reach && m->rapid && s->n > 0) /* checked against the stock as it stands: from slot 0 */
     return swarf_sim_batch_flush(s) != 0 ? 1 : swarf_sim_batch_queue(s, mv);
   c->sdf = sweep_sdf;
   c->ctx = w;
+  /* shank, holder, fixtures: against the material as the move finds it */
+  if (swarf_sim_collide_move(s, m, w, reach ? c : NULL) != 0) return 1;
+  if (!reach) return 0;
   if (s->cfg.stamp_step > 0) {
     set_stamps(s, &s->stamps[s->n], m);
     c->sdf = stamp_sdf;

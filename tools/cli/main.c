@@ -22,8 +22,6 @@ static const char usage[] =
     "  render FILE.vdb --image FILE.png   picture of a stock grid\n"
     "  envelope --qss A,B,C,D,E,F --axis W --tdot V --half-angle B [--exact]\n"
     "                     characteristic curve of a moving QSS (exact with --exact)\n"
-    "  envelope --qss A,B,C,D,E,F --axis W --tdot V --half-angle B [--exact]\n"
-    "                     characteristic curve of a moving QSS (exact with --exact)\n"
     "  help [COMMAND]     this text, or a command's options\n"
     "\n"
     "`swarf COMMAND --help` explains each command. Units: mm, degrees, seconds.\n";

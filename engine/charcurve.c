@@ -211,9 +211,14 @@ static int branch_piece(builder *b, const piece *p, double s, int dir) {
  * where the branch has a corner; returns the number of pieces. */
 static int split_pieces(const swarf_char_profile *pr, double lo, double hi, int root_lo,
                         int root_hi, piece *out) {
-  double cut[2] = {HALF_PI, HALF_PI + pr->plateau}, at = lo;
-  int n = 0, root = root_lo;
-  for (int k = 0; k < 2 && !pr->is_qss; k++) {
+  double cut[SWARF_CHAR_MAX_PARTS] = {HALF_PI, HALF_PI + pr->plateau}, at = lo;
+  int n = 0, root = root_lo, ncut = pr->is_qss ? 0 : 2;
+  if (pr->npart > 0) {
+    ncut = pr->npart - 1;
+    for (int k = 0; k < ncut; k++)
+      cut[k] = pr->part[k].s1;
+  }
+  for (int k = 0; k < ncut; k++) {
     if (!(cut[k] > at && cut[k] < hi)) continue;
     out[n++] = (piece){at, cut[k], root, 0};
     at = cut[k];
@@ -224,7 +229,7 @@ static int split_pieces(const swarf_char_profile *pr, double lo, double hi, int 
 }
 
 static int component(builder *b, double lo, double hi, int root_lo, int root_hi) {
-  piece p[3];
+  piece p[SWARF_CHAR_MAX_PARTS + 1];
   int np = split_pieces(b->pr, lo, hi, root_lo, root_hi, p);
   for (int i = 0; i < np; i++)
     if (branch_piece(b, &p[i], 1.0, 1) != 0) return -1;
@@ -247,20 +252,19 @@ static int compute_general(builder *b) {
   return 0;
 }
 
-/* One horizontal circle of normals n = (cos, sin, 0) at the ruling height c. */
-static int rim_circle(builder *b, double c) {
-  const swarf_char_profile *pr = b->pr;
-  double rho = pr->is_qss ? fabs(pr->q0) : pr->a + pr->R, cosv, m;
-  cosv = rho > b->tol ? 1.0 - b->tol / rho : -1.0;
+/* One horizontal circle of normals n = (cos, sin, 0): points at radius rho,
+ * height zc. */
+static int rim_circle(builder *b, double rho, double zc) {
+  double cosv, m;
+  cosv = fabs(rho) > b->tol ? 1.0 - b->tol / fabs(rho) : -1.0;
   m = ceil(3.14159265358979323846 / acos(cosv));
   if (m < 8) m = 8;
   for (int i = 0; i < (int)m; i++) {
     double th = 6.28318530717958647692 * i / m;
     double n[3] = {cos(th), sin(th), 0.0}, x[3];
-    double k = pr->is_qss ? pr->q0 : rho;
-    x[0] = k * n[0];
-    x[1] = k * n[1];
-    x[2] = pr->is_qss ? pr->q1 : c;
+    x[0] = rho * n[0];
+    x[1] = rho * n[1];
+    x[2] = zc;
     if (push(b, n, x) != 0) return -1;
   }
   return close_component(b);
@@ -269,25 +273,111 @@ static int rim_circle(builder *b, double c) {
 /* Translation along the axis: the whole side is characteristic. */
 static int compute_axial(builder *b) {
   const swarf_char_profile *pr = b->pr;
-  if (pr->is_qss) return rim_circle(b, 0.0);
-  if (rim_circle(b, pr->R) != 0) return -1;
-  if (pr->L - 2.0 * pr->R > 0.0) return rim_circle(b, pr->L - pr->R);
+  if (pr->is_qss) return rim_circle(b, pr->q0, pr->q1);
+  if (pr->npart > 0) { /* the part at the equator theta = pi/2 */
+    for (int k = 0; k < pr->npart; k++) {
+      const swarf_char_part *q = &pr->part[k];
+      if (q->plateau && fabs(q->th0 - HALF_PI) < 1e-12) {
+        if (rim_circle(b, q->r0, q->z0) != 0) return -1;
+        return rim_circle(b, q->r1, q->z1);
+      }
+      if (!q->plateau && q->th0 <= HALF_PI && q->th1 >= HALF_PI)
+        return rim_circle(b, q->a + q->R, q->c);
+    }
+    return 0;
+  }
+  if (rim_circle(b, pr->a + pr->R, pr->R) != 0) return -1;
+  if (pr->L - 2.0 * pr->R > 0.0) return rim_circle(b, pr->a + pr->R, pr->L - pr->R);
   return 0;
+}
+
+/* Append the curves of profile pr to cc (which the caller has reset). */
+static int compute_into(swarf_char_curve *cc, const swarf_char_profile *pr, const double t[3],
+                        const double U[9], const double v[3], const double omega[3], double tol) {
+  builder b = {cc, pr, v, omega, t, U, tol > 0.0 ? tol : 1e-3 * pr->scale, cc->len};
+  double l2 = pr->scale * pr->scale, lat, all;
+  lat = v[0] * v[0] + v[1] * v[1] + (omega[0] * omega[0] + omega[1] * omega[1]) * l2;
+  all = lat + v[2] * v[2] + omega[2] * omega[2] * l2;
+  if (!(all > 0.0) || lat + v[2] * v[2] <= 1e-24 * all) return 0; /* still, or turning in place */
+  if (lat <= 1e-24 * all) return compute_axial(&b);
+  return compute_general(&b);
 }
 
 static int compute(swarf_char_curve *cc, const swarf_char_profile *pr, const double t[3],
                    const double U[9], const double v[3], const double omega[3], double tol) {
-  builder b = {cc, pr, v, omega, t, U, tol > 0.0 ? tol : 1e-3 * pr->scale, 0};
-  double l2 = pr->scale * pr->scale, lat, all;
   if (cc == NULL || t == NULL || U == NULL || v == NULL || omega == NULL) return -1;
   if (reset(cc) != 0) return -1;
-  lat = v[0] * v[0] + v[1] * v[1] + (omega[0] * omega[0] + omega[1] * omega[1]) * l2;
-  all = lat + v[2] * v[2] + omega[2] * omega[2] * l2;
-  if (!(all > 0.0) || lat + v[2] * v[2] <= 1e-24 * all) return 0; /* still, or turning in place */
-  if (lat <= 1e-24 * all) {
-    if (compute_axial(&b) != 0) return -1;
-  } else if (compute_general(&b) != 0) {
-    return -1;
+  if (compute_into(cc, pr, t, U, v, omega, tol) != 0) return -1;
+  return (int)cc->ncomp;
+}
+
+/* The sharp rims of a non-convex QSS piece (its profile's cusps, where the
+ * outline turns back: zero-angle edges). Their normal cone is the half-plane
+ * of meridian directions d with d . tau >= 0 (tau pointing out of the
+ * spike), which always holds a direction orthogonal to the rim's velocity:
+ * every rim point is characteristic. Each is a closed circle with that
+ * normal at each point (the QSS centred: x as compute_pieces passes it). */
+static int cusp_rims(builder *b, const swarf_profile_piece *pc) {
+  double c2;
+  if (pc->kind != SWARF_PIECE_QSS || pc->q2 == 0.0) return 0;
+  c2 = (pc->q0 + 2.0 * pc->q2) / (3.0 * pc->q2);
+  if (!(c2 > 0.0 && c2 < 1.0)) return 0;
+  for (int side = -1; side <= 1; side += 2) {
+    double sc = side * sqrt(c2), y[2], yn[2], tau[2], tl, m, cosv;
+    double e = sc > 0.0 ? -1e-4 : 1e-4;
+    swarf_profile_qss_point(pc, sc, y);
+    swarf_profile_qss_point(pc, sc + e, yn);
+    tau[0] = y[0] - yn[0], tau[1] = y[1] - yn[1], tl = hypot(tau[0], tau[1]);
+    tau[0] /= tl, tau[1] /= tl;
+    y[1] -= pc->lift; /* the centred QSS */
+    cosv = y[0] > b->tol ? 1.0 - b->tol / y[0] : -1.0;
+    m = ceil(3.14159265358979323846 / acos(cosv));
+    if (m < 8) m = 8;
+    for (int i = 0; i < (int)m; i++) {
+      double ph = 6.28318530717958647692 * i / m, er[2] = {cos(ph), sin(ph)}, x[3], wx[3], nu[3];
+      double nr, nz, nm, n[3];
+      x[0] = y[0] * er[0], x[1] = y[0] * er[1], x[2] = y[1];
+      wx[0] = b->omega[1] * x[2] - b->omega[2] * x[1];
+      wx[1] = b->omega[2] * x[0] - b->omega[0] * x[2];
+      wx[2] = b->omega[0] * x[1] - b->omega[1] * x[0];
+      for (int k = 0; k < 3; k++)
+        nu[k] = b->v[k] + wx[k];
+      nr = -nu[2], nz = nu[0] * er[0] + nu[1] * er[1]; /* orthogonal to the meridian part of nu */
+      nm = hypot(nr, nz);
+      if (nm > 0.0)
+        nr /= nm, nz /= nm;
+      else
+        nr = tau[0], nz = tau[1];
+      if (nr * tau[0] + nz * tau[1] < 0.0) nr = -nr, nz = -nz;
+      n[0] = nr * er[0], n[1] = nr * er[1], n[2] = nz;
+      if (push(b, n, x) != 0) return -1;
+    }
+    if (close_component(b) != 0) return -1;
+  }
+  return 0;
+}
+
+/* A profile cutter: the curves of every piece, one after the other. A QSS
+ * piece lifted by l along the axis is the QSS at the point (0, 0, l): it
+ * moves with v + omega x (0, 0, l), and its points shift up by l. */
+static int compute_pieces(swarf_char_curve *cc, const swarf_cutter *c, const double t[3],
+                          const double U[9], const double v[3], const double omega[3], double tol) {
+  if (reset(cc) != 0) return -1;
+  for (int i = 0; i < c->npieces; i++) {
+    const swarf_profile_piece *pc = &c->piece[i];
+    swarf_char_profile pr;
+    double l = pc->kind == SWARF_PIECE_QSS ? pc->lift : 0.0;
+    double vp[3] = {v[0] + omega[1] * l, v[1] - omega[0] * l, v[2]};
+    double tp[3] = {t[0] + U[2] * l, t[1] + U[5] * l, t[2] + U[8] * l};
+    size_t first = cc->len;
+    swarf_char_profile_piece(&pr, pc);
+    if (compute_into(cc, &pr, tp, U, vp, omega, tol) != 0) return -1;
+    if (!pc->convex) {
+      builder b = {cc, &pr, vp, omega, tp, U, tol > 0.0 ? tol : 1e-3 * pr.scale, cc->len};
+      if (cusp_rims(&b, pc) != 0) return -1;
+    }
+    for (size_t k = first; k < cc->len; k++)
+      cc->pts[k].x[2] += l;
   }
   return (int)cc->ncomp;
 }
@@ -303,6 +393,7 @@ swarf_status swarf_char_curve_compute(swarf_char_curve *cc, const swarf_cutter *
   swarf_char_profile pr;
   if (cc == NULL || c == NULL || t == NULL || U == NULL || v == NULL || omega == NULL)
     return SWARF_ERR_ARG;
+  if (!c->fast) return computed(compute_pieces(cc, c, t, U, v, omega, tol));
   swarf_char_profile_cutter(&pr, c);
   return computed(compute(cc, &pr, t, U, v, omega, tol));
 }

@@ -71,9 +71,8 @@ typedef struct {
   double mal, mbe, mga; /* bounds on |al|, |be|, |ga| without cancellation */
 } form;
 
-static void form_set(form *f, const swarf_char_profile *pr, double c, const double v[3],
-                     const double w[3]) {
-  dd p1 = two_prod(pr->a, w[1]), p2 = two_prod(-pr->a, w[0]);
+static void form_set(form *f, double a, double c, const double v[3], const double w[3]) {
+  dd p1 = two_prod(a, w[1]), p2 = two_prod(-a, w[0]);
   dd q1 = dd_add((dd){v[0], 0.0}, two_prod(c, w[1]));
   dd q2 = dd_add((dd){v[1], 0.0}, two_prod(-c, w[0]));
   double mp = fabs(p1.hi) + fabs(p2.hi), mq = fabs(q1.hi) + fabs(q2.hi);
@@ -99,7 +98,7 @@ static int form_sign(const form *f, double co, double s) {
  * sigma of its theta = 0 point. */
 static void piece_form(const swarf_char_profile *pr, int k, const double v[3], const double w[3],
                        form *f, double *th_lo, double *th_hi, double *shift) {
-  form_set(f, pr, k == 0 ? pr->R : pr->L - pr->R, v, w);
+  form_set(f, pr->a, k == 0 ? pr->R : pr->L - pr->R, v, w);
   *th_lo = k == 0 ? 0.0 : HALF_PI;
   *th_hi = k == 0 ? HALF_PI : PI;
   *shift = k == 0 ? 0.0 : pr->plateau;
@@ -115,14 +114,12 @@ static double line_angle(double co, double s, double lo, double hi) {
   return -1.0;
 }
 
-/* Candidate roots of piece k as sigma values (unsorted); returns the count. */
-static int piece_candidates(const swarf_char_profile *pr, int k, const double v[3],
-                            const double w[3], double *out) {
-  form f;
-  double lo, hi, shift, err, r, dir[2][2];
+/* Candidate roots of a form on theta in [lo, hi] as sigma = theta + shift. */
+static int form_candidates(const form *fp, double lo, double hi, double shift, double *out) {
+  form f = *fp;
+  double err, r, dir[2][2];
   dd D, sq, rr;
   int n = 0;
-  piece_form(pr, k, v, w, &f, &lo, &hi, &shift);
   D = dd_add(dd_mul(f.be, f.be), dd_neg(dd_mul(f.al, f.ga)));
   err = ERR_K * U2 * (f.mbe * f.mbe + f.mal * f.mga);
   if (!(D.hi + D.lo > err)) return 0; /* no real root, or a double one */
@@ -136,6 +133,15 @@ static int piece_candidates(const swarf_char_profile *pr, int k, const double v[
     if (th >= 0.0) out[n++] = th + shift;
   }
   return n;
+}
+
+/* Candidate roots of piece k as sigma values (unsorted); returns the count. */
+static int piece_candidates(const swarf_char_profile *pr, int k, const double v[3],
+                            const double w[3], double *out) {
+  form f;
+  double lo, hi, shift;
+  piece_form(pr, k, v, w, &f, &lo, &hi, &shift);
+  return form_candidates(&f, lo, hi, shift, out);
 }
 
 int swarf_char_cutter_delta_positive(const swarf_char_profile *pr, const double v[3],
@@ -178,6 +184,95 @@ int swarf_char_cutter_delta_roots(const swarf_char_profile *pr, const double v[3
     int cur;
     if (!(br[i] > lo)) continue;
     cur = swarf_char_cutter_delta_positive(pr, v, omega, mid);
+    if (prev >= 0 && cur != prev) {
+      if (count < max) roots[count] = lo;
+      count++;
+    }
+    prev = cur;
+  }
+  return count;
+}
+
+/* ---- General profiles: smooth parts and plateaus (swarf_char_part) ------- */
+
+static int part_at(const swarf_char_profile *pr, double sigma) {
+  int k = 0;
+  while (k + 1 < pr->npart && sigma > pr->part[k].s1)
+    k++;
+  return k;
+}
+
+/* A plateau's Delta as a quadratic in P = -r z + zc sz (linear along it). */
+static double plateau_delta(const swarf_char_part *q, const double v[3], const double w[3],
+                            double tau) {
+  double z = -cos(q->th0), sz = sin(q->th0);
+  double r = q->r0 + tau * (q->r1 - q->r0), zc = q->z0 + tau * (q->z1 - q->z0),
+         P = -r * z + zc * sz;
+  double At = v[0] * sz + P * w[1], Bt = v[1] * sz - P * w[0], C = v[2] * z;
+  return At * At + Bt * Bt - C * C;
+}
+
+static int plateau_candidates(const swarf_char_part *q, const double v[3], const double w[3],
+                              double *out) {
+  double z = -cos(q->th0), sz = sin(q->th0);
+  double P0 = -q->r0 * z + q->z0 * sz, P1 = -q->r1 * z + q->z1 * sz, dP = P1 - P0;
+  double A2 = w[0] * w[0] + w[1] * w[1], B1 = sz * (v[0] * w[1] - v[1] * w[0]);
+  double C0 = sz * sz * (v[0] * v[0] + v[1] * v[1]) - v[2] * v[2] * z * z, disc, sq;
+  int n = 0;
+  if (dP == 0.0) return 0;
+  if (A2 == 0.0) {
+    if (B1 == 0.0) return 0;
+    double P = -C0 / (2.0 * B1), tau = (P - P0) / dP;
+    if (tau > 0.0 && tau < 1.0) out[n++] = q->s0 + tau * (q->s1 - q->s0);
+    return n;
+  }
+  disc = B1 * B1 - A2 * C0;
+  if (!(disc > 0.0)) return 0;
+  sq = sqrt(disc);
+  for (int i = 0; i < 2; i++) {
+    double P = i == 0 ? (-B1 - sq) / A2 : (-B1 + sq) / A2, tau = (P - P0) / dP;
+    if (tau > 0.0 && tau < 1.0) out[n++] = q->s0 + tau * (q->s1 - q->s0);
+  }
+  return n;
+}
+
+int swarf_char_parts_delta_positive(const swarf_char_profile *pr, const double v[3],
+                                    const double omega[3], double sigma) {
+  const swarf_char_part *q = &pr->part[part_at(pr, sigma)];
+  form f;
+  double th;
+  int sg;
+  if (q->plateau) {
+    double tau = q->s1 > q->s0 ? (sigma - q->s0) / (q->s1 - q->s0) : 0.0;
+    return plateau_delta(q, v, omega, tau) >= 0.0;
+  }
+  form_set(&f, q->a, q->c, v, omega);
+  th = q->th0 + (sigma - q->s0);
+  sg = form_sign(&f, cos(th), sin(th));
+  return sg >= 0;
+}
+
+int swarf_char_parts_delta_roots(const swarf_char_profile *pr, const double v[3],
+                                 const double omega[3], double *roots, int max) {
+  double br[4 * SWARF_CHAR_MAX_PARTS + 2];
+  int nb = 0, count = 0, prev = -1;
+  for (int k = 0; k < pr->npart; k++) {
+    const swarf_char_part *q = &pr->part[k];
+    if (q->plateau) {
+      nb += plateau_candidates(q, v, omega, br + nb);
+    } else {
+      form f;
+      form_set(&f, q->a, q->c, v, omega);
+      nb += form_candidates(&f, q->th0, q->th1, q->s0 - q->th0, br + nb);
+    }
+    br[nb++] = q->s1;
+  }
+  sort_small(br, nb);
+  for (int i = 0; i < nb; i++) {
+    double lo = i == 0 ? 0.0 : br[i - 1], mid = 0.5 * (lo + br[i]);
+    int cur;
+    if (!(br[i] > lo)) continue;
+    cur = swarf_char_parts_delta_positive(pr, v, omega, mid);
     if (prev >= 0 && cur != prev) {
       if (count < max) roots[count] = lo;
       count++;

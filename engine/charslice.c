@@ -18,7 +18,12 @@
 static const double half_pi = 1.57079632679489661923;
 
 void swarf_char_profile_cutter(swarf_char_profile *pr, const swarf_cutter *c) {
+  if (!c->fast) { /* a profile cutter: its first piece (the others by piece) */
+    swarf_char_profile_piece(pr, &c->piece[0]);
+    return;
+  }
   pr->is_qss = 0;
+  pr->npart = 0;
   pr->a = swarf_cutter_core(c);
   pr->R = c->corner_radius;
   pr->L = c->length;
@@ -30,6 +35,7 @@ void swarf_char_profile_cutter(swarf_char_profile *pr, const swarf_cutter *c) {
 
 void swarf_char_profile_qss(swarf_char_profile *pr, const swarf_qss *q) {
   pr->is_qss = 1;
+  pr->npart = 0;
   pr->a = pr->R = pr->L = 0.0;
   pr->q2 = q->b - q->a;
   pr->q1 = q->e;
@@ -40,9 +46,95 @@ void swarf_char_profile_qss(swarf_char_profile *pr, const swarf_qss *q) {
   if (!(pr->scale > 0.0)) pr->scale = 1.0;
 }
 
+static int add_part(swarf_char_profile *pr, const swarf_char_part *q) {
+  if (pr->npart == SWARF_CHAR_MAX_PARTS) return -1;
+  pr->part[pr->npart++] = *q;
+  return 0;
+}
+
+/* A vertex (r, z) carrying the normals from th0 to th1 (nothing if none). */
+static void add_vertex(swarf_char_profile *pr, double *sigma, double r, double z, double th0,
+                       double th1) {
+  swarf_char_part q = {0, *sigma, *sigma + (th1 - th0), th0, th1, r, z, 0.0, 0, 0, 0, 0};
+  if (!(th1 > th0 + 1e-12)) return;
+  if (add_part(pr, &q) == 0) *sigma = q.s1;
+}
+
+/* Walk a hull's outline (profile.c: bottom to top, counterclockwise): arcs
+ * are smooth parts, corners vertices, sloped and vertical lines plateaus;
+ * the flat faces are the poles. */
+void swarf_char_profile_piece(swarf_char_profile *pr, const swarf_profile_piece *pc) {
+  double sigma = 0.0, th = 0.0, lr = 0.0, lz = 0.0;
+  if (pc->kind == SWARF_PIECE_QSS) {
+    swarf_qss q = pc->qss;
+    swarf_char_profile_qss(pr, &q);
+    return;
+  }
+  pr->is_qss = 0;
+  pr->npart = 0;
+  pr->a = pr->R = pr->L = 0.0;
+  pr->q2 = pr->q1 = pr->q0 = 0.0;
+  pr->plateau = 0.0;
+  for (int i = 0; i < pc->nel; i++) {
+    const swarf_profile_elem *e = &pc->el[i];
+    if (e->rad > 0.0) {
+      double t0 = atan2(e->z0 - e->cz, e->r0 - e->cr) + half_pi;
+      double t1 = atan2(e->z1 - e->cz, e->r1 - e->cr) + half_pi;
+      swarf_char_part q = {0, 0, 0, t0, t1, e->cr, e->cz, e->rad, 0, 0, 0, 0};
+      add_vertex(pr, &sigma, e->r0, e->z0, th, t0);
+      q.s0 = sigma, q.s1 = sigma + (t1 - t0);
+      if (t1 > t0 && add_part(pr, &q) == 0) sigma = q.s1;
+      th = fmax(th, t1);
+    } else {
+      double dr = e->r1 - e->r0, dz = e->z1 - e->z0, len = sqrt(dr * dr + dz * dz), tl;
+      if (!(len > 0.0)) continue;
+      tl = atan2(-dr, dz) + half_pi;                  /* outward normal (dz, -dr) */
+      if (tl < 1e-12 || tl > 2.0 * half_pi - 1e-12) { /* a flat face: a pole */
+        if (tl > half_pi)
+          add_vertex(pr, &sigma, e->r0, e->z0, th, 2.0 * half_pi), th = 2.0 * half_pi;
+      } else {
+        swarf_char_part q = {1, 0, 0, tl, tl, 0, 0, 0, e->r0, e->z0, e->r1, e->z1};
+        add_vertex(pr, &sigma, e->r0, e->z0, th, tl);
+        q.s0 = sigma, q.s1 = sigma + 1.0;
+        if (add_part(pr, &q) == 0) sigma = q.s1, pr->plateau += 1.0;
+        th = tl;
+      }
+    }
+    lr = e->r1, lz = e->z1;
+  }
+  add_vertex(pr, &sigma, lr, lz, th, 2.0 * half_pi);
+  pr->sigma_end = sigma;
+  pr->scale = fmax(fmax(fabs(pc->zhi), fabs(pc->zlo)), pc->rmax);
+  if (!(pr->scale > 0.0)) pr->scale = 1.0;
+}
+
+/* The parts' geometry at sigma (see slice_geometry). */
+static double parts_geometry(const swarf_char_profile *pr, double sigma, swarf_char_slice *sl) {
+  const swarf_char_part *q;
+  int k = 0;
+  while (k + 1 < pr->npart && sigma > pr->part[k].s1)
+    k++;
+  q = &pr->part[k];
+  if (q->plateau) {
+    double tau = q->s1 > q->s0 ? (sigma - q->s0) / (q->s1 - q->s0) : 0.0;
+    tau = tau < 0.0 ? 0.0 : tau > 1.0 ? 1.0 : tau;
+    sl->z = -cos(q->th0), sl->sz = sin(q->th0);
+    sl->a = q->r0 + tau * (q->r1 - q->r0), sl->R = 0.0;
+    sl->c = q->z0 + tau * (q->z1 - q->z0);
+  } else {
+    double theta = q->th0 + (sigma - q->s0);
+    sl->z = -cos(theta), sl->sz = sin(theta);
+    sl->a = q->a, sl->R = q->R, sl->c = q->c;
+  }
+  if (sl->sz < 0.0) sl->sz = 0.0;
+  return -sl->a * sl->z + sl->c * sl->sz;
+}
+
 /* z, sqrt(1 - z^2), the ruling height c and P = phi'(z) sqrt(1 - z^2). */
 static double slice_geometry(const swarf_char_profile *pr, double sigma, swarf_char_slice *sl) {
   double theta = sigma;
+  if (pr->npart > 0) return parts_geometry(pr, sigma, sl);
+  sl->a = pr->a, sl->R = pr->R;
   sl->c = pr->R;
   if (pr->plateau > 0.0 && sigma > half_pi) {
     if (sigma < half_pi + pr->plateau) {
@@ -81,9 +173,9 @@ static void surface_point(const swarf_char_profile *pr, const swarf_char_slice *
     x[2] = phi * n[2] + dphi * (1.0 - z * n[2]);
     return;
   }
-  x[0] = pr->a * u[0] + pr->R * n[0];
-  x[1] = pr->a * u[1] + pr->R * n[1];
-  x[2] = sl->c + pr->R * n[2];
+  x[0] = sl->a * u[0] + sl->R * n[0];
+  x[1] = sl->a * u[1] + sl->R * n[1];
+  x[2] = sl->c + sl->R * n[2];
 }
 
 int swarf_char_slice_point(const swarf_char_profile *pr, const swarf_char_slice *sl, double s,
@@ -97,7 +189,7 @@ int swarf_char_slice_point(const swarf_char_profile *pr, const swarf_char_slice 
     m = sqrt(u[0] * u[0] + u[1] * u[1]);
     u[0] /= m;
     u[1] /= m;
-  } else if (!(sl->sz == 0.0 && (pr->is_qss || pr->a == 0.0)) || sl->C != 0.0) {
+  } else if (!(sl->sz == 0.0 && (pr->is_qss || sl->a == 0.0)) || sl->C != 0.0) {
     return -1; /* the rim direction is not determined here: caller nudges */
   }
   n[0] = sl->sz * u[0];
@@ -160,12 +252,14 @@ static int qss_delta_roots(const swarf_char_profile *pr, const double v[3], cons
 int swarf_char_delta_roots(const swarf_char_profile *pr, const double v[3], const double omega[3],
                            double *roots, int max) {
   if (pr->is_qss) return qss_delta_roots(pr, v, omega, roots, max);
+  if (pr->npart > 0) return swarf_char_parts_delta_roots(pr, v, omega, roots, max);
   return swarf_char_cutter_delta_roots(pr, v, omega, roots, max);
 }
 
 int swarf_char_delta_positive(const swarf_char_profile *pr, const double v[3],
                               const double omega[3], double sigma) {
   swarf_char_slice sl;
+  if (pr->npart > 0) return swarf_char_parts_delta_positive(pr, v, omega, sigma);
   if (!pr->is_qss) return swarf_char_cutter_delta_positive(pr, v, omega, sigma);
   swarf_char_slice_eval(pr, v, omega, sigma, &sl);
   return sl.delta > 0.0;

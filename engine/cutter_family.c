@@ -168,9 +168,9 @@ static swarf_status lollipop(swarf_cutter *c, const swarf_cutter_spec *s, swarf_
   const double ball[1][3] = {{0, 0.5 * d, 0.5 * d}};
   swarf_status st;
   if ((st = need_pos(d, "D", "sphere diameter", err)) != SWARF_OK) return st;
-  if ((st = need_pos(n, "N", "neck diameter", err)) != SWARF_OK) return st;
+  if ((st = need_pos(n, "K", "neck diameter", err)) != SWARF_OK) return st;
   if (!(n < d))
-    return bad(err, "N", "the neck must be thinner than the sphere D = %g (got %g)", d, n);
+    return bad(err, "K", "the neck must be thinner than the sphere D = %g (got %g)", d, n);
   if ((st = length_or(&L, 4.0 * d, d, "above the sphere", err)) != SWARF_OK) return st;
   swarf_cutter_begin(c);
   if ((st = swarf_cutter_add_hull(c, ball, 1, err)) != SWARF_OK) return st;
@@ -193,7 +193,7 @@ static swarf_status dovetail(swarf_cutter *c, const swarf_cutter_spec *s, swarf_
                0.5 * d * tan(A * DEG));
   if (!given(n)) n = top;
   if (!(n > 0.0 && n <= top))
-    return bad(err, "N", "the neck diameter must be in (0, %g] (the flank's top; got %g)", top, n);
+    return bad(err, "K", "the neck diameter must be in (0, %g] (the flank's top; got %g)", top, n);
   if ((st = length_or(&L, H + 2.0 * d, H, "above the flanks", err)) != SWARF_OK) return st;
   swarf_cutter_begin(c);
   if ((st = swarf_cutter_add_frustum(c, 0.0, 0.5 * d, H, 0.5 * top, err)) != SWARF_OK) return st;
@@ -207,9 +207,9 @@ static swarf_status tslot(swarf_cutter *c, const swarf_cutter_spec *s, swarf_err
   swarf_status st;
   if ((st = need_pos(d, "D", "diameter", err)) != SWARF_OK) return st;
   if ((st = need_pos(H, "H", "disk thickness", err)) != SWARF_OK) return st;
-  if ((st = need_pos(n, "N", "neck diameter", err)) != SWARF_OK) return st;
+  if ((st = need_pos(n, "K", "neck diameter", err)) != SWARF_OK) return st;
   if (!(n < d))
-    return bad(err, "N", "the neck must be thinner than the disk D = %g (got %g)", d, n);
+    return bad(err, "K", "the neck must be thinner than the disk D = %g (got %g)", d, n);
   if ((st = length_or(&L, H + 2.0 * d, H, "above the disk", err)) != SWARF_OK) return st;
   swarf_cutter_begin(c);
   if ((st = swarf_cutter_add_frustum(c, 0.0, 0.5 * d, H, 0.5 * d, err)) != SWARF_OK) return st;

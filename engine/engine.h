@@ -156,7 +156,7 @@ SWARF_API swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape sha
  *            line at alpha from the horizontal through the tip, side at beta
  *            from the axis, up to h; requires f cos(alpha) - e sin(alpha) = r
  *            and d = 2 (e + r / cos(beta)) (to 1e-3 mm + 1e-3 d)
- *   LOLLIPOP d (sphere), neck (diameter < d), length (default 4 d)
+ *   LOLLIPOP d (sphere), neck (K: diameter < d), length (default 4 d)
  *   DOVETAIL d (bottom diameter), angle (flank to base, < 90), h (flank
  *            height), neck (default the flank's top diameter), length
  *            (default h + 2 d)
@@ -165,7 +165,7 @@ SWARF_API swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape sha
  *            that its lowest point is at z = 0
  *   FLAT, BALL, BULL: d, r, length as swarf_cutter_init.
  * On bad numbers returns SWARF_ERR_TOOL and err->message names the
- * parameter (its letter in the tool spec: D, A, R, L, T, E, F, B, H, N) and
+ * parameter (its letter in the tool spec: D, A, R, L, T, E, F, B, H, K) and
  * why; err->word holds the letter. */
 typedef struct {
   swarf_cutter_shape shape;

@@ -149,8 +149,23 @@ double swarf_cutter_sdf_grad(const swarf_cutter *c, const double p[3], double g[
  * theta = polar angle from -z, z = -cos(theta), and for a cutter with a side
  * ruling an extra unit interval at theta = pi/2 over which the height c of
  * the ruling point runs from R to length - R (phi' sweeps its jump there). */
+/* A general hull profile (npart > 0): smooth parts, where the point is the
+ * circle (a, c) of radius R (a vertex when R = 0) at the normal's polar
+ * angle theta in [th0, th1] (sigma = s0 + theta - th0), and plateaus: a line
+ * of the outline with one normal (th0 = th1), along which the point runs
+ * from (r0, z0) to (r1, z1) while sigma runs over [s0, s1] (length 1). */
+#define SWARF_CHAR_MAX_PARTS 28
+typedef struct {
+  int plateau;
+  double s0, s1, th0, th1;
+  double a, c, R;
+  double r0, z0, r1, z1;
+} swarf_char_part;
+
 typedef struct {
   int is_qss;          /* 1: phi(z) = q2 z^2 + q1 z + q0; 0: a cutter */
+  int npart;           /* > 0: a general hull, the parts below (a, R, L unused) */
+  swarf_char_part part[SWARF_CHAR_MAX_PARTS];
   double a, R, L;      /* cutter: core radius, corner radius, length */
   double q2, q1, q0;   /* QSS of revolution */
   double plateau;      /* sigma length of the ruling: 1, or 0 when none */
@@ -164,11 +179,15 @@ typedef struct {
 typedef struct {
   double z, sz;  /* n_z and sqrt(1 - n_z^2) */
   double c;      /* cutter: height of the core point (R, ruling, L - R) */
+  double a, R;   /* cutter: the core radius and the corner radius at this slice */
   double At, Bt, C, delta;
 } swarf_char_slice;
 
 void swarf_char_profile_cutter(swarf_char_profile *pr, const swarf_cutter *c);
 void swarf_char_profile_qss(swarf_char_profile *pr, const swarf_qss *q);
+/* The profile of one piece of a profile cutter: a hull's parts, or a QSS
+ * piece's QSS (its lift is the caller's: a shift along the axis). */
+void swarf_char_profile_piece(swarf_char_profile *pr, const swarf_profile_piece *pc);
 void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3],
                            const double omega[3], double sigma, swarf_char_slice *sl);
 
@@ -198,6 +217,10 @@ int swarf_char_cutter_delta_roots(const swarf_char_profile *pr, const double v[3
                                   const double omega[3], double *roots, int max);
 int swarf_char_cutter_delta_positive(const swarf_char_profile *pr, const double v[3],
                                      const double omega[3], double sigma);
+int swarf_char_parts_delta_roots(const swarf_char_profile *pr, const double v[3],
+                                 const double omega[3], double *roots, int max);
+int swarf_char_parts_delta_positive(const swarf_char_profile *pr, const double v[3],
+                                    const double omega[3], double sigma);
 
 /* Real roots in (lo, hi) where the polynomial c[0] + c[1] x + ... + c[deg] x^deg
  * changes sign (deg <= 8), ascending, to adjacent doubles. Returns the count

@@ -17,7 +17,7 @@ namespace swarf {
 namespace {
 
 [[noreturn]] void fail(const std::string &what, const std::string &file, int err) {
-  throw Error(SWARF_STOCK_ERR_IO, what + " " + file + ": " + std::strerror(err));
+  throw Error(SWARF_ERR_IO, what + " " + file + ": " + std::strerror(err));
 }
 
 /// Flush the file's data to the device, so that the rename publishes a whole file.

@@ -13,7 +13,7 @@ namespace swarf {
 /// On any failure (creating, writing, syncing or renaming the temporary file,
 /// or an exception from body) the temporary file is removed and any existing
 /// file at `path` is left untouched; the failure is thrown as
-/// Error(SWARF_STOCK_ERR_IO), an exception from body is rethrown as it is.
+/// Error(SWARF_ERR_IO), an exception from body is rethrown as it is.
 void write_atomic(const char *path, const std::function<void(std::ostream &)> &body);
 
 }  // namespace swarf

@@ -184,11 +184,11 @@ void check_design(const swarf_stock &s, const swarf_stock &design) {
   double a[3], b[3], c[3], d[3];
   swarf_stock_bounds(&s, a, b);
   swarf_stock_bounds(&design, c, d);
-  if (!std::isfinite(a[0])) throw Error(SWARF_STOCK_ERR_ARG, "the stock holds no material");
-  if (!std::isfinite(c[0])) throw Error(SWARF_STOCK_ERR_ARG, "the design holds no material");
+  if (!std::isfinite(a[0])) throw Error(SWARF_ERR_ARG, "the stock holds no material");
+  if (!std::isfinite(c[0])) throw Error(SWARF_ERR_ARG, "the design holds no material");
   for (int k = 0; k < 3; k++)
     if (b[k] < c[k] || d[k] < a[k])
-      throw Error(SWARF_STOCK_ERR_ARG, "the design (" + box_text(c, d) + ") does not overlap the stock (" +
+      throw Error(SWARF_ERR_ARG, "the design (" + box_text(c, d) + ") does not overlap the stock (" +
                                            box_text(a, b) + "): is it in the same frame and place?");
 }
 
@@ -219,8 +219,8 @@ void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock 
 
 extern "C" swarf_status swarf_stock_check_design(const swarf_stock *s, const swarf_stock *design,
                                                  swarf_error *err) {
-  return swarf::guard_status(err, nullptr, [&] {
-    if (s == nullptr || design == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock or design is NULL");
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr || design == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock or design is NULL");
     swarf::check_design(*s, *design);
   });
 }
@@ -228,10 +228,10 @@ extern "C" swarf_status swarf_stock_check_design(const swarf_stock *s, const swa
 extern "C" swarf_status swarf_stock_compare(const swarf_stock *s, const swarf_stock *design,
                                             const swarf_stock *initial, double tolerance,
                                             swarf_stock_deviation *out, swarf_error *err) {
-  return swarf::guard_status(err, nullptr, [&] {
+  return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || design == nullptr || out == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, design or out is NULL");
-    if (!std::isfinite(tolerance)) throw swarf::Error(SWARF_STOCK_ERR_ARG, "tolerance must be finite");
+      throw swarf::Error(SWARF_ERR_ARG, "stock, design or out is NULL");
+    if (!std::isfinite(tolerance)) throw swarf::Error(SWARF_ERR_ARG, "tolerance must be finite");
     *out = swarf_stock_deviation{};
     swarf::compare(*s, *design, initial, tolerance > 0.0 ? tolerance : 0.5 * s->voxel, *out);
   });

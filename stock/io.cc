@@ -65,10 +65,11 @@ std::string pick_grid(openvdb::io::File &file) {
 /// (corrupt or truncated data) becomes Error(FORMAT).
 openvdb::FloatGrid::Ptr read_open_file(openvdb::io::File &file, const std::string &path) {
   const std::string name = pick_grid(file);
-  if (name.empty()) throw Error(SWARF_STOCK_ERR_FORMAT, path + ": no float level-set grid");
+  if (name.empty()) throw Error(SWARF_ERR_FORMAT, path + ": no float level-set grid");
   openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(name));
   file.close();
-  if (!grid || !is_float_level_set(*grid)) throw Error(SWARF_STOCK_ERR_FORMAT, path + ": no float level-set grid");
+  if (!grid || !is_float_level_set(*grid))
+    throw Error(SWARF_ERR_FORMAT, path + ": no float level-set grid");
   return grid;
 }
 
@@ -79,7 +80,7 @@ openvdb::FloatGrid::Ptr read_grid_here(const std::string &path) {
   } catch (const std::bad_alloc &) {
     throw;
   } catch (const std::exception &e) {
-    throw Error(SWARF_STOCK_ERR_FORMAT, path + ": not a readable VDB file (" + e.what() + ")");
+    throw Error(SWARF_ERR_FORMAT, path + ": not a readable VDB file (" + e.what() + ")");
   }
   try {
     return read_open_file(file, path);
@@ -88,7 +89,7 @@ openvdb::FloatGrid::Ptr read_grid_here(const std::string &path) {
   } catch (const std::bad_alloc &) {
     throw;
   } catch (const std::exception &e) {
-    throw Error(SWARF_STOCK_ERR_FORMAT, path + ": corrupt or truncated VDB file (" + e.what() + ")");
+    throw Error(SWARF_ERR_FORMAT, path + ": corrupt or truncated VDB file (" + e.what() + ")");
   }
 }
 
@@ -128,13 +129,13 @@ bool isolate_reads() {
 
 }  // namespace
 
-/// Throw Error(kErrOpen) unless `path` names an existing regular file.
+/// Throw Error(SWARF_ERR_OPEN) unless `path` names an existing regular file.
 void check_readable(const char *path) {
   struct stat st;
   if (::stat(path, &st) != 0)
-    throw Error(kErrOpen, std::string("cannot open ") + path + ": " + std::strerror(errno));
+    throw Error(SWARF_ERR_OPEN, std::string("cannot open ") + path + ": " + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
-    throw Error(kErrOpen, std::string("cannot read ") + path + ": not a regular file");
+    throw Error(SWARF_ERR_OPEN, std::string("cannot read ") + path + ": not a regular file");
 }
 
 /// Read the stock grid of `path` in a child process (see the file comment),
@@ -152,7 +153,7 @@ openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   openvdb::GridPtrVecPtr grids = openvdb::io::Stream(is).getGrids();
   openvdb::FloatGrid::Ptr grid;
   if (grids && grids->size() == 1) grid = openvdb::gridPtrCast<openvdb::FloatGrid>(grids->front());
-  if (!grid) throw Error(SWARF_STOCK_ERR_INTERNAL, path + ": the reader's copy did not arrive whole");
+  if (!grid) throw Error(SWARF_ERR_INTERNAL, path + ": the reader's copy did not arrive whole");
   return grid;
 }
 
@@ -235,36 +236,36 @@ size_t write_mesh_file(const swarf_stock &s, const char *path, const swarf_stock
 
 using swarf::Error;
 
-extern "C" swarf_stock *swarf_stock_read(const char *path, char *msg, size_t msglen) {
-  swarf_stock *s = nullptr;
-  swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_read(const char *path, swarf_stock **out, swarf_error *err) {
+  if (out == nullptr) return swarf::set_error(err, SWARF_ERR_ARG, path, "out is NULL");
+  *out = nullptr;
+  return swarf::guard(err, path, [&] {
     swarf::check_path(path);
     swarf::check_readable(path);
     swarf::init_openvdb();
-    s = swarf::wrap_grid(swarf::read_grid(path));
+    *out = swarf::wrap_grid(swarf::read_grid(path));
   });
-  return s;
 }
 
 extern "C" void swarf_stock_set_read_isolation(int on) { swarf::read_isolation.store(on ? 1 : 0); }
 
 extern "C" int swarf_stock_read_isolation(void) { return swarf::isolate_reads() ? 1 : 0; }
 
-extern "C" int swarf_stock_write_vdb(const swarf_stock *s, const char *path, char *msg,
-                                     size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+extern "C" swarf_status swarf_stock_write_vdb(const swarf_stock *s, const char *path,
+                                              swarf_error *err) {
+  return swarf::guard(err, path, [&] {
+    if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
     swarf::check_path(path);
     const openvdb::GridCPtrVec grids{swarf::grid_for_output(*s)};
     swarf::write_atomic(path, [&](std::ostream &os) { swarf::StreamArchive().write_to(os, grids); });
   });
 }
 
-extern "C" int swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri,
-                                     char *msg, size_t msglen) {
+extern "C" swarf_status swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri,
+                                              swarf_error *err) {
   if (ntri) *ntri = 0;
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+  return swarf::guard(err, path, [&] {
+    if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
     const size_t n = swarf::write_mesh_file(*s, path, swarf_stock_output{}, swarf::MeshFormat::kStl);
     if (ntri) *ntri = n;
   });
@@ -274,8 +275,8 @@ extern "C" swarf_status swarf_stock_write_mesh(const swarf_stock *s, const char 
                                                const swarf_stock_output *opt, size_t *ntri,
                                                swarf_error *err) {
   if (ntri) *ntri = 0;
-  return swarf::guard_status(err, nullptr, [&] {
-    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
     const size_t n = swarf::write_mesh_file(*s, path, opt ? *opt : swarf_stock_output{}, swarf::mesh_format(path));
     if (ntri) *ntri = n;
   });

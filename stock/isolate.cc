@@ -67,11 +67,11 @@ std::string error_reply(int status, const std::string &message) {
   } catch (const Error &e) {
     reply = error_reply(e.status, e.what());
   } catch (const std::bad_alloc &) {
-    reply = error_reply(SWARF_STOCK_ERR_FORMAT, "reading it needs more memory than allowed");
+    reply = error_reply(SWARF_ERR_FORMAT, "reading it needs more memory than allowed");
   } catch (const std::exception &e) {
-    reply = error_reply(SWARF_STOCK_ERR_FORMAT, e.what());
+    reply = error_reply(SWARF_ERR_FORMAT, e.what());
   } catch (...) {
-    reply = error_reply(SWARF_STOCK_ERR_FORMAT, "unknown failure");
+    reply = error_reply(SWARF_ERR_FORMAT, "unknown failure");
   }
   _exit(write_all(fd, reply.data(), reply.size()) ? 0 : 1);
 }
@@ -91,12 +91,13 @@ std::string child_failure(int wstatus) {
 void run_isolated(const std::string &what, const IsolateLimits &limits,
                   const std::function<std::string()> &body, std::string &out) {
   int fds[2];
-  if (::pipe(fds) != 0) throw Error(SWARF_STOCK_ERR_IO, what + ": cannot create a pipe: " + std::strerror(errno));
+  if (::pipe(fds) != 0)
+    throw Error(SWARF_ERR_IO, what + ": cannot create a pipe: " + std::strerror(errno));
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int err = errno;
     ::close(fds[0]), ::close(fds[1]);
-    throw Error(SWARF_STOCK_ERR_IO, what + ": cannot fork: " + std::strerror(err));
+    throw Error(SWARF_ERR_IO, what + ": cannot fork: " + std::strerror(err));
   }
   if (pid == 0) {
     ::close(fds[0]);
@@ -109,14 +110,17 @@ void run_isolated(const std::string &what, const IsolateLimits &limits,
   while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
   }
   const bool exited_ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0;
-  if (!exited_ok || reply.empty()) throw Error(SWARF_STOCK_ERR_FORMAT, what + ": " + child_failure(wstatus));
+  if (!exited_ok || reply.empty())
+    throw Error(SWARF_ERR_FORMAT, what + ": " + child_failure(wstatus));
   if (reply[0] == 'D') {
     out.assign(reply, 1, std::string::npos);
     return;
   }
-  int status = SWARF_STOCK_ERR_FORMAT;
+  int status = SWARF_ERR_FORMAT;
   if (reply.size() >= 1 + sizeof status) std::memcpy(&status, reply.data() + 1, sizeof status);
-  throw Error(status, reply.size() > 1 + sizeof status ? reply.substr(1 + sizeof status) : what + ": failed");
+  throw Error(static_cast<swarf_status>(status), reply.size() > 1 + sizeof status
+                                                     ? reply.substr(1 + sizeof status)
+                                                     : what + ": failed");
 }
 
 }  // namespace swarf

@@ -49,8 +49,8 @@ constexpr double kMaxIndex = 536870912.0;  ///< 2^29 voxels from the origin
 constexpr double kMaxBandVoxels = 4e9;
 
 void check_grid_args(double voxel, int half_width) {
-  if (!std::isfinite(voxel) || !(voxel > 0.0)) throw Error(SWARF_STOCK_ERR_ARG, "voxel must be finite and > 0");
-  if (half_width < 1 || half_width > 64) throw Error(SWARF_STOCK_ERR_ARG, "half_width must be 1 to 64 voxels");
+  if (!std::isfinite(voxel) || !(voxel > 0.0)) throw Error(SWARF_ERR_ARG, "voxel must be finite and > 0");
+  if (half_width < 1 || half_width > 64) throw Error(SWARF_ERR_ARG, "half_width must be 1 to 64 voxels");
 }
 
 /// Bring a level-set grid to swarf's band (see the file comment), background bg.
@@ -100,7 +100,7 @@ void check_mesh_size(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tr
   for (const Vec3s &p : pts)
     for (int k = 0; k < 3; k++)
       if (!(std::fabs(double(p[k])) / voxel < kMaxIndex))
-        throw Error(kErrLimit, "the mesh reaches too far from the origin for this voxel size");
+        throw Error(SWARF_ERR_LIMIT, "the mesh reaches too far from the origin for this voxel size");
   double area = 0.0;
   auto tri_area = [&](unsigned a, unsigned b, unsigned c) {
     const Vec3d e1 = Vec3d(pts[b]) - Vec3d(pts[a]), e2 = Vec3d(pts[c]) - Vec3d(pts[a]);
@@ -109,7 +109,7 @@ void check_mesh_size(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tr
   for (const Vec3I &t : tris) tri_area(t[0], t[1], t[2]);
   for (const Vec4I &q : quads) tri_area(q[0], q[1], q[2]), tri_area(q[0], q[2], q[3]);
   if (area / (voxel * voxel) * (2.0 * half_width + 1.0) > kMaxBandVoxels)
-    throw Error(kErrLimit, "the mesh's surface is too large for this voxel size (band over 4e9 voxels)");
+    throw Error(SWARF_ERR_LIMIT, "the mesh's surface is too large for this voxel size (band over 4e9 voxels)");
 }
 
 /// The mesh in index space, for exact distances.
@@ -212,7 +212,7 @@ swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> 
   set_stock_meta(*grid);
   normalize_band(*grid, band_background(half_width, voxel));
   if (!has_material(*grid))
-    throw Error(SWARF_STOCK_ERR_FORMAT, "the mesh holds no voxel centre at this voxel size (thinner than a voxel)");
+    throw Error(SWARF_ERR_FORMAT, "the mesh holds no voxel centre at this voxel size (thinner than a voxel)");
   return wrap_grid(grid);
 }
 
@@ -275,7 +275,7 @@ openvdb::CoordBBox placed_box(const swarf_stock &s, const double rot[9], double 
   int a[3], b[3];
   for (int k = 0; k < 3; k++) {
     if (!(std::fabs(lo[k]) < kMaxIndex && std::fabs(hi[k]) < kMaxIndex))
-      throw Error(SWARF_STOCK_ERR_ARG, "the placed stock reaches beyond 2^29 voxels from its origin");
+      throw Error(SWARF_ERR_ARG, "the placed stock reaches beyond 2^29 voxels from its origin");
     a[k] = (int(std::floor(lo[k])) - 2) & ~7;
     b[k] = int(std::ceil(hi[k])) + 2;
   }
@@ -293,7 +293,7 @@ swarf_stock *resample(const swarf_stock &s, const Rigid &m, double voxel, int ha
   for (int k = 0; k < 9; k++) identity = identity && m.rot[k] == (k % 4 == 0 ? 1.0 : 0.0);
   for (int k = 0; k < 3; k++) identity = identity && m.t[k] == 0.0;
   if (identity) return wrap_grid(s.grid->deepCopy());  // a copy, bit for bit
-  if (!(scale > 1e-3 && scale < 1e3)) throw Error(SWARF_STOCK_ERR_ARG, "the new voxel is too far from the old one");
+  if (!(scale > 1e-3 && scale < 1e3)) throw Error(SWARF_ERR_ARG, "the new voxel is too far from the old one");
   Resampler rs{s, {}, scale == 1.0, bg};
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
@@ -349,13 +349,13 @@ std::unique_ptr<swarf_stock> read_vdb(const char *path, const swarf_stock_placem
                                       int half_width) {
   check_path(path);
   check_readable(path);
-  if (!(voxel >= 0.0) || !std::isfinite(voxel)) throw Error(SWARF_STOCK_ERR_ARG, "voxel must be 0 (the file's) or > 0");
+  if (!(voxel >= 0.0) || !std::isfinite(voxel)) throw Error(SWARF_ERR_ARG, "voxel must be 0 (the file's) or > 0");
   init_openvdb();
   openvdb::FloatGrid::Ptr grid = read_grid(path);
   std::unique_ptr<swarf_stock> s(wrap_grid(grid));  // checks the transform and the background
   normalize_band(*grid, s->background);
   s.reset(wrap_grid(grid));
-  if (!has_material(*grid)) throw Error(SWARF_STOCK_ERR_FORMAT, std::string(path) + ": the grid holds no material");
+  if (!has_material(*grid)) throw Error(SWARF_ERR_FORMAT, std::string(path) + ": the grid holds no material");
   const bool revoxel = voxel > 0.0 && std::fabs(voxel - s->voxel) > 1e-9 * voxel;
   if (revoxel || (p && !placement_is_identity(*p))) {
     const int hw = half_width > 0 ? half_width : std::max(3, s->half_width);
@@ -402,8 +402,8 @@ extern "C" swarf_status swarf_stock_read_stl(const char *path, const swarf_stock
                                              double voxel, int half_width, swarf_stock **out,
                                              swarf_error *err) {
   if (out) *out = nullptr;
-  return swarf::guard_status(err, path, [&] {
-    if (out == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "out is NULL");
+  return swarf::guard(err, path, [&] {
+    if (out == nullptr) throw Error(SWARF_ERR_ARG, "out is NULL");
     *out = swarf::read_stl(path, place, voxel, half_width);
   });
 }
@@ -412,8 +412,8 @@ extern "C" swarf_status swarf_stock_read_vdb(const char *path, const swarf_stock
                                              double voxel, int half_width, swarf_stock **out,
                                              swarf_error *err) {
   if (out) *out = nullptr;
-  return swarf::guard_status(err, path, [&] {
-    if (out == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "out is NULL");
+  return swarf::guard(err, path, [&] {
+    if (out == nullptr) throw Error(SWARF_ERR_ARG, "out is NULL");
     *out = swarf::read_vdb(path, place, voxel, half_width).release();
   });
 }
@@ -421,8 +421,8 @@ extern "C" swarf_status swarf_stock_read_vdb(const char *path, const swarf_stock
 extern "C" swarf_status swarf_stock_place(const swarf_stock *s, const swarf_stock_placement *p,
                                           swarf_stock **out, swarf_error *err) {
   if (out) *out = nullptr;
-  return swarf::guard_status(err, nullptr, [&] {
-    if (s == nullptr || p == nullptr || out == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock, placement or out is NULL");
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr || p == nullptr || out == nullptr) throw Error(SWARF_ERR_ARG, "stock, placement or out is NULL");
     *out = swarf::resample(*s, swarf::placement_map(*p), s->voxel, s->half_width);
   });
 }
@@ -430,8 +430,8 @@ extern "C" swarf_status swarf_stock_place(const swarf_stock *s, const swarf_stoc
 extern "C" swarf_status swarf_stock_resample(const swarf_stock *s, double voxel, int half_width,
                                              swarf_stock **out, swarf_error *err) {
   if (out) *out = nullptr;
-  return swarf::guard_status(err, nullptr, [&] {
-    if (s == nullptr || out == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock or out is NULL");
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr || out == nullptr) throw Error(SWARF_ERR_ARG, "stock or out is NULL");
     *out = swarf::resample(*s, swarf::placement_map(swarf_stock_placement{}), voxel, half_width);
   });
 }
@@ -439,8 +439,8 @@ extern "C" swarf_status swarf_stock_resample(const swarf_stock *s, double voxel,
 extern "C" swarf_status swarf_stock_read_design(const char *path, double voxel, swarf_stock **out,
                                                 swarf_error *err) {
   if (out) *out = nullptr;
-  return swarf::guard_status(err, path, [&] {
-    if (out == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "out is NULL");
+  return swarf::guard(err, path, [&] {
+    if (out == nullptr) throw Error(SWARF_ERR_ARG, "out is NULL");
     swarf::check_path(path);
     const std::string ext = swarf::lower_extension(path);
     if (ext == "stl") {
@@ -448,7 +448,7 @@ extern "C" swarf_status swarf_stock_read_design(const char *path, double voxel, 
     } else if (ext == "vdb") {
       *out = swarf::read_vdb(path, nullptr, voxel, 0).release();
     } else {
-      throw Error(SWARF_STOCK_ERR_ARG, std::string(path) + ": a design is a .stl or a .vdb file");
+      throw Error(SWARF_ERR_ARG, std::string(path) + ": a design is a .stl or a .vdb file");
     }
   });
 }

@@ -21,7 +21,7 @@
 namespace swarf {
 namespace {
 
-[[noreturn]] void bad(const std::string &what) { throw Error(SWARF_STOCK_ERR_FORMAT, what); }
+[[noreturn]] void bad(const std::string &what) { throw Error(SWARF_ERR_FORMAT, what); }
 
 uint32_t get_u32_le(const unsigned char *p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
@@ -266,14 +266,14 @@ void read_stl_file(const char *path, TriMesh &out) {
   check_path(path);
   struct stat st;
   if (::stat(path, &st) != 0)
-    throw Error(kErrOpen, std::string("cannot open ") + path + ": " + std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) throw Error(kErrOpen, std::string("cannot read ") + path + ": not a regular file");
+    throw Error(SWARF_ERR_OPEN, std::string("cannot open ") + path + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw Error(SWARF_ERR_OPEN, std::string("cannot read ") + path + ": not a regular file");
   if (uint64_t(st.st_size) > 84 + 50 * uint64_t(kMaxStlTriangles) * 8)
-    throw Error(kErrLimit, std::string(path) + ": file too large for an STL stock");
+    throw Error(SWARF_ERR_LIMIT, std::string(path) + ": file too large for an STL stock");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(kErrOpen, std::string("cannot open ") + path + ": " + std::strerror(errno));
+  if (!in) throw Error(SWARF_ERR_OPEN, std::string("cannot open ") + path + ": " + std::strerror(errno));
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error(kErrOpen, std::string("cannot read ") + path);
+  if (in.bad()) throw Error(SWARF_ERR_OPEN, std::string("cannot read ") + path);
   parse_stl(bytes.data(), bytes.size(), path, out);
   check_solid(out, path);
 }
@@ -287,7 +287,7 @@ MeshFormat mesh_format(const char *path) {
   if (ext == "stl") return MeshFormat::kStl;
   if (ext == "obj") return MeshFormat::kObj;
   if (ext == "ply") return MeshFormat::kPly;
-  throw Error(SWARF_STOCK_ERR_ARG, std::string(path) + ": unknown mesh format \"." + ext +
+  throw Error(SWARF_ERR_ARG, std::string(path) + ": unknown mesh format \"." + ext +
                                        "\": name the file .stl (binary STL), .obj or .ply");
 }
 
@@ -311,7 +311,7 @@ void drain(std::ostream &os, std::string &b, bool last) {
 }
 
 void write_stl(std::ostream &os, const MeshView &m) {
-  if (m.ntriangles > UINT32_MAX) throw Error(SWARF_STOCK_ERR_ARG, "mesh has too many triangles for STL");
+  if (m.ntriangles > UINT32_MAX) throw Error(SWARF_ERR_ARG, "mesh has too many triangles for STL");
   std::string b(80, '\0');
   std::snprintf(&b[0], 80, "swarf stock: zero isosurface, mm");
   put_u32(b, uint32_t(m.ntriangles));

@@ -6,7 +6,7 @@
 ///
 /// Units are the file's (mm for swarf). Reading welds vertices with equal
 /// coordinates (bit for bit, -0 = +0), drops triangles with two equal corners,
-/// and refuses, with Error(SWARF_STOCK_ERR_FORMAT) naming the place: no
+/// and refuses, with Error(SWARF_ERR_FORMAT) naming the place: no
 /// triangles, a non-finite coordinate, a boundary edge (an open mesh), an edge
 /// of more than two triangles (non-manifold), two triangles running along an
 /// edge the same way (inconsistent orientation), no enclosed volume. A mesh
@@ -45,7 +45,7 @@ void parse_stl(const char *data, size_t len, const std::string &name, TriMesh &o
 void check_solid(TriMesh &m, const std::string &name);
 
 /// Read, parse and check an STL file. A file that cannot be opened is
-/// Error(kErrOpen).
+/// Error(SWARF_ERR_OPEN).
 void read_stl_file(const char *path, TriMesh &out);
 
 /// What a mesh writer needs; rgb (3 bytes a vertex) and deviation (1 float a
@@ -62,7 +62,7 @@ struct MeshView {
 enum class MeshFormat { kStl, kObj, kPly };
 
 /// The format for a file name's extension (case-insensitive .stl, .obj,
-/// .ply); throws Error(SWARF_STOCK_ERR_ARG) for any other.
+/// .ply); throws Error(SWARF_ERR_ARG) for any other.
 MeshFormat mesh_format(const char *path);
 
 /// Write the mesh to the stream in the format (STL ignores colours).

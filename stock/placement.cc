@@ -45,7 +45,7 @@ void Rigid::invert(const double y[3], double x[3]) const {
 Rigid placement_map(const swarf_stock_placement &p) {
   for (int k = 0; k < 3; k++)
     if (!std::isfinite(p.t[k]) || !std::isfinite(p.r[k]))
-      throw Error(SWARF_STOCK_ERR_ARG, "placement values must be finite");
+      throw Error(SWARF_ERR_ARG, "placement values must be finite");
   double c[3], s[3];
   for (int k = 0; k < 3; k++) cos_sin_deg(p.r[k], c[k], s[k]);
   const double rx[9] = {1, 0, 0, 0, c[0], -s[0], 0, s[0], c[0]};

@@ -19,7 +19,7 @@ struct Rigid {
   void invert(const double y[3], double x[3]) const;
 };
 
-/// The map of a placement; throws Error(SWARF_STOCK_ERR_ARG) for non-finite values.
+/// The map of a placement; throws Error(SWARF_ERR_ARG) for non-finite values.
 Rigid placement_map(const swarf_stock_placement &p);
 
 /// True if the placement is the identity (all zero).

@@ -41,7 +41,7 @@ std::vector<unsigned char> deflate_rows(const unsigned char *rgb, unsigned width
   std::vector<unsigned char> z(len);
   const int rc = compress2(z.data(), &len, raw.data(), uLong(raw.size()), 6);
   if (rc == Z_MEM_ERROR) throw std::bad_alloc();
-  if (rc != Z_OK) throw Error(SWARF_STOCK_ERR_INTERNAL, "zlib compress2 failed");
+  if (rc != Z_OK) throw Error(SWARF_ERR_INTERNAL, "zlib compress2 failed");
   z.resize(len);
   return z;
 }
@@ -50,7 +50,7 @@ std::vector<unsigned char> deflate_rows(const unsigned char *rgb, unsigned width
 
 std::string png_encode_rgb(const unsigned char *rgb, unsigned width, unsigned height) {
   if (rgb == nullptr || width == 0 || height == 0 || uint64_t(width) * height > (1u << 28))
-    throw Error(SWARF_STOCK_ERR_ARG, "PNG: empty or oversized image");
+    throw Error(SWARF_ERR_ARG, "PNG: empty or oversized image");
   static const char signature[] = "\x89PNG\r\n\x1a\n";
   std::string out(signature, 8);
   unsigned char ihdr[13];

@@ -10,7 +10,7 @@ namespace swarf {
 
 /// The bytes of a PNG file holding `width` x `height` pixels (pixels) given as
 /// rows from top to bottom, 3 bytes (R, G, B) per pixel. Throws
-/// Error(SWARF_STOCK_ERR_ARG) for an empty or oversized image, std::bad_alloc
+/// Error(SWARF_ERR_ARG) for an empty or oversized image, std::bad_alloc
 /// when memory runs out.
 std::string png_encode_rgb(const unsigned char *rgb, unsigned width, unsigned height);
 

@@ -360,7 +360,74 @@ bool block_overlap(const Pass &p, ConstAcc &acc, const Coord &o, double depth, V
   return false;
 }
 
+/// Whether every cleared volume's sdf exceeds t at q (false as soon as one
+/// does not). A volume lies inside its bounds, so its sdf is at least the
+/// distance to them: those farther than t are passed over unevaluated.
+inline bool cleared_enough(const swarf_stock_cut *clear, size_t n, const Vec3d &q, double t) {
+  for (size_t i = 0; i < n; i++) {
+    const swarf_stock_cut &c = clear[i];
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) {
+      const double o = std::max(c.lo[k] - q[k], q[k] - c.hi[k]);
+      if (o > 0) d2 += o * o;
+    }
+    if (t < 0 ? d2 > 0 || c.sdf(c.ctx, q.x(), q.y(), q.z()) > t
+              : d2 > t * t || c.sdf(c.ctx, q.x(), q.y(), q.z()) > t)
+      continue;
+    return false;
+  }
+  return true;
+}
+
+/// First voxel of the block at o whose score min(-v, clear) - sdf (v: the
+/// stock value, at most half a voxel outside; clear: the sdf of a volume already cut away,
+/// +inf without one) exceeds depth (see stock.h); false if none. A voxel
+/// scores at most -v + (r - dc) (r: its distance to the block centre, dc:
+/// the cut's sdf there), so blocks and voxels the Lipschitz bound keeps below
+/// depth are passed over without evaluating the cut.
+bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear, ConstAcc &acc,
+                      const Coord &o, double depth, Vec3d &where) {
+  const swarf_stock_cut &cut = p.cuts[0];
+  const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
+  const double dc = cut.sdf(cut.ctx, c.x(), c.y(), c.z()), r = p.reach - p.bgf;
+  if (p.bgf + r - dc <= depth) return false;
+  const Leaf *leaf = acc.probeConstLeaf(o);
+  const float tile = leaf == nullptr ? acc.getValue(o) : 0.0f;
+  if (leaf == nullptr && !(tile < 0.0f)) return false;  // an outside tile
+  const float *v = leaf != nullptr ? leaf->buffer().data() : nullptr;
+  const double out = 0.5 * p.voxel;
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        const double val = v != nullptr ? v[n] : tile;
+        if (!(val <= out) || -val + p.radius[n] - dc <= depth) continue;
+        const Vec3d q = block_point(p, o, x, y, z);
+        const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        if (!(-val - d > depth)) continue;
+        if (!cleared_enough(clear, nclear, q, d + depth)) continue;
+        where = q;
+        return true;
+      }
+  return false;
+}
+
 }  // namespace
+
+/// True if the cut penetrates the material by more than depth (see stock.h).
+bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
+                    size_t nclear, double depth, Vec3d &where) {
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  init_pass(p);
+  Coord a, b;
+  if (!cut_blocks(p, cut, a, b)) return false;
+  ConstAcc acc(s.grid->constTree());
+  for (int x = a.x(); x <= b.x(); x += 8)
+    for (int y = a.y(); y <= b.y(); y += 8)
+      for (int z = a.z(); z <= b.z(); z += 8)
+        if (block_penetrates(p, clear, nclear, acc, Coord(x, y, z), depth, where)) return true;
+  return false;
+}
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
@@ -449,24 +516,25 @@ namespace {
 /// Check one cut: an sdf, finite bounds, lo < hi on every axis.
 void check_cut(const swarf_stock_cut &c, size_t i) {
   const std::string at = "cut " + std::to_string(i) + ": ";
-  if (c.sdf == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, at + "sdf is NULL");
+  if (c.sdf == nullptr) throw swarf::Error(SWARF_ERR_ARG, at + "sdf is NULL");
   for (int k = 0; k < 3; k++) {
     if (!std::isfinite(c.lo[k]) || !std::isfinite(c.hi[k]))
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, at + "bounds are not finite");
-    if (!(c.lo[k] < c.hi[k])) throw swarf::Error(SWARF_STOCK_ERR_ARG, at + "bounds need lo < hi");
+      throw swarf::Error(SWARF_ERR_ARG, at + "bounds are not finite");
+    if (!(c.lo[k] < c.hi[k])) throw swarf::Error(SWARF_ERR_ARG, at + "bounds need lo < hi");
   }
 }
 
 }  // namespace
 
-extern "C" int swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
-                                  swarf_stock_sdf_fn sdf, const void *ctx, char *msg,
-                                  size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
+                                           swarf_stock_sdf_fn sdf, const void *ctx,
+                                           swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || lo == nullptr || hi == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, lo or hi is NULL");
+      throw swarf::Error(SWARF_ERR_ARG, "stock, lo or hi is NULL");
     swarf_stock_cut cut;
-    for (int k = 0; k < 3; k++) cut.lo[k] = lo[k], cut.hi[k] = hi[k];
+    for (int k = 0; k < 3; k++)
+      cut.lo[k] = lo[k], cut.hi[k] = hi[k];
     cut.sdf = sdf;
     cut.ctx = ctx;
     check_cut(cut, 0);
@@ -474,31 +542,53 @@ extern "C" int swarf_stock_remove(swarf_stock *s, const double lo[3], const doub
   });
 }
 
-extern "C" int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut,
-                                    double depth, int *hit, double where[3], char *msg,
-                                    size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut,
+                                             double depth, int *hit, double where[3],
+                                             swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || cut == nullptr || hit == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, cut or hit is NULL");
+      throw swarf::Error(SWARF_ERR_ARG, "stock, cut or hit is NULL");
     *hit = 0;
     check_cut(*cut, 0);
     if (!(depth >= 0.0 && depth < s->background))
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "depth must be >= 0 and below the band half-width");
+      throw swarf::Error(SWARF_ERR_ARG, "depth must be >= 0 and below the band half-width");
     openvdb::Vec3d q;
     *hit = swarf::cut_overlaps(*s, *cut, depth, q) ? 1 : 0;
+    if (*hit && where != nullptr)
+      for (int k = 0; k < 3; k++)
+        where[k] = q[k];
+  });
+}
+
+extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
+                                               const swarf_stock_cut *clear, size_t nclear,
+                                               double depth, int *hit, double where[3],
+                                               swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr || cut == nullptr || hit == nullptr)
+      throw swarf::Error(SWARF_ERR_ARG, "stock, cut or hit is NULL");
+    *hit = 0;
+    check_cut(*cut, 0);
+    if (!(depth >= 0.0 && std::isfinite(depth)))
+      throw swarf::Error(SWARF_ERR_ARG, "depth must be finite and >= 0");
+    openvdb::Vec3d q;
+    if (nclear > 0 && clear == nullptr) throw swarf::Error(SWARF_ERR_ARG, "clear is NULL");
+    for (size_t i = 0; i < nclear; i++) check_cut(clear[i], i);
+    *hit = swarf::cut_penetrates(*s, *cut, clear, nclear, depth, q) ? 1 : 0;
     if (*hit && where != nullptr)
       for (int k = 0; k < 3; k++) where[k] = q[k];
   });
 }
 
-extern "C" int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
-                                        size_t ncuts, char *msg, size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+extern "C" swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
+                                                 size_t ncuts, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     if (ncuts == 0) return;
-    if (cuts == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "cuts is NULL");
-    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_STOCK_ERR_ARG, "too many cuts in one batch");
-    for (size_t i = 0; i < ncuts; i++) check_cut(cuts[i], i);
+    if (cuts == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts is NULL");
+    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
+    for (size_t i = 0; i < ncuts; i++)
+      check_cut(cuts[i], i);
     swarf::remove_cuts(*s, cuts, ncuts);
   });
 }
@@ -508,12 +598,12 @@ extern "C" swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stoc
                                           double *depth, double where[3], swarf_error *err) {
   if (depth) *depth = 0.0;
   if (where) where[0] = where[1] = where[2] = std::numeric_limits<double>::quiet_NaN();
-  return swarf::guard_status(err, nullptr, [&] {
+  return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || design == nullptr || cut == nullptr || depth == nullptr)
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock, design, cut or depth is NULL");
+      throw swarf::Error(SWARF_ERR_ARG, "stock, design, cut or depth is NULL");
     check_cut(*cut, 0);
     if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "tolerance must be finite and >= 0");
+      throw swarf::Error(SWARF_ERR_ARG, "tolerance must be finite and >= 0");
     openvdb::Vec3d q;
     *depth = swarf::cut_gouge(*s, *design, *cut, tolerance, q);
     if (*depth > 0.0 && where != nullptr)
@@ -527,13 +617,13 @@ extern "C" swarf_status swarf_stock_remove_batch_measured(swarf_stock *s,
                                                           double tolerance,
                                                           swarf_stock_cut_effect *effects,
                                                           swarf_error *err) {
-  return swarf::guard_status(err, nullptr, [&] {
-    if (s == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     if (ncuts == 0) return;
-    if (cuts == nullptr || effects == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "cuts or effects is NULL");
-    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_STOCK_ERR_ARG, "too many cuts in one batch");
+    if (cuts == nullptr || effects == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts or effects is NULL");
+    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
     if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
-      throw swarf::Error(SWARF_STOCK_ERR_ARG, "tolerance must be finite and >= 0");
+      throw swarf::Error(SWARF_ERR_ARG, "tolerance must be finite and >= 0");
     for (size_t i = 0; i < ncuts; i++) check_cut(cuts[i], i);
     const swarf::Measure m{design, tolerance, effects};
     swarf::remove_cuts(*s, cuts, ncuts, &m);

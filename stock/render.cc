@@ -189,8 +189,8 @@ namespace {
 void write_picture(const swarf_stock &s, const char *path, int width, int height, const Picture &pic) {
   check_path(path);
   if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide)
-    throw Error(SWARF_STOCK_ERR_ARG, "image size must be 1 to 16384 pixels a side");
-  if (long(width) * height > kMaxPixels) throw Error(SWARF_STOCK_ERR_ARG, "image larger than 2^26 pixels");
+    throw Error(SWARF_ERR_ARG, "image size must be 1 to 16384 pixels a side");
+  if (long(width) * height > kMaxPixels) throw Error(SWARF_ERR_ARG, "image larger than 2^26 pixels");
   Film film{static_cast<size_t>(width), static_cast<size_t>(height)};
   fill_background(film);
   trace(s, film, pic);
@@ -205,28 +205,28 @@ void write_picture(const swarf_stock &s, const char *path, int width, int height
 /// Tolerance and colour range of an output's options, defaults filled (stock.h).
 void output_scale(const swarf_stock &s, const swarf_stock_output &o, double &tol, double &range) {
   if (!std::isfinite(o.tolerance) || !std::isfinite(o.range))
-    throw Error(SWARF_STOCK_ERR_ARG, "tolerance and range must be finite");
+    throw Error(SWARF_ERR_ARG, "tolerance and range must be finite");
   tol = o.tolerance > 0.0 ? o.tolerance : 0.5 * s.voxel;
   range = o.range > 0.0 ? o.range : 4.0 * tol;
-  if (!(range > tol)) throw Error(SWARF_STOCK_ERR_ARG, "the colour range must exceed the tolerance");
+  if (!(range > tol)) throw Error(SWARF_ERR_ARG, "the colour range must exceed the tolerance");
 }
 
 }  // namespace swarf
 
-extern "C" int swarf_stock_write_png(const swarf_stock *s, const char *path, int width, int height,
-                                     char *msg, size_t msglen) {
-  return swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+extern "C" swarf_status swarf_stock_write_png(const swarf_stock *s, const char *path, int width,
+                                              int height, swarf_error *err) {
+  return swarf::guard(err, path, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     swarf::write_picture(*s, path, width, height, swarf::Picture{SWARF_VIEW_ISO, nullptr, 0.0, 0.0});
   });
 }
 
 extern "C" swarf_status swarf_stock_write_image(const swarf_stock *s, const char *path,
                                                 const swarf_stock_output *opt, swarf_error *err) {
-  return swarf::guard_status(err, nullptr, [&] {
-    if (s == nullptr) throw swarf::Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     const swarf_stock_output o = opt ? *opt : swarf_stock_output{};
-    if (unsigned(o.view) > SWARF_VIEW_BOTTOM) throw swarf::Error(SWARF_STOCK_ERR_ARG, "unknown view");
+    if (unsigned(o.view) > SWARF_VIEW_BOTTOM) throw swarf::Error(SWARF_ERR_ARG, "unknown view");
     swarf::Picture pic{o.view, o.design, 0.0, 0.0};
     swarf::output_scale(*s, o, pic.tol, pic.range);
     swarf::write_picture(*s, path, o.width > 0 ? o.width : 1024, o.height > 0 ? o.height : 768, pic);

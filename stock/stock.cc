@@ -96,42 +96,42 @@ openvdb::CoordBBox content_box(const openvdb::FloatTree &tree) {
 /// Voxel size (mm) and origin of a linear, axis-aligned, uniform, positive scale
 /// transform; throws Error(FORMAT) for any other transform.
 double check_transform(const openvdb::math::Transform &xf, openvdb::Vec3d &origin) {
-  if (!xf.isLinear()) throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's transform is not linear");
+  if (!xf.isLinear()) throw Error(SWARF_ERR_FORMAT, "the grid's transform is not linear");
   const openvdb::Mat4d m = xf.baseMap()->getAffineMap()->getMat4();
   const double v = m(0, 0);
   if (!std::isfinite(v) || !(v > 0.0))
-    throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's voxel size is not finite and positive");
+    throw Error(SWARF_ERR_FORMAT, "the grid's voxel size is not finite and positive");
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
       const double want = i == j ? v : 0.0;
       if (!(std::fabs(m(i, j) - want) <= 1e-9 * v))
-        throw Error(SWARF_STOCK_ERR_FORMAT,
+        throw Error(SWARF_ERR_FORMAT,
                     "the grid's transform is not a uniform axis-aligned scale (non-uniform "
                     "voxels, rotation or shear)");
     }
   origin = xf.indexToWorld(openvdb::Vec3d(0.0));
-  if (!origin.isFinite()) throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's translation is not finite");
+  if (!origin.isFinite()) throw Error(SWARF_ERR_FORMAT, "the grid's translation is not finite");
   return v;
 }
 
 void check_box_args(const double lo[3], const double hi[3], double voxel, int half_width) {
-  if (lo == nullptr || hi == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "lo or hi is NULL");
+  if (lo == nullptr || hi == nullptr) throw Error(SWARF_ERR_ARG, "lo or hi is NULL");
   if (!std::isfinite(voxel) || !(voxel > 0.0))
-    throw Error(SWARF_STOCK_ERR_ARG, "voxel must be finite and > 0");
+    throw Error(SWARF_ERR_ARG, "voxel must be finite and > 0");
   if (half_width < 3 || half_width > kMaxHalfWidth)
-    throw Error(SWARF_STOCK_ERR_ARG, "half_width must be 3 to 64 voxels");
+    throw Error(SWARF_ERR_ARG, "half_width must be 3 to 64 voxels");
   double area = 0.0, d[3];
   for (int k = 0; k < 3; k++) {
     if (!std::isfinite(lo[k]) || !std::isfinite(hi[k]))
-      throw Error(SWARF_STOCK_ERR_ARG, "box corners must be finite");
-    if (!(lo[k] < hi[k])) throw Error(SWARF_STOCK_ERR_ARG, "box needs lo < hi on every axis");
+      throw Error(SWARF_ERR_ARG, "box corners must be finite");
+    if (!(lo[k] < hi[k])) throw Error(SWARF_ERR_ARG, "box needs lo < hi on every axis");
     if (std::fabs(lo[k]) / voxel > kMaxIndex / 2 || std::fabs(hi[k]) / voxel > kMaxIndex / 2)
-      throw Error(SWARF_STOCK_ERR_ARG, "box too far from the origin for this voxel size");
+      throw Error(SWARF_ERR_ARG, "box too far from the origin for this voxel size");
     d[k] = (hi[k] - lo[k]) / voxel;
   }
   area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
   if (area * (2.0 * half_width + 1.0) > kMaxActiveVoxels)
-    throw Error(SWARF_STOCK_ERR_MEMORY, "box too large for this voxel size (band over 4e9 voxels)");
+    throw Error(SWARF_ERR_MEMORY, "box too large for this voxel size (band over 4e9 voxels)");
 }
 
 /// A stock filling the box [lo, hi] minus the cut `outside` (minus the shape's sdf).
@@ -217,11 +217,13 @@ void init_openvdb() {
   std::call_once(once, [] { openvdb::initialize(); });
 }
 
-void set_message(char *msg, size_t msglen, const std::string &text) {
-  if (msg == nullptr || msglen == 0) return;
-  const size_t n = std::min(text.size(), msglen - 1);
-  std::memcpy(msg, text.data(), n);
-  msg[n] = '\0';
+swarf_status set_error(swarf_error *err, swarf_status status, const char *file,
+                       const std::string &text) noexcept {
+  if (err == nullptr) return status;
+  swarf_error_init(err);
+  swarf_error_at(err, file, 0, 0, nullptr);
+  swarf_error_set(err, status, "%s", text.c_str());
+  return status;
 }
 
 swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid) {
@@ -229,13 +231,13 @@ swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid) {
   s->voxel = check_transform(grid->transform(), s->origin);
   s->background = grid->background();
   if (!std::isfinite(s->background) || !(s->background > 0.0f))
-    throw Error(SWARF_STOCK_ERR_FORMAT, "the grid's background (band half-width) is not finite and > 0");
+    throw Error(SWARF_ERR_FORMAT, "the grid's background (band half-width) is not finite and > 0");
   s->half_width = int(std::max(1L, std::lround(s->background / s->voxel)));
   s->content = content_box(grid->constTree());
   if (!s->content.empty())
     for (int k = 0; k < 3; k++)
       if (s->content.min()[k] < -kMaxIndex || s->content.max()[k] > kMaxIndex)
-        throw Error(SWARF_STOCK_ERR_FORMAT, "the grid reaches beyond 2^30 voxels from the origin");
+        throw Error(SWARF_ERR_FORMAT, "the grid reaches beyond 2^30 voxels from the origin");
   s->grid = grid;
   return s.release();
 }
@@ -244,32 +246,33 @@ swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid) {
 
 using swarf::Error;
 
-extern "C" swarf_stock *swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
-                                            int half_width, char *msg, size_t msglen) {
-  swarf_stock *s = nullptr;
-  swarf::guard(msg, msglen, [&] {
+extern "C" swarf_status swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
+                                            int half_width, swarf_stock **out, swarf_error *err) {
+  if (out == nullptr) return swarf::set_error(err, SWARF_ERR_ARG, nullptr, "out is NULL");
+  *out = nullptr;
+  return swarf::guard(err, nullptr, [&] {
     swarf::check_box_args(lo, hi, voxel, half_width);
-    s = swarf::make_box(lo, hi, voxel, half_width);
+    *out = swarf::make_box(lo, hi, voxel, half_width);
   });
-  return s;
 }
 
-extern "C" swarf_stock *swarf_stock_new_cylinder(int axis, double radius, double start, double end,
-                                                 double voxel, int half_width, char *msg,
-                                                 size_t msglen) {
-  swarf_stock *s = nullptr;
-  swarf::guard(msg, msglen, [&] {
-    if (axis < 0 || axis > 2) throw Error(SWARF_STOCK_ERR_ARG, "axis must be 0, 1 or 2 (x, y, z)");
+extern "C" swarf_status swarf_stock_new_cylinder(int axis, double radius, double start, double end,
+                                                 double voxel, int half_width, swarf_stock **out,
+                                                 swarf_error *err) {
+  if (out == nullptr) return swarf::set_error(err, SWARF_ERR_ARG, nullptr, "out is NULL");
+  *out = nullptr;
+  return swarf::guard(err, nullptr, [&] {
+    if (axis < 0 || axis > 2) throw Error(SWARF_ERR_ARG, "axis must be 0, 1 or 2 (x, y, z)");
     if (!std::isfinite(radius) || !(radius > 0.0))
-      throw Error(SWARF_STOCK_ERR_ARG, "radius must be finite and > 0");
+      throw Error(SWARF_ERR_ARG, "radius must be finite and > 0");
     double lo[3], hi[3];
-    for (int k = 0; k < 3; k++) lo[k] = -radius, hi[k] = radius;
+    for (int k = 0; k < 3; k++)
+      lo[k] = -radius, hi[k] = radius;
     lo[axis] = start, hi[axis] = end;
     swarf::check_box_args(lo, hi, voxel, half_width);
     const swarf::Cylinder cyl{axis, radius, start, end};
-    s = swarf::make_shape(lo, hi, voxel, half_width, swarf::cylinder_outside, &cyl);
+    *out = swarf::make_shape(lo, hi, voxel, half_width, swarf::cylinder_outside, &cyl);
   });
-  return s;
 }
 
 extern "C" void swarf_stock_free(swarf_stock *s) {
@@ -353,14 +356,12 @@ extern "C" void swarf_stock_visit_active(const swarf_stock *s, swarf_stock_visit
   }
 }
 
-extern "C" int swarf_stock_check(const swarf_stock *s, char *msg, size_t msglen) {
-  std::string diagnosis;
-  const int rc = swarf::guard(msg, msglen, [&] {
-    if (s == nullptr) throw Error(SWARF_STOCK_ERR_ARG, "stock is NULL");
-    diagnosis = openvdb::tools::checkLevelSet(*s->grid, swarf::kLevelSetChecks);
-    while (!diagnosis.empty() && diagnosis.back() == '\n') diagnosis.pop_back();
+extern "C" swarf_status swarf_stock_check(const swarf_stock *s, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
+    std::string diagnosis = openvdb::tools::checkLevelSet(*s->grid, swarf::kLevelSetChecks);
+    while (!diagnosis.empty() && diagnosis.back() == '\n')
+      diagnosis.pop_back();
+    if (!diagnosis.empty()) throw Error(SWARF_ERR_FORMAT, diagnosis);
   });
-  if (rc != SWARF_STOCK_OK) return -1;
-  swarf::set_message(msg, msglen, diagnosis);
-  return diagnosis.empty() ? 0 : -1;
 }

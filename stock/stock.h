@@ -5,7 +5,8 @@
  * stock = max(stock, -sweep), and read and write it: .vdb, binary STL mesh,
  * PNG picture from OpenVDB's level-set ray tracer. The C++ behind this header
  * (the .cc files in stock/) is the only code that includes OpenVDB; no exception crosses
- * into C: every function returns a status and fills a message.
+ * into C: every call that can fail returns a swarf_status and fills a
+ * swarf_error (err, may be NULL; its file is the file read or written).
  *
  * Units: mm in the workpiece frame; `voxel` is the voxel edge in mm; the
  * narrow band is `half_width` voxels on each side (at least 3).
@@ -28,15 +29,6 @@
 extern "C" {
 #endif
 
-typedef enum {
-  SWARF_STOCK_OK = 0,
-  SWARF_STOCK_ERR_ARG = 1,    /* invalid argument */
-  SWARF_STOCK_ERR_IO = 2,     /* file could not be read or written */
-  SWARF_STOCK_ERR_FORMAT = 3, /* file is not a usable level set */
-  SWARF_STOCK_ERR_MEMORY = 4,
-  SWARF_STOCK_ERR_INTERNAL = 5 /* an exception from OpenVDB, message says which */
-} swarf_stock_status;
-
 typedef struct swarf_stock swarf_stock;
 
 /* Signed distance (mm, < 0 inside) of the volume to remove, at world point
@@ -44,23 +36,26 @@ typedef struct swarf_stock swarf_stock;
  * whole blocks can be skipped; must be safe to call from several threads. */
 typedef double (*swarf_stock_sdf_fn)(const void *ctx, double x, double y, double z);
 
-/* A box stock [lo, hi] (mm), lo < hi componentwise. `msg` (may be NULL)
- * receives a reason on failure, `msglen` bytes at most. NULL on failure. */
-SWARF_API swarf_stock *swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
-                                           int half_width, char *msg, size_t msglen);
+/* A box stock [lo, hi] (mm), lo < hi componentwise, into *out.
+ * SWARF_ERR_ARG (bad dimensions) or SWARF_ERR_MEMORY with the reason in
+ * *err (may be NULL); *out is then NULL. */
+SWARF_API swarf_status swarf_stock_new_box(const double lo[3], const double hi[3], double voxel,
+                                           int half_width, swarf_stock **out, swarf_error *err);
 
 /* A cylinder stock about the x, y or z axis (axis 0, 1, 2) through the origin:
  * radius (mm) > 0, from start to end (mm, start < end) along the axis. For
  * rotary work. Exact signed distance near its surface, like the box. */
-SWARF_API swarf_stock *swarf_stock_new_cylinder(int axis, double radius, double start, double end,
-                                                double voxel, int half_width, char *msg,
-                                                size_t msglen);
+SWARF_API swarf_status swarf_stock_new_cylinder(int axis, double radius, double start, double end,
+                                                double voxel, int half_width, swarf_stock **out,
+                                                swarf_error *err);
 
-/* Read the grid named "stock" (or the first float level set) of a .vdb file.
- * OpenVDB's reader is not hardened against damaged files, so the file is read
- * in a forked child process (stock/isolate.cc) that sends the grid back: a
- * crash, a hang or a runaway allocation there becomes an error here. */
-SWARF_API swarf_stock *swarf_stock_read(const char *path, char *msg, size_t msglen);
+/* Read the grid named "stock" (or the first float level set) of a .vdb file
+ * into *out: SWARF_ERR_OPEN when it cannot be opened, SWARF_ERR_FORMAT when
+ * it is not a usable level set (err->file is the path). OpenVDB's reader is
+ * not hardened against damaged files, so the file is read in a forked child
+ * process (stock/isolate.cc) that sends the grid back: a crash, a hang or a
+ * runaway allocation there becomes an error here. */
+SWARF_API swarf_status swarf_stock_read(const char *path, swarf_stock **out, swarf_error *err);
 
 /* An embedding program that must not fork (or reads only files it wrote)
  * turns the child off with swarf_stock_set_read_isolation(0), or with the
@@ -75,8 +70,9 @@ SWARF_API void swarf_stock_free(swarf_stock *s);
 
 /* Remove the volume {sdf < 0} inside the bounds [lo, hi] (mm, the volume's
  * own bounds; the stock pads them by the narrow band): stock = max(stock, -sdf). */
-SWARF_API int swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
-                                 swarf_stock_sdf_fn sdf, const void *ctx, char *msg, size_t msglen);
+SWARF_API swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
+                                          swarf_stock_sdf_fn sdf, const void *ctx,
+                                          swarf_error *err);
 
 /* Remove a batch of volumes at once (one TBB pass over the union of their
  * bounds); equivalent to calling swarf_stock_remove for each. */
@@ -85,16 +81,39 @@ typedef struct {
   swarf_stock_sdf_fn sdf;
   const void *ctx;
 } swarf_stock_cut;
-SWARF_API int swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts, size_t ncuts,
-                                       char *msg, size_t msglen);
+SWARF_API swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
+                                                size_t ncuts, swarf_error *err);
 
 /* Whether the volume {sdf < 0} of `cut` overlaps the material by more than
  * `depth` mm: some voxel centre lies deeper than `depth` inside both (stock
  * value < -depth and sdf < -depth; 0 <= depth < the band half-width in mm).
  * Read-only: the stock is not changed. *hit gets 1 or 0; where (may be NULL)
  * the first such voxel centre found (mm). For a rapid move that would cut. */
-SWARF_API int swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut, double depth,
-                                   int *hit, double where[3], char *msg, size_t msglen);
+SWARF_API swarf_status swarf_stock_overlaps(const swarf_stock *s, const swarf_stock_cut *cut,
+                                            double depth, int *hit, double where[3],
+                                            swarf_error *err);
+
+/* Whether the volume {sdf < 0} of `cut` penetrates the material by more than
+ * `depth` mm (>= 0): at some voxel centre p the two signed depths add up to
+ * more, -v - sdf(p) > depth (v: the stock value). This is max over points of
+ * "how deep p lies in the material plus how deep in the body": negative
+ * (minus the gap) for bodies apart, the thickness of the overlap where the
+ * two surfaces are parallel (a holder's face entering a flat face: the same
+ * at every point between them), a lower bound of the depth elsewhere;
+ * deeper than the band, v is -band and the sum a lower bound again. Only
+ * voxel centres inside the material or at most half a voxel outside it are
+ * looked at: outside, a cut stock's values are distances only near faces
+ * (beside an edge cut by max(), they are short by up to 30 %), and a layer
+ * of half a voxel is what an overlap of half a voxel needs to hold a voxel
+ * centre in [-thickness, voxel/2]. `clear` (may be NULL; its bounds are not
+ * used) is a volume cut away but not removed from the grid yet: the
+ * material is then the stock minus it, its depth min(-v, clear sdf).
+ * Read-only; *hit gets 1 or 0, where (may be NULL) the first such voxel
+ * centre found. For the non-cutting parts of a tool (tools/sim/collide.c). */
+SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
+                                             const swarf_stock_cut *clear, size_t nclear,
+                                             double depth, int *hit, double where[3],
+                                             swarf_error *err);
 
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);
@@ -118,24 +137,26 @@ SWARF_API double swarf_stock_voxel_value(const swarf_stock *s, double x, double 
 typedef void (*swarf_stock_visit_fn)(void *ctx, const double centre[3], float value);
 SWARF_API void swarf_stock_visit_active(const swarf_stock *s, swarf_stock_visit_fn fn, void *ctx);
 
-/* OpenVDB's checkLevelSet: 0 if the grid is a valid narrow-band level set,
- * else -1 with the diagnosis in msg. Runs checks 1 to 8 (type, class, uniform
- * voxels, background, no active tiles, finite values, active values within the
- * band, inactive values at +-band); check 9 (Eikonal |grad| near 1 at zero
- * crossings) is left out: it fails at every sharp edge of an exact distance
- * field, OpenVDB's own createLevelSetBox included. */
-SWARF_API int swarf_stock_check(const swarf_stock *s, char *msg, size_t msglen);
+/* OpenVDB's checkLevelSet: SWARF_OK if the grid is a valid narrow-band level
+ * set, else SWARF_ERR_FORMAT with the diagnosis in err->message. Runs checks 1
+ * to 8 (type, class, uniform voxels, background, no active tiles, finite
+ * values, active values within the band, inactive values at +-band); check 9
+ * (Eikonal |grad| near 1 at zero crossings) is left out: it fails at every
+ * sharp edge of an exact distance field, OpenVDB's own createLevelSetBox
+ * included. */
+SWARF_API swarf_status swarf_stock_check(const swarf_stock *s, swarf_error *err);
 
-/* Outputs, each written atomically (temporary name, then rename). */
-SWARF_API int swarf_stock_write_vdb(const swarf_stock *s, const char *path, char *msg,
-                                    size_t msglen);
+/* Outputs, each written atomically (temporary name, then rename);
+ * SWARF_ERR_IO when the file cannot be written (err->file is the path). */
+SWARF_API swarf_status swarf_stock_write_vdb(const swarf_stock *s, const char *path,
+                                             swarf_error *err);
 /* Binary STL of the zero isosurface; *ntri (may be NULL) gets the triangle count. */
-SWARF_API int swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri, char *msg,
-                                    size_t msglen);
+SWARF_API swarf_status swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri,
+                                             swarf_error *err);
 /* Shaded picture (PNG, width x height) of the stock seen from above at an
  * angle, ray traced with OpenVDB's LevelSetRayTracer. */
-SWARF_API int swarf_stock_write_png(const swarf_stock *s, const char *path, int width, int height,
-                                    char *msg, size_t msglen);
+SWARF_API swarf_status swarf_stock_write_png(const swarf_stock *s, const char *path, int width,
+                                             int height, swarf_error *err);
 
 /* ==== Stock from files, placement for a setup (issue 11) ====================
  * The functions below return a swarf_status and fill `err` (may be NULL):

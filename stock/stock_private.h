@@ -60,61 +60,31 @@ struct Measure {
 /// Call openvdb::initialize() once per process (thread-safe).
 void init_openvdb();
 
-/// Copy `text` into msg (at most msglen bytes, NUL-terminated); NULL msg is fine.
-void set_message(char *msg, size_t msglen, const std::string &text);
+/// Fill err (may be NULL) with a failure: cleared, then the status, the
+/// message `text` and the file (NULL: none). Returns status.
+swarf_status set_error(swarf_error *err, swarf_status status, const char *file,
+                       const std::string &text) noexcept;
 
-/// Run `body` and translate every exception into a status and a message; on
-/// success msg is set to the empty string. Never throws.
-template <class F> int guard(char *msg, size_t msglen, F &&body) noexcept {
+/// Run `body` and translate every exception into a status and err (may be
+/// NULL; `file`, may be NULL, is the file the call reads or writes). err is
+/// left as it is on success. Never throws.
+template <class F> swarf_status guard(swarf_error *err, const char *file, F &&body) noexcept {
   try {
     try {
       body();
-      set_message(msg, msglen, "");
-      return SWARF_STOCK_OK;
+      return SWARF_OK;
     } catch (const Error &e) {
-      set_message(msg, msglen, e.what());
-      return to_stock_status(e.status);
+      return set_error(err, e.status, file, e.what());
     } catch (const std::bad_alloc &) {
-      set_message(msg, msglen, "out of memory");
-      return SWARF_STOCK_ERR_MEMORY;
+      return set_error(err, SWARF_ERR_MEMORY, file, "out of memory");
     } catch (const openvdb::Exception &e) {
-      set_message(msg, msglen, std::string("OpenVDB: ") + e.what());
-      return SWARF_STOCK_ERR_INTERNAL;
+      return set_error(err, SWARF_ERR_INTERNAL, file, std::string("OpenVDB: ") + e.what());
     } catch (const std::exception &e) {
-      set_message(msg, msglen, std::string("internal error: ") + e.what());
-      return SWARF_STOCK_ERR_INTERNAL;
+      return set_error(err, SWARF_ERR_INTERNAL, file, std::string("internal error: ") + e.what());
     }
   } catch (...) {
-    set_message(msg, msglen, "internal error: unknown exception");
-    return SWARF_STOCK_ERR_INTERNAL;
+    return set_error(err, SWARF_ERR_INTERNAL, file, "internal error: unknown exception");
   }
-}
-
-/// guard() for the swarf_status API: every exception becomes a status and a
-/// message in err (may be NULL; cleared first), with `file` (may be NULL) as
-/// err->file. Never throws.
-template <class F> swarf_status guard_status(swarf_error *err, const char *file, F &&body) noexcept {
-  swarf_status st = SWARF_OK;
-  std::string text;
-  try {
-    try {
-      body();
-    } catch (const Error &e) {
-      st = to_swarf_status(e.status), text = e.what();
-    } catch (const std::bad_alloc &) {
-      st = SWARF_ERR_MEMORY, text = "out of memory";
-    } catch (const openvdb::Exception &e) {
-      st = SWARF_ERR_INTERNAL, text = std::string("OpenVDB: ") + e.what();
-    } catch (const std::exception &e) {
-      st = SWARF_ERR_INTERNAL, text = std::string("internal error: ") + e.what();
-    }
-  } catch (...) {
-    st = SWARF_ERR_INTERNAL, text = "internal error: unknown exception";
-  }
-  swarf_error_init(err);
-  if (file != nullptr) swarf_error_at(err, file, 0, 0, nullptr);
-  if (st != SWARF_OK) swarf_error_set(err, st, "%s", text.c_str());
-  return st;
 }
 
 }  // namespace swarf
@@ -135,7 +105,7 @@ namespace swarf {
 /// Wrap a float level-set grid into a new handle, after checking what the rest
 /// of the module relies on: linear transform, uniform axis-aligned positive
 /// scale, finite positive voxel and background, index box within +-2^30.
-/// Throws Error(SWARF_STOCK_ERR_FORMAT) with the reason otherwise.
+/// Throws Error(SWARF_ERR_FORMAT) with the reason otherwise.
 swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid);
 
 /// Apply stock = max(stock, -sdf) for every cut (remove.cc). Arguments are
@@ -167,12 +137,16 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
 /// is below 3 * 0.3 and failed it).
 float band_background(int half_width, double voxel);
 
-/// Throw Error(kErrOpen) unless `path` names an existing regular file (io.cc).
+/// Throw Error(SWARF_ERR_OPEN) unless `path` names an existing regular file (io.cc).
 void check_readable(const char *path);
 
 /// The float level set of a .vdb file ("stock", or the first), read in a
 /// child process (io.cc; untrusted input). Throws Error(FORMAT) otherwise.
 openvdb::FloatGrid::Ptr read_grid(const std::string &path);
+/// True if the cut (checked) penetrates the material by more than depth (mm):
+/// a voxel centre inside both where the two depths add up to more (remove.cc).
+bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
+                    size_t nclear, double depth, openvdb::Vec3d &where);
 
 /// World position (mm) of the centre of voxel ijk.
 inline openvdb::Vec3d index_to_world(const swarf_stock &s, const openvdb::Coord &ijk) {

@@ -345,7 +345,7 @@ static void test_errors(void) {
   s.f = 1, s.d = 7, expect_bad(s, "D", "apt D inconsistent");
   swarf_cutter_spec_init(&s);
   s.shape = SWARF_CUTTER_LOLLIPOP, s.d = 6, s.neck = 6;
-  expect_bad(s, "N", "lollipop neck = D");
+  expect_bad(s, "K", "lollipop neck = D");
   swarf_cutter_spec_init(&s);
   s.shape = SWARF_CUTTER_DOVETAIL, s.d = 10, s.angle = 45, s.h = 6;
   expect_bad(s, "H", "dovetail flanks meet");

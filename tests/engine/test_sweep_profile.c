@@ -8,7 +8,10 @@
  *   - outside the swept volume the sweep equals the truth to 1e-6 mm; inside
  *     it is never shallower than the deepest instance (the plunge's closed
  *     form is the exact depth of the union, deeper);
- *   - the nearest instance (alpha) is one where the truth is attained.
+ *   - the nearest instance (alpha) is one where the truth is attained;
+ *   - nearest surface points of outside points lie on the characteristic
+ *     curve of their time (swarf_sweep_char_curve), every curve point meets
+ *     the characteristic condition.
  */
 #include <math.h>
 #include <stdio.h>
@@ -73,7 +76,7 @@ static void near_point(tk_rng *r, const swarf_cutter *c, const swarf_motion *m, 
 }
 
 typedef struct {
-  double out, shallow, deeper, alpha;
+  double out, shallow, deeper, alpha, curve;
   int nin, nout;
 } errs;
 
@@ -81,7 +84,7 @@ static void compare(const char *name, const swarf_cutter *c, const swarf_motion 
                     int nsamp, errs *tot) {
   swarf_sweep s;
   tk_rng r = {0x51ed2701ull ^ (uint64_t)(size_t)npts * 7919u ^ (uint64_t)strlen(name)};
-  errs e = {0, 0, 0, 0, 0, 0};
+  errs e = {0, 0, 0, 0, 0, 0, 0};
   swarf_sweep_init_voxel(&s, c, m, VOXEL);
   for (int i = 0; i < npts; i++) {
     double p[3], a, lo[3], hi[3];
@@ -105,6 +108,54 @@ static void compare(const char *name, const swarf_cutter *c, const swarf_motion 
   CHECK(e.alpha <= 1e-6, "%s: alpha's instance off by %g", name, e.alpha);
   CHECK(e.shallow <= 1e-6, "%s: inside shallower than an instance by %g", name, e.shallow);
   tot->out = fmax(tot->out, e.out), tot->shallow = fmax(tot->shallow, e.shallow);
+}
+
+/* Outside points whose nearest instance is inside the move: the nearest
+ * surface point lies on the characteristic curve of that time; every curve
+ * point satisfies (v + omega x x) . n = 0. */
+static void on_characteristic(const char *name, const swarf_cutter *c, const swarf_motion *m,
+                              int npts, double *worst_all) {
+  swarf_sweep s;
+  swarf_char_curve cc;
+  tk_rng r = {0xc0ffeeull ^ (uint64_t)strlen(name)};
+  double worst = 0.0, worst_f = 0.0;
+  int used = 0;
+  swarf_sweep_init_voxel(&s, c, m, VOXEL);
+  swarf_char_curve_init(&cc);
+  for (int i = 0; i < 40 * npts && used < npts; i++) {
+    double p[3], a, d, gw[3], x[3], best = INFINITY, t[3], U[9], tdot[3], v[3], w[3];
+    near_point(&r, c, m, p);
+    d = swarf_sweep_sdf(&s, p, &a);
+    if (d < 0.2 * VOXEL || a < 0.02 || a > 0.98) continue;
+    for (int k = 0; k < 3; k++) {
+      double pp[3] = {p[0], p[1], p[2]}, pm[3] = {p[0], p[1], p[2]};
+      pp[k] += 1e-6, pm[k] -= 1e-6;
+      gw[k] = (instance(c, m, pp, a) - instance(c, m, pm, a)) / 2e-6;
+    }
+    for (int k = 0; k < 3; k++)
+      x[k] = p[k] - d * gw[k];
+    if (swarf_sweep_char_curve(&s, a, 1e-3, &cc) != SWARF_OK || cc.ncomp == 0) continue;
+    for (size_t j = 0; j + 1 < cc.len; j++)
+      best = fmin(best, tk_seg_dist(x, cc.pts[j].w, cc.pts[j + 1].w));
+    swarf_motion_eval(m, a, t, U);
+    swarf_motion_velocity(m, a, tdot, v, w);
+    for (size_t j = 0; j < cc.len; j++) {
+      const double *n = cc.pts[j].n, *q = cc.pts[j].x;
+      double wx[3];
+      tk_cross(w, q, wx);
+      worst_f = fmax(worst_f,
+                     fabs((v[0] + wx[0]) * n[0] + (v[1] + wx[1]) * n[1] + (v[2] + wx[2]) * n[2]));
+    }
+    worst = fmax(worst, best);
+    used++;
+  }
+  swarf_char_curve_clear(&cc);
+  printf("%-30s nearest points on the curves: %3d points, max distance %.2e mm; max |f| %.1e\n",
+         name, used, worst, worst_f);
+  CHECK(used >= npts / 4, "%s: enough points (%d)", name, used);
+  CHECK(worst < 0.01, "%s: nearest points on the characteristic curve: %g mm", name, worst);
+  CHECK(worst_f < 1e-9 * (1 + c->length), "%s: characteristic condition %g", name, worst_f);
+  *worst_all = fmax(*worst_all, worst);
 }
 
 static swarf_motion machine_move(const char *machine, const double s6[6], const double e6[6]) {
@@ -146,6 +197,7 @@ static void run_cutter(const char *cname, const swarf_cutter *c, int npts, errs 
     char name[96];
     snprintf(name, sizeof name, "%s, %s", cname, mv[i].what);
     compare(name, c, &mv[i].m, npts, mv[i].nsamp, tot);
+    if (i == 3 || i == 6 || i == 9) on_characteristic(name, c, &mv[i].m, npts, &tot->curve);
   }
 }
 
@@ -161,7 +213,7 @@ int main(int argc, char **argv) {
   int npts = argc > 1 ? atoi(argv[1]) : 60;
   swarf_cutter_spec s;
   swarf_cutter c;
-  errs tot = {0, 0, 0, 0, 0, 0};
+  errs tot = {0, 0, 0, 0, 0, 0, 0};
   swarf_cutter_spec_init(&s), s.shape = SWARF_CUTTER_VEE, s.d = 4, s.angle = 60, s.length = 8;
   c = make(s), run_cutter("vee D4 A60", &c, npts, &tot);
   swarf_cutter_spec_init(&s), s.shape = SWARF_CUTTER_DRILL, s.d = 3, s.length = 8;
@@ -178,6 +230,8 @@ int main(int argc, char **argv) {
   c = make(s), run_cutter("qss 2,3,0,0", &c, npts / 3 + 1, &tot);
   swarf_cutter_spec_init(&s), s.shape = SWARF_CUTTER_QSS, s.qa = 1, s.qb = -1, s.qe = 0, s.qf = 0;
   c = make(s), run_cutter("qss 1,-1,0,0 (non-convex)", &c, npts / 3 + 1, &tot);
-  printf("all: outside max error %.2e mm, inside shallower %.2e mm\n", tot.out, tot.shallow);
+  printf("all: outside max error %.2e mm, inside shallower %.2e mm, nearest points %.2e mm from "
+         "the characteristic curves\n",
+         tot.out, tot.shallow, tot.curve);
   return check_done();
 }

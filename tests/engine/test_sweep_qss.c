@@ -315,7 +315,8 @@ static double stamped_volume(const double lo[3], const double hi[3], const swarf
                              int half) {
   static vol_ctx ctx[20001];
   static swarf_stock_cut cuts[20001];
-  swarf_stock *st = swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, NULL, 0);
+  swarf_stock *st = NULL;
+  swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, &st, NULL);
   double v0 = swarf_stock_volume(st), v;
   for (int i = 0; i <= n; i++) {
     if (half)
@@ -326,7 +327,7 @@ static double stamped_volume(const double lo[3], const double hi[3], const swarf
       cuts[i].lo[k] = ctx[i].t[k] - 1.51, cuts[i].hi[k] = ctx[i].t[k] + 1.51;
     cuts[i].sdf = pose_cut, cuts[i].ctx = &ctx[i];
   }
-  CHECK(swarf_stock_remove_batch(st, cuts, (size_t)n + 1, NULL, 0) == 0, "stamps removed");
+  CHECK(swarf_stock_remove_batch(st, cuts, (size_t)n + 1, NULL) == SWARF_OK, "stamps removed");
   v = swarf_stock_volume(st);
   swarf_stock_free(st);
   return v0 - v;
@@ -343,10 +344,11 @@ static void test_volume(const swarf_motion *m) {
     lo[k] -= 0.5, hi[k] += 0.5;
   int n = swarf_sweep_cdata(&s)->u.rigid.n;
   vol_ctx ctx = {&s, m, {0}, {0}};
-  swarf_stock *st = swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, NULL, 0);
+  swarf_stock *st = NULL;
+  swarf_stock_new_box(lo, hi, VOXEL_VOL, 3, &st, NULL);
   CHECK(st != NULL, "stock");
   v0 = swarf_stock_volume(st);
-  CHECK(swarf_stock_remove(st, lo, hi, sweep_cut, &ctx, NULL, 0) == 0, "sweep removed");
+  CHECK(swarf_stock_remove(st, lo, hi, sweep_cut, &ctx, NULL) == SWARF_OK, "sweep removed");
   vs = v0 - swarf_stock_volume(st);
   swarf_stock_free(st);
   vt = stamped_volume(lo, hi, m, FINE_VOL * n, 1);

@@ -39,28 +39,29 @@ static void make_path(capsule_shape *moves, int n) {
 
 static int run(double voxel, int batch, int n) {
   const double lo[3] = {0, 0, -20}, hi[3] = {80, 80, 0};
-  char msg[256];
+  swarf_error err = {0};
   capsule_shape *moves = malloc(n * sizeof *moves);
   swarf_stock_cut *cuts = malloc(n * sizeof *cuts);
   make_path(moves, n);
   for (int i = 0; i < n; i++) cuts[i] = capsule_cut(&moves[i]);
   double t0 = now();
-  swarf_stock *s = swarf_stock_new_box(lo, hi, voxel, 3, msg, sizeof msg);
-  if (!s) return fprintf(stderr, "new_box: %s\n", msg), 1;
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(lo, hi, voxel, 3, &s, &err);
+  if (!s) return fprintf(stderr, "new_box: %s\n", err.message), 1;
   double t1 = now(), v0 = swarf_stock_volume(s);
   for (int i = 0; i < n; i += batch) {
     size_t k = (size_t)(n - i < batch ? n - i : batch);
-    if (swarf_stock_remove_batch(s, cuts + i, k, msg, sizeof msg) != 0)
-      return fprintf(stderr, "remove: %s\n", msg), 1;
+    if (swarf_stock_remove_batch(s, cuts + i, k, &err) != 0)
+      return fprintf(stderr, "remove: %s\n", err.message), 1;
   }
   double t2 = now(), removed = v0 - swarf_stock_volume(s);
   struct rusage ru;
   getrusage(RUSAGE_SELF, &ru);
-  int valid = swarf_stock_check(s, msg, sizeof msg) == 0;
+  int valid = swarf_stock_check(s, &err) == 0;
   printf("voxel %.1f mm  batch %4d: %6d moves in %6.3f s = %8.0f moves/s  box %.2f s  "
          "removed %8.1f mm^3  active %9llu  peak RSS %5ld MB  %s\n",
          voxel, batch, n, t2 - t1, n / (t2 - t1), t1 - t0, removed, swarf_stock_active_voxels(s),
-         ru.ru_maxrss / 1024, valid ? "valid" : msg);
+         ru.ru_maxrss / 1024, valid ? "valid" : err.message);
   fflush(stdout);
   swarf_stock_free(s);
   free(moves);

@@ -75,19 +75,20 @@ static void check_samples(const swarf_stock *s) {
 
 static void check_large_volume(void) {
   const double lo[3] = {-5, 2, -10}, hi[3] = {15, 22, 0};
-  char msg[256];
-  swarf_stock *s = swarf_stock_new_box(lo, hi, 0.1, 3, msg, sizeof msg);
-  CHECK(s != NULL, "20 x 20 x 10 box: %s", msg);
+  swarf_error err = {0};
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(lo, hi, 0.1, 3, &s, &err);
+  CHECK(s != NULL, "20 x 20 x 10 box: %s", err.message);
   if (s == NULL) return;
   double vol = swarf_stock_volume(s);
   printf("20 x 20 x 10 box: volume %.4f mm^3 (%+.4f%%)\n", vol, 100.0 * (vol - 4000.0) / 4000.0);
   CHECK_NEAR(vol, 4000.0, 1e-3 * 4000.0, "enclosed volume of the 20 x 20 x 10 box");
-  CHECK(swarf_stock_check(s, msg, sizeof msg) == 0, "checkLevelSet: %s", msg);
+  CHECK(swarf_stock_check(s, &err) == 0, "checkLevelSet: %s", err.message);
   swarf_stock_free(s);
 }
 
 static void check_bad_arguments(void) {
-  char msg[256];
+  swarf_error err = {0};
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, flat[3] = {1, 0, 1};
   const double nan3[3] = {0, NAN, 0};
   struct {
@@ -102,21 +103,23 @@ static void check_bad_arguments(void) {
              {hi, lo, 0.1, 3, "lo > hi"},         {nan3, hi, 0.1, 3, "NaN corner"},
              {lo, hi, 1e-9, 3, "too many voxels"}};
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-    msg[0] = '\0';
-    swarf_stock *s = swarf_stock_new_box(bad[i].lo, bad[i].hi, bad[i].voxel, bad[i].hw, msg, sizeof msg);
-    CHECK(s == NULL && msg[0] != '\0', "%s refused with a message", bad[i].what);
-    printf("  %-16s -> %s\n", bad[i].what, msg);
+    err.message[0] = '\0';
+    swarf_stock *s = NULL;
+    swarf_stock_new_box(bad[i].lo, bad[i].hi, bad[i].voxel, bad[i].hw, &s, &err);
+    CHECK(s == NULL && err.message[0] != '\0', "%s refused with a message", bad[i].what);
+    printf("  %-16s -> %s\n", bad[i].what, err.message);
     swarf_stock_free(s);
   }
   swarf_stock_free(NULL);
   CHECK(isnan(swarf_stock_volume(NULL)), "volume of NULL is NaN");
-  CHECK(swarf_stock_check(NULL, msg, sizeof msg) != 0, "check of NULL fails");
+  CHECK(swarf_stock_check(NULL, &err) != 0, "check of NULL fails");
 }
 
 int main(void) {
-  char msg[512];
-  swarf_stock *s = swarf_stock_new_box(box.lo, box.hi, voxel, half_width, msg, sizeof msg);
-  CHECK(s != NULL, "new_box: %s", msg);
+  swarf_error err = {0};
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(box.lo, box.hi, voxel, half_width, &s, &err);
+  CHECK(s != NULL, "new_box: %s", err.message);
   if (s == NULL) return check_done();
   CHECK(swarf_stock_voxel(s) == voxel, "voxel %g", swarf_stock_voxel(s));
   CHECK(swarf_stock_half_width(s) == half_width, "half width %d", swarf_stock_half_width(s));
@@ -143,7 +146,7 @@ int main(void) {
     CHECK(lo[k] > box.lo[k] - bg && lo[k] <= box.lo[k] - bg + voxel, "bounds lo[%d] = %g", k, lo[k]);
     CHECK(hi[k] < box.hi[k] + bg && hi[k] >= box.hi[k] + bg - voxel, "bounds hi[%d] = %g", k, hi[k]);
   }
-  CHECK(swarf_stock_check(s, msg, sizeof msg) == 0, "checkLevelSet: %s", msg);
+  CHECK(swarf_stock_check(s, &err) == 0, "checkLevelSet: %s", err.message);
   CHECK(swarf_stock_sample(s, 1.0, 1.5, -0.5) == -(float)(half_width * voxel), "deep inside is -band");
   CHECK(swarf_stock_sample(s, 50.0, 1.5, -0.5) == (float)(half_width * voxel), "far outside is +band");
   CHECK(isnan(swarf_stock_sample(s, NAN, 0, 0)), "NaN sample point gives NaN");

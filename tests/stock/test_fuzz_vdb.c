@@ -56,26 +56,27 @@ static size_t damage(const unsigned char *data, size_t len, unsigned char *out, 
 
 /* Use a stock read from a damaged file as the simulator would. */
 static void exercise(swarf_stock *s) {
-  char msg[512];
+  swarf_error err = {0};
   double lo[3], hi[3];
   (void)swarf_stock_active_voxels(s);
   (void)swarf_stock_volume(s);
   swarf_stock_bounds(s, lo, hi);
-  (void)swarf_stock_check(s, msg, sizeof msg);
+  (void)swarf_stock_check(s, &err);
   capsule_shape c = {{1.0, 1.0, 0.0}, {3.0, 2.0, 0.0}, 0.8};
   swarf_stock_cut cut = capsule_cut(&c);
-  (void)swarf_stock_remove_batch(s, &cut, 1, msg, sizeof msg);
-  (void)swarf_stock_write_vdb(s, "stock_fuzz_out.vdb", msg, sizeof msg);
+  (void)swarf_stock_remove_batch(s, &cut, 1, &err);
+  (void)swarf_stock_write_vdb(s, "stock_fuzz_out.vdb", &err);
 }
 
 int main(void) {
-  char msg[512];
+  swarf_error err = {0};
   const double lo[3] = {0, 0, -2}, hi[3] = {4, 3, 0};
-  swarf_stock *s = swarf_stock_new_box(lo, hi, 0.2, 3, msg, sizeof msg);
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(lo, hi, 0.2, 3, &s, &err);
   capsule_shape c = {{0.5, 1.5, 0.3}, {3.5, 1.5, 0.3}, 0.7};
   swarf_stock_cut cut = capsule_cut(&c);
-  CHECK(s && swarf_stock_remove_batch(s, &cut, 1, msg, sizeof msg) == 0, "setup: %s", msg);
-  CHECK(s && swarf_stock_write_vdb(s, "stock_fuzz_good.vdb", msg, sizeof msg) == 0, "write: %s", msg);
+  CHECK(s && swarf_stock_remove_batch(s, &cut, 1, &err) == 0, "setup: %s", err.message);
+  CHECK(s && swarf_stock_write_vdb(s, "stock_fuzz_good.vdb", &err) == 0, "write: %s", err.message);
   swarf_stock_free(s);
   size_t len;
   unsigned char *good = load("stock_fuzz_good.vdb", &len), *bad = malloc(len + 1);
@@ -85,12 +86,13 @@ int main(void) {
   for (int i = 0; i < COPIES; i++) {
     size_t n = damage(good, len, bad, i);
     save("stock_fuzz_bad.vdb", bad, n);
-    msg[0] = '\0';
-    swarf_stock *r = swarf_stock_read("stock_fuzz_bad.vdb", msg, sizeof msg);
+    err.message[0] = '\0';
+    swarf_stock *r = NULL;
+    swarf_stock_read("stock_fuzz_bad.vdb", &r, &err);
     if (r == NULL) {
       refused++;
-      CHECK(msg[0] != '\0', "copy %d refused without a message", i);
-      if (i < 8) printf("  copy %3d (%zu bytes): %s\n", i, n, msg);
+      CHECK(err.message[0] != '\0', "copy %d refused without a message", i);
+      if (i < 8) printf("  copy %3d (%zu bytes): %s\n", i, n, err.message);
     } else {
       accepted++;
       exercise(r);

@@ -4,11 +4,12 @@
 #include <cstdio>
 
 int main() {
-  char msg[128];
+  swarf_error err = {};
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-  swarf_stock *s = swarf_stock_new_box(lo, hi, 0.1, 3, msg, sizeof msg);
+  swarf_stock *s = nullptr;
+  swarf_stock_new_box(lo, hi, 0.1, 3, &s, &err);
   const bool ok = s != nullptr && swarf_stock_active_voxels(s) > 0;
   swarf_stock_free(s);
-  std::printf("%s\n", ok ? "ok" : msg);
+  std::printf("%s\n", ok ? "ok" : err.message);
   return ok ? 0 : 1;
 }

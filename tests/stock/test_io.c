@@ -50,12 +50,13 @@ static void write_bytes(const char *path, const void *data, size_t len) {
 }
 
 static swarf_stock *make_stock(void) {
-  char msg[256];
-  swarf_stock *s = swarf_stock_new_box(box.lo, box.hi, 0.1, 3, msg, sizeof msg);
-  CHECK(s != NULL, "new_box: %s", msg);
+  swarf_error err = {0};
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(box.lo, box.hi, 0.1, 3, &s, &err);
+  CHECK(s != NULL, "new_box: %s", err.message);
   capsule_shape slot = {{1.0, 2.5, 0.5}, {5.0, 2.5, 0.5}, 1.2};
   swarf_stock_cut cut = capsule_cut(&slot);
-  CHECK(s && swarf_stock_remove_batch(s, &cut, 1, msg, sizeof msg) == 0, "slot: %s", msg);
+  CHECK(s && swarf_stock_remove_batch(s, &cut, 1, &err) == 0, "slot: %s", err.message);
   return s;
 }
 
@@ -79,12 +80,13 @@ static void write_sidecar(const swarf_stock *s, const char *vdb) {
 }
 
 static void round_trip(const char *out) {
-  char msg[512];
+  swarf_error err = {0};
   swarf_stock *s = make_stock();
   if (!s) return;
-  CHECK(swarf_stock_write_vdb(s, out, msg, sizeof msg) == 0, "write %s: %s", out, msg);
-  swarf_stock *r = swarf_stock_read(out, msg, sizeof msg);
-  CHECK(r != NULL, "read back %s: %s", out, msg);
+  CHECK(swarf_stock_write_vdb(s, out, &err) == 0, "write %s: %s", out, err.message);
+  swarf_stock *r = NULL;
+  swarf_stock_read(out, &r, &err);
+  CHECK(r != NULL, "read back %s: %s", out, err.message);
   if (r) {
     CHECK(swarf_stock_voxel(r) == swarf_stock_voxel(s), "voxel %g", swarf_stock_voxel(r));
     CHECK(swarf_stock_half_width(r) == 3, "half width %d", swarf_stock_half_width(r));
@@ -92,11 +94,11 @@ static void round_trip(const char *out) {
           swarf_stock_active_voxels(r), swarf_stock_active_voxels(s));
     CHECK(stock_differences(s, r) == 0 && stock_differences(r, s) == 0, "bit-identical values");
     CHECK(swarf_stock_volume(r) == swarf_stock_volume(s), "same volume");
-    CHECK(swarf_stock_check(r, msg, sizeof msg) == 0, "read grid valid: %s", msg);
+    CHECK(swarf_stock_check(r, &err) == 0, "read grid valid: %s", err.message);
     /* A read stock can be cut like a new one. */
     capsule_shape hole = {{2.0, 2.0, -1.0}, {2.0, 2.0, 1.0}, 0.4};
     swarf_stock_cut cut = capsule_cut(&hole);
-    CHECK(swarf_stock_remove_batch(r, &cut, 1, msg, sizeof msg) == 0, "cut read stock: %s", msg);
+    CHECK(swarf_stock_remove_batch(r, &cut, 1, &err) == 0, "cut read stock: %s", err.message);
     CHECK(swarf_stock_volume(r) < swarf_stock_volume(s), "the hole removed material");
     swarf_stock_free(r);
   }
@@ -105,10 +107,11 @@ static void round_trip(const char *out) {
 }
 
 static void refuse(const char *path, const char *what) {
-  char msg[512] = "";
-  swarf_stock *s = swarf_stock_read(path, msg, sizeof msg);
-  CHECK(s == NULL && msg[0] != '\0', "%s refused with a message", what);
-  printf("  %-14s -> %s\n", what, msg);
+  swarf_error err = {0};
+  swarf_stock *s = NULL;
+  swarf_stock_read(path, &s, &err);
+  CHECK(s == NULL && err.message[0] != '\0', "%s refused with a message", what);
+  printf("  %-14s -> %s\n", what, err.message);
   swarf_stock_free(s);
 }
 
@@ -138,13 +141,14 @@ static void bad_files(const char *good) {
 }
 
 static void failed_writes(void) {
-  char msg[512], tmp[1024], name[300];
+  char tmp[1024], name[300];
+  swarf_error err = {0};
   swarf_stock *s = make_stock();
   if (!s) return;
   /* A missing directory: error, nothing created. */
-  int rc = swarf_stock_write_vdb(s, "stock_io_no_such_dir/out.vdb", msg, sizeof msg);
-  CHECK(rc == SWARF_STOCK_ERR_IO, "missing directory: %d %s", rc, msg);
-  printf("  missing dir    -> %s\n", msg);
+  int rc = swarf_stock_write_vdb(s, "stock_io_no_such_dir/out.vdb", &err);
+  CHECK(rc == SWARF_ERR_IO, "missing directory: %d %s", rc, err.message);
+  printf("  missing dir    -> %s\n", err.message);
   CHECK(!file_exists("stock_io_no_such_dir"), "nothing created");
 
   /* An existing file, and its temporary name taken by a directory: the write
@@ -152,9 +156,9 @@ static void failed_writes(void) {
   write_bytes("stock_io_keep.vdb", "precious", 8);
   snprintf(tmp, sizeof tmp, "stock_io_keep.vdb.tmp.%ld", (long)getpid());
   mkdir(tmp, 0755);
-  rc = swarf_stock_write_vdb(s, "stock_io_keep.vdb", msg, sizeof msg);
-  CHECK(rc == SWARF_STOCK_ERR_IO, "blocked temporary: %d %s", rc, msg);
-  printf("  blocked tmp    -> %s\n", msg);
+  rc = swarf_stock_write_vdb(s, "stock_io_keep.vdb", &err);
+  CHECK(rc == SWARF_ERR_IO, "blocked temporary: %d %s", rc, err.message);
+  printf("  blocked tmp    -> %s\n", err.message);
   CHECK(file_size("stock_io_keep.vdb") == 8, "existing file untouched");
   CHECK(file_exists(tmp), "a directory in the way is not removed");
   rmdir(tmp);
@@ -163,25 +167,25 @@ static void failed_writes(void) {
   memset(name, 'k', 250);
   strcpy(name + 250, ".vdb");
   write_bytes(name, "precious", 8);
-  rc = swarf_stock_write_vdb(s, name, msg, sizeof msg);
-  CHECK(rc == SWARF_STOCK_ERR_IO, "long name: %d %s", rc, msg);
+  rc = swarf_stock_write_vdb(s, name, &err);
+  CHECK(rc == SWARF_ERR_IO, "long name: %d %s", rc, err.message);
   CHECK(file_size(name) == 8, "existing file untouched (long name)");
   unlink(name);
 
   /* The target is a directory: the rename fails, the temporary file is removed. */
   mkdir("stock_io_dir.vdb", 0755);
-  rc = swarf_stock_write_vdb(s, "stock_io_dir.vdb", msg, sizeof msg);
-  CHECK(rc == SWARF_STOCK_ERR_IO, "directory target: %d %s", rc, msg);
-  printf("  dir target     -> %s\n", msg);
+  rc = swarf_stock_write_vdb(s, "stock_io_dir.vdb", &err);
+  CHECK(rc == SWARF_ERR_IO, "directory target: %d %s", rc, err.message);
+  printf("  dir target     -> %s\n", err.message);
   snprintf(tmp, sizeof tmp, "stock_io_dir.vdb.tmp.%ld", (long)getpid());
   CHECK(!file_exists(tmp), "temporary file removed");
   rmdir("stock_io_dir.vdb");
 
-  CHECK(swarf_stock_write_vdb(NULL, "x.vdb", msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL stock");
-  CHECK(swarf_stock_write_vdb(s, NULL, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL path");
-  CHECK(swarf_stock_write_vdb(s, "", msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "empty path");
+  CHECK(swarf_stock_write_vdb(NULL, "x.vdb", &err) == SWARF_ERR_ARG, "NULL stock");
+  CHECK(swarf_stock_write_vdb(s, NULL, &err) == SWARF_ERR_ARG, "NULL path");
+  CHECK(swarf_stock_write_vdb(s, "", &err) == SWARF_ERR_ARG, "empty path");
   /* Overwriting an existing file works. */
-  CHECK(swarf_stock_write_vdb(s, "stock_io_keep.vdb", msg, sizeof msg) == 0, "overwrite: %s", msg);
+  CHECK(swarf_stock_write_vdb(s, "stock_io_keep.vdb", &err) == 0, "overwrite: %s", err.message);
   CHECK(file_size("stock_io_keep.vdb") > 8, "file replaced");
   unlink("stock_io_keep.vdb");
   swarf_stock_free(s);

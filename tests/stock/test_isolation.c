@@ -20,10 +20,11 @@ static void count_fork(void) {
 
 /* Reads `path`, returns how many forks that took; checks the contents. */
 static int read_forks(const char *path, const swarf_stock *ref, const char *what) {
-  char msg[256];
+  swarf_error err = {0};
   const int before = forks;
-  swarf_stock *s = swarf_stock_read(path, msg, sizeof msg);
-  CHECK(s != NULL, "%s: read: %s", what, msg);
+  swarf_stock *s = NULL;
+  swarf_stock_read(path, &s, &err);
+  CHECK(s != NULL, "%s: read: %s", what, err.message);
   if (s) {
     CHECK(swarf_stock_active_voxels(s) == swarf_stock_active_voxels(ref), "%s: voxels", what);
     CHECK(swarf_stock_volume(s) == swarf_stock_volume(ref), "%s: volume %.9g vs %.9g", what,
@@ -35,12 +36,13 @@ static int read_forks(const char *path, const swarf_stock *ref, const char *what
 
 int main(int argc, char **argv) {
   const char *path = argc > 1 ? argv[1] : "isolation.vdb";
-  char msg[256];
+  swarf_error err = {0};
   const double lo[3] = {0, 0, 0}, hi[3] = {3, 2, 1};
-  swarf_stock *ref = swarf_stock_new_box(lo, hi, 0.1, 3, msg, sizeof msg);
-  CHECK(ref != NULL, "new_box: %s", msg);
+  swarf_stock *ref = NULL;
+  swarf_stock_new_box(lo, hi, 0.1, 3, &ref, &err);
+  CHECK(ref != NULL, "new_box: %s", err.message);
   if (!ref) return check_done();
-  CHECK(swarf_stock_write_vdb(ref, path, msg, sizeof msg) == 0, "write: %s", msg);
+  CHECK(swarf_stock_write_vdb(ref, path, &err) == 0, "write: %s", err.message);
   CHECK(pthread_atfork(count_fork, NULL, NULL) == 0, "pthread_atfork");
 
   unsetenv("SWARF_VDB_ISOLATE");

@@ -15,18 +15,19 @@
 #include "shapes.h"
 
 static int overlaps(const swarf_stock *s, const capsule_shape *c, double depth, double where[3]) {
-  char msg[256];
+  swarf_error err = {0};
   int hit = -1;
   swarf_stock_cut cut = capsule_cut(c);
-  CHECK(swarf_stock_overlaps(s, &cut, depth, &hit, where, msg, sizeof msg) == 0, "query: %s", msg);
+  CHECK(swarf_stock_overlaps(s, &cut, depth, &hit, where, &err) == 0, "query: %s", err.message);
   return hit;
 }
 
 int main(void) {
-  char msg[256];
+  swarf_error err = {0};
   const double lo[3] = {0, 0, -5}, hi[3] = {20, 10, 0}, h = 0.1, depth = 0.05;
-  swarf_stock *s = swarf_stock_new_box(lo, hi, h, 3, msg, sizeof msg);
-  CHECK(s != NULL, "box: %s", msg);
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(lo, hi, h, 3, &s, &err);
+  CHECK(s != NULL, "box: %s", err.message);
   if (!s) return check_done();
   const double vol0 = swarf_stock_volume(s);
   const unsigned long long act0 = swarf_stock_active_voxels(s);
@@ -51,7 +52,7 @@ int main(void) {
   /* cut a pocket, then the same ball inside the pocket touches nothing */
   capsule_shape pocket = {{15.0, 5.0, 0.0}, {15.0, 5.0, 0.0}, 3.0};
   swarf_stock_cut pc = capsule_cut(&pocket);
-  CHECK(swarf_stock_remove_batch(s, &pc, 1, msg, sizeof msg) == 0, "pocket: %s", msg);
+  CHECK(swarf_stock_remove_batch(s, &pc, 1, &err) == 0, "pocket: %s", err.message);
   capsule_shape inside = {{15.0, 5.0, 0.0}, {15.0, 5.0, 0.0}, 2.5};
   CHECK(overlaps(s, &inside, depth, where) == 0, "a ball inside the pocket is not found");
   capsule_shape wider = {{15.0, 5.0, 0.0}, {15.0, 5.0, 0.0}, 3.5};
@@ -59,9 +60,9 @@ int main(void) {
   /* bad arguments */
   int hit;
   swarf_stock_cut cut = capsule_cut(&inside);
-  CHECK(swarf_stock_overlaps(NULL, &cut, depth, &hit, NULL, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL stock");
-  CHECK(swarf_stock_overlaps(s, &cut, 1.0, &hit, NULL, msg, sizeof msg) == SWARF_STOCK_ERR_ARG,
-        "depth beyond the band refused: %s", msg);
+  CHECK(swarf_stock_overlaps(NULL, &cut, depth, &hit, NULL, &err) == SWARF_ERR_ARG, "NULL stock");
+  CHECK(swarf_stock_overlaps(s, &cut, 1.0, &hit, NULL, &err) == SWARF_ERR_ARG,
+        "depth beyond the band refused: %s", err.message);
   swarf_stock_free(s);
   return check_done();
 }

@@ -74,12 +74,12 @@ static long count_colours(const unsigned char *rgb, size_t npix) {
 }
 
 static void render_case(const swarf_stock *s, const char *path, unsigned w, unsigned h) {
-  char msg[512];
+  swarf_error err = {0};
   struct timespec t0, t1;
   clock_gettime(CLOCK_MONOTONIC, &t0);
-  int rc = swarf_stock_write_png(s, path, (int)w, (int)h, msg, sizeof msg);
+  int rc = swarf_stock_write_png(s, path, (int)w, (int)h, &err);
   clock_gettime(CLOCK_MONOTONIC, &t1);
-  CHECK(rc == 0, "render %s: %s", path, msg);
+  CHECK(rc == 0, "render %s: %s", path, err.message);
   printf("%s: %ux%u rendered in %.3f s\n", path, w, h,
          (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
   unsigned gw = 0, gh = 0;
@@ -96,10 +96,11 @@ static void render_case(const swarf_stock *s, const char *path, unsigned w, unsi
 }
 
 int main(void) {
-  char msg[512];
+  swarf_error err = {0};
   const double lo[3] = {0, 0, -20}, hi[3] = {80, 60, 0};
-  swarf_stock *s = swarf_stock_new_box(lo, hi, 0.2, 3, msg, sizeof msg);
-  CHECK(s != NULL, "new_box: %s", msg);
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(lo, hi, 0.2, 3, &s, &err);
+  CHECK(s != NULL, "new_box: %s", err.message);
   if (!s) return check_done();
   /* A pocket (a 6 mm ball end mill cleared 20 x 15 mm at 5 mm depth) and a slot. */
   static capsule_shape cuts_s[64];
@@ -115,14 +116,14 @@ int main(void) {
   cuts_s[n] = slot;
   cuts[n] = capsule_cut(&cuts_s[n]);
   n++;
-  CHECK(swarf_stock_remove_batch(s, cuts, (size_t)n, msg, sizeof msg) == 0, "cuts: %s", msg);
+  CHECK(swarf_stock_remove_batch(s, cuts, (size_t)n, &err) == 0, "cuts: %s", err.message);
   render_case(s, "stock_png_slot.png", 800, 600);
   render_case(s, "stock_png_small.png", 64, 48);
-  CHECK(swarf_stock_write_png(s, "x.png", 0, 10, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "zero width");
-  CHECK(swarf_stock_write_png(s, "x.png", 10, -1, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "negative height");
-  CHECK(swarf_stock_write_png(s, "stock_png_no_dir/x.png", 10, 10, msg, sizeof msg) == SWARF_STOCK_ERR_IO,
-        "missing directory: %s", msg);
-  CHECK(swarf_stock_write_png(NULL, "x.png", 10, 10, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL stock");
+  CHECK(swarf_stock_write_png(s, "x.png", 0, 10, &err) == SWARF_ERR_ARG, "zero width");
+  CHECK(swarf_stock_write_png(s, "x.png", 10, -1, &err) == SWARF_ERR_ARG, "negative height");
+  CHECK(swarf_stock_write_png(s, "stock_png_no_dir/x.png", 10, 10, &err) == SWARF_ERR_IO,
+        "missing directory: %s", err.message);
+  CHECK(swarf_stock_write_png(NULL, "x.png", 10, 10, &err) == SWARF_ERR_ARG, "NULL stock");
   swarf_stock_free(s);
   return check_done();
 }

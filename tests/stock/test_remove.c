@@ -31,20 +31,21 @@ static double truth(const double p[3]) {
 }
 
 static swarf_stock *new_stock(void) {
-  char msg[256];
-  swarf_stock *s = swarf_stock_new_box(box.lo, box.hi, VOXEL, HW, msg, sizeof msg);
-  CHECK(s != NULL, "new_box: %s", msg);
+  swarf_error err = {0};
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(box.lo, box.hi, VOXEL, HW, &s, &err);
+  CHECK(s != NULL, "new_box: %s", err.message);
   nremoved = 0;
   return s;
 }
 
 static int remove_capsule(swarf_stock *s, capsule_shape c) {
-  char msg[256];
+  swarf_error err = {0};
   double lo[3], hi[3];
   removed[nremoved++] = c;
   capsule_bounds(&removed[nremoved - 1], lo, hi);
-  int rc = swarf_stock_remove(s, lo, hi, capsule_sdf_cb, &removed[nremoved - 1], msg, sizeof msg);
-  CHECK(rc == 0, "remove: %s", msg);
+  int rc = swarf_stock_remove(s, lo, hi, capsule_sdf_cb, &removed[nremoved - 1], &err);
+  CHECK(rc == 0, "remove: %s", err.message);
   return rc;
 }
 
@@ -88,8 +89,8 @@ static void check_whole_band(const swarf_stock *s, const char *what) {
 }
 
 static void check_valid(const swarf_stock *s, const char *what) {
-  char msg[512];
-  CHECK(swarf_stock_check(s, msg, sizeof msg) == 0, "%s: checkLevelSet: %s", what, msg);
+  swarf_error err = {0};
+  CHECK(swarf_stock_check(s, &err) == 0, "%s: checkLevelSet: %s", what, err.message);
 }
 
 /* A ball of radius r centred at c removed; removed volume vs `want`. */
@@ -172,7 +173,7 @@ static void batch_equals_single(void) {
   enum { N = 300 };
   static capsule_shape path[N];
   static swarf_stock_cut cuts[N];
-  char msg[256];
+  swarf_error err = {0};
   for (int i = 0; i < N; i++) {
     int row = i / 30, col = i % 30;
     double x0 = 1.0 + 0.25 * (row % 2 ? 30 - col : col), x1 = x0 + (row % 2 ? -0.25 : 0.25);
@@ -183,13 +184,13 @@ static void batch_equals_single(void) {
   swarf_stock *one = new_stock(), *batch = new_stock();
   if (!one || !batch) return;
   for (int i = 0; i < N; i++)
-    CHECK(swarf_stock_remove(one, cuts[i].lo, cuts[i].hi, cuts[i].sdf, cuts[i].ctx, msg, sizeof msg) == 0,
-          "remove %d: %s", i, msg);
+    CHECK(swarf_stock_remove(one, cuts[i].lo, cuts[i].hi, cuts[i].sdf, cuts[i].ctx, &err) == 0,
+          "remove %d: %s", i, err.message);
   for (int i = 0; i < N; i += 64) {
     size_t n = N - i < 64 ? (size_t)(N - i) : 64;
-    CHECK(swarf_stock_remove_batch(batch, cuts + i, n, msg, sizeof msg) == 0, "batch: %s", msg);
+    CHECK(swarf_stock_remove_batch(batch, cuts + i, n, &err) == 0, "batch: %s", err.message);
   }
-  CHECK(swarf_stock_remove_batch(batch, cuts, 0, msg, sizeof msg) == 0, "empty batch: %s", msg);
+  CHECK(swarf_stock_remove_batch(batch, cuts, 0, &err) == 0, "empty batch: %s", err.message);
   printf("batch vs single: %llu vs %llu active voxels\n", swarf_stock_active_voxels(batch),
          swarf_stock_active_voxels(one));
   CHECK(stock_differences(one, batch) == 0, "batch == one at a time (bit-identical)");
@@ -205,42 +206,47 @@ static void batch_equals_single(void) {
 static double nan_sdf(const void *ctx, double x, double y, double z) { return NAN; }
 
 static void bad_arguments(void) {
-  char msg[256];
+  swarf_error err = {0};
   swarf_stock *s = new_stock();
   if (!s) return;
   unsigned long long n = swarf_stock_active_voxels(s);
   capsule_shape c = {{1, 1, 0}, {2, 1, 0}, 0.5};
   swarf_stock_cut cut = capsule_cut(&c), bad = cut;
   bad.sdf = NULL;
-  CHECK(swarf_stock_remove(NULL, cut.lo, cut.hi, cut.sdf, cut.ctx, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL stock");
-  CHECK(swarf_stock_remove(s, NULL, cut.hi, cut.sdf, cut.ctx, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL lo");
-  CHECK(swarf_stock_remove(s, cut.lo, cut.hi, NULL, cut.ctx, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL sdf");
-  CHECK(swarf_stock_remove(s, cut.hi, cut.lo, cut.sdf, cut.ctx, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "lo > hi");
+  CHECK(swarf_stock_remove(NULL, cut.lo, cut.hi, cut.sdf, cut.ctx, &err) == SWARF_ERR_ARG,
+        "NULL stock");
+  CHECK(swarf_stock_remove(s, NULL, cut.hi, cut.sdf, cut.ctx, &err) == SWARF_ERR_ARG, "NULL lo");
+  CHECK(swarf_stock_remove(s, cut.lo, cut.hi, NULL, cut.ctx, &err) == SWARF_ERR_ARG, "NULL sdf");
+  CHECK(swarf_stock_remove(s, cut.hi, cut.lo, cut.sdf, cut.ctx, &err) == SWARF_ERR_ARG, "lo > hi");
   bad = cut;
   bad.lo[1] = NAN;
-  CHECK(swarf_stock_remove_batch(s, &bad, 1, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NaN bound: %s", msg);
+  CHECK(swarf_stock_remove_batch(s, &bad, 1, &err) == SWARF_ERR_ARG, "NaN bound: %s", err.message);
   swarf_stock_cut two[2] = {cut, cut};
   two[1].sdf = NULL;
-  CHECK(swarf_stock_remove_batch(s, two, 2, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "batch with a NULL sdf: %s", msg);
-  CHECK(swarf_stock_remove_batch(s, NULL, 3, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL cuts");
+  CHECK(swarf_stock_remove_batch(s, two, 2, &err) == SWARF_ERR_ARG, "batch with a NULL sdf: %s",
+        err.message);
+  CHECK(swarf_stock_remove_batch(s, NULL, 3, &err) == SWARF_ERR_ARG, "NULL cuts");
   CHECK(swarf_stock_active_voxels(s) == n, "refused removals change nothing");
-  CHECK(swarf_stock_remove(s, cut.lo, cut.hi, nan_sdf, NULL, msg, sizeof msg) == 0, "NaN sdf: %s", msg);
+  CHECK(swarf_stock_remove(s, cut.lo, cut.hi, nan_sdf, NULL, &err) == 0, "NaN sdf: %s",
+        err.message);
   CHECK(swarf_stock_active_voxels(s) == n, "a NaN sdf removes nothing");
   const double far_lo[3] = {100, 100, 100}, far_hi[3] = {101, 101, 101};
-  CHECK(swarf_stock_remove(s, far_lo, far_hi, capsule_sdf_cb, &c, msg, sizeof msg) == 0, "far away: %s", msg);
+  CHECK(swarf_stock_remove(s, far_lo, far_hi, capsule_sdf_cb, &c, &err) == 0, "far away: %s",
+        err.message);
   CHECK(swarf_stock_active_voxels(s) == n, "a cut away from the stock changes nothing");
   check_valid(s, "after refused removals");
   swarf_stock_free(s);
 }
 
 static void remove_everything(void) {
-  char msg[256];
+  swarf_error err = {0};
   swarf_stock *s = new_stock();
   if (!s) return;
   capsule_shape c = {{5, 4, -2.5}, {5, 4, -2.5}, 20.0};
   double lo[3], hi[3];
   capsule_bounds(&c, lo, hi);
-  CHECK(swarf_stock_remove(s, lo, hi, capsule_sdf_cb, &c, msg, sizeof msg) == 0, "remove all: %s", msg);
+  CHECK(swarf_stock_remove(s, lo, hi, capsule_sdf_cb, &c, &err) == 0, "remove all: %s",
+        err.message);
   CHECK(swarf_stock_active_voxels(s) == 0, "no active voxels left (%llu)", swarf_stock_active_voxels(s));
   CHECK(swarf_stock_volume(s) == 0.0, "no volume left (%g)", swarf_stock_volume(s));
   CHECK(swarf_stock_sample(s, 5, 4, -2.5) == (float)BAND, "all outside");

@@ -112,10 +112,10 @@ static void check_normals(const swarf_stock *s, const tri *t, uint32_t n, const 
 }
 
 static void mesh_case(const swarf_stock *s, const char *path, double want, const char *what) {
-  char msg[512];
+  swarf_error err = {0};
   size_t ntri = 0;
   uint32_t n;
-  CHECK(swarf_stock_write_stl(s, path, &ntri, msg, sizeof msg) == 0, "%s: write: %s", what, msg);
+  CHECK(swarf_stock_write_stl(s, path, &ntri, &err) == 0, "%s: write: %s", what, err.message);
   tri *t = read_stl(path, &n);
   CHECK(t != NULL && n == ntri && n > 0, "%s: read back %u triangles (%zu written)", what, n, ntri);
   if (!t) return;
@@ -128,19 +128,20 @@ static void mesh_case(const swarf_stock *s, const char *path, double want, const
 }
 
 int main(void) {
-  char msg[512];
+  swarf_error err = {0};
   const box_shape box = {{-1.0, 0.5, -3.0}, {5.0, 4.5, 0.0}};
-  swarf_stock *s = swarf_stock_new_box(box.lo, box.hi, 0.1, 3, msg, sizeof msg);
-  CHECK(s != NULL, "new_box: %s", msg);
+  swarf_stock *s = NULL;
+  swarf_stock_new_box(box.lo, box.hi, 0.1, 3, &s, &err);
+  CHECK(s != NULL, "new_box: %s", err.message);
   if (!s) return check_done();
   mesh_case(s, "stock_stl_box.stl", 6.0 * 4.0 * 3.0, "box");
   capsule_shape ball = {{2.0, 2.5, 0.0}, {2.0, 2.5, 0.0}, 1.5};
   swarf_stock_cut cut = capsule_cut(&ball);
-  CHECK(swarf_stock_remove_batch(s, &cut, 1, msg, sizeof msg) == 0, "remove: %s", msg);
+  CHECK(swarf_stock_remove_batch(s, &cut, 1, &err) == 0, "remove: %s", err.message);
   mesh_case(s, "stock_stl_pocket.stl", swarf_stock_volume(s), "box with a ball pocket");
-  CHECK(swarf_stock_write_stl(s, "stock_stl_no_dir/x.stl", NULL, msg, sizeof msg) == SWARF_STOCK_ERR_IO,
-        "missing directory refused: %s", msg);
-  CHECK(swarf_stock_write_stl(NULL, "x.stl", NULL, msg, sizeof msg) == SWARF_STOCK_ERR_ARG, "NULL stock");
+  CHECK(swarf_stock_write_stl(s, "stock_stl_no_dir/x.stl", NULL, &err) == SWARF_ERR_IO,
+        "missing directory refused: %s", err.message);
+  CHECK(swarf_stock_write_stl(NULL, "x.stl", NULL, &err) == SWARF_ERR_ARG, "NULL stock");
   swarf_stock_free(s);
   return check_done();
 }

@@ -58,4 +58,28 @@ out=$("$swarf" envelope --qss 1,1,0,0,0,2 --axis 2,1,2 --tdot 0,0,0 --half-angle
 check "$out" "case: whole sphere"
 out=$("$swarf" envelope --qss 1,2,0,0,0,0 --axis 0,0,1 --tdot 1,0,0 --half-angle 1 --exact) || fail=1
 check "$out" "Delta roots in [-1, 1]: 2"
+
+# --tool: any cutter's curve at the instant; every row meets the characteristic
+# condition (v + omega x X) . n = 0 with the printed v and omega, and lies on the
+# drawn V-bit (cone r = z up to 3, cylinder r = 3, top face z = 24).
+out=$("$swarf" envelope --tool vee,D6,A90 --axis 2,1,2 --tdot 1,1,0 --half-angle 2 --points 60) ||
+  { echo "--tool: exit status $?"; fail=1; }
+check "$out" "tool: vee D6 L24"
+check "$out" "fast: components 2"
+v=$(sed -n 's/^v: //p' <<<"$out"); w=$(sed -n 's/^omega: //p' <<<"$out")
+rows=$(sed -n '/^z,branch,nx/,$p' <<<"$out" | tail -n +2)
+[ "$(wc -l <<<"$rows")" -eq 120 ] || { echo "--tool: expected 120 rows"; fail=1; }
+bad=$(awk -F, -v v="$v" -v w="$w" 'BEGIN { split(v, V, ", "); split(w, W, ", ") }
+  { nx=$3; ny=$4; nz=$5; X=$6; Y=$7; Z=$8;
+    cx=W[2]*Z-W[3]*Y; cy=W[3]*X-W[1]*Z; cz=W[1]*Y-W[2]*X;
+    f=(V[1]+cx)*nx+(V[2]+cy)*ny+(V[3]+cz)*nz; r=sqrt(X*X+Y*Y);
+    on=(Z<=3+1e-9 && (r-Z<1e-9 && Z-r<1e-9)) || (r-3<1e-9 && 3-r<1e-9) || (Z-24<1e-9 && 24-Z<1e-9 && r<=3+1e-9);
+    if (f>1e-9||f<-1e-9||!on) print }' <<<"$rows")
+[ -z "$bad" ] || { echo "--tool rows off the curve or the V-bit: $bad"; fail=1; }
+out=$("$swarf" envelope --tool T4=qss,1,-1,0,0 --axis 2,1,2 --tdot 1,1,0 --half-angle 2) ||
+  { echo "--tool qss: exit status $?"; fail=1; }
+check "$out" "tool: qss"
+expect2 --tool vee,D6 --axis 2,1,2 --tdot 1,1,0 --half-angle 2
+expect2 --tool vee,D6,A90 --qss 1,-1,0,0,0,0 --axis 2,1,2 --tdot 1,1,0 --half-angle 2
+expect2 --tool vee,D6,A90 --axis 2,1,2 --tdot 1,1,0 --half-angle 2 --exact
 exit $fail

@@ -38,6 +38,12 @@ expect stock-min-max '--stock: X min 10 is not below X max 0' 'G0 X1\n' --stock 
 expect stock-garbage '--stock: ' 'G0 X1\n' --stock box:1,2,3 "${tool[@]}"
 expect tool-garbage '--tool: ' 'G0 X1\n' "${stock[@]}" --tool T1=sphere,D3
 expect bull-without-r '--tool: ' 'G0 X1\n' "${stock[@]}" --tool T1=bull,D6
+expect vee-without-angle '--tool: A: the included angle is required' 'G0 X1\n' "${stock[@]}" --tool T1=vee,D6
+expect vee-bad-field '--tool: unknown field "X3" for vee \(use DAL\)' 'G0 X1\n' "${stock[@]}" --tool T1=vee,D6,A90,X3
+expect apt-inconsistent '--tool: F: .* F = \(R \+ E sin A\) / cos A = 1 \(got 3\)' 'G0 X1\n' "${stock[@]}" \
+  --tool T1=apt,D6,R1,E2,F3,A0,B0,H10
+expect qss-axis '--tool: the QSS profile crosses its axis' 'G0 X1\n' "${stock[@]}" --tool T1=qss,-1,1,0,0
+expect lollipop-neck '--tool: K: the neck must be thinner' 'G0 X1\n' "${stock[@]}" --tool T1=lollipop,D6,K6
 expect output-folder-missing 'cannot write' 'G0 X1\n' "${stock[@]}" "${tool[@]}" --image "$dir/nothere/x.png"
 # an error late in a program that already cut: still nothing written
 expect late-error 'prog\.ngc:5:1:' 'G0 Z1\nG0 X5 Y5\nG1 Z-2 F100\nG1 X30\nW1\n' "${stock[@]}" "${tool[@]}"

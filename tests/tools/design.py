@@ -24,7 +24,7 @@ import verifykit as vk
 
 swarf = sys.argv[1]
 d = vk.workdir()
-VOX = 0.1
+VOX = 0.2
 stock = "box:0,0,-10,40,30,0"
 tool = "T1=flat,D6,L20"
 
@@ -87,9 +87,10 @@ des = r.report["summary"]["design"]
 vol = (0.3 - VOX / 2) * (40 * 6)
 vk.near(des["gouge_mm3"], vol, 0.03 * vol, "gouge volume = footprint x 0.3")
 vk.near(des["gouge_depth_mm"], 0.3, 0.0015, "deepest gouge")
+# where: a voxel centre of the gouge (its depth adds the radius known to be clear)
 vk.check(des["gouge_at"] is not None and 0 <= des["gouge_at"][0] <= 40 and
-         abs(des["gouge_at"][1] - 15) <= 3 and abs(des["gouge_at"][2] + 1.3) <= VOX,
-         "where: %s" % des["gouge_at"])
+         abs(des["gouge_at"][1] - 15) <= 3 and -1.3 - 1e-9 <= des["gouge_at"][2] <= -1.0,
+         "where: in the pass's footprint, between Z-1.3 and the design's face: %s" % des["gouge_at"])
 al = [a for a in r.report["alarms"] if a["kind"] == "gouge"]
 vk.check(len(al) == 1 and al[0]["line"] == deep_line, "one gouge alarm in the report: %s" % al)
 vk.check(re.search(r"gouge .* deepest 0\.30\d mm", r.stdout) is not None,
@@ -106,8 +107,9 @@ vk.check(gouges(r) == [], "no gouge when leaving material")
 
 # --tolerance: a 0.3 mm gouge within 0.35 is none
 r = run(prog, faced, ["--tolerance", "0.35"])
-vk.check(gouges(r) == [] and r.report["summary"]["design"]["gouge_mm3"] < 1e-6,
-         "--tolerance 0.35 hides the 0.3 mm gouge: %s" % gouges(r))
+vk.check(gouges(r) == [] and r.report["summary"]["design"]["gouge_mm3"] < 0.05,
+         "--tolerance 0.35 hides the 0.3 mm gouge: %s, %s mm^3" %
+         (gouges(r), r.report["summary"]["design"]["gouge_mm3"]))
 
 # --fail-on gouge: status 4, outputs written
 r = run(prog, faced, ["--fail-on", "gouge"])
@@ -146,7 +148,7 @@ g = gouges(r)
 want = [(base + 2, 0.5), (base + 4, 0.4)]
 vk.check([x[0] for x in g] == [w[0] for w in want], "gouges at lines %s: %s" % ([w[0] for w in want], g))
 for got, (line, depth) in zip(g, want):
-    vk.near(got[2], depth, VOX / 2, "line %d: gouge depth" % line)
+    vk.near(got[2], depth, 0.002, "line %d: gouge depth (flat floor, flat wall: exact)" % line)
 vk.check(r.report["summary"]["alarm_counts"]["gouge"] >= 2, "gouge alarms counted")
 
 # a design that misses the stock: exit 2, nothing written

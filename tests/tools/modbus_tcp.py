@@ -67,7 +67,7 @@ t.check("moves done monotonic", all(a["done"] <= b["done"] for a, b in zip(sampl
 t.check("progress below 1000 while running", all(s["permille"] < 1000 for s in running))
 t.check("progress grows while running", len(running) > 1 and running[-1]["permille"] > running[0]["permille"])
 t.check("heartbeat moves", len({s["heartbeat"] for s in running}) > 1)
-t.check("map version 1", all(s["version"] == 1 for s in samples))
+t.check("map version 2", all(s["version"] == 2 for s in samples))
 t.check("mbpoll read moves while running", len(mbpoll_seen) >= 2, str(mbpoll_seen))
 t.check("mbpoll values monotonic", mbpoll_seen == sorted(mbpoll_seen), str(mbpoll_seen))
 

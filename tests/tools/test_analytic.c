@@ -196,7 +196,6 @@ static void run_case(const sim_case *c) {
   swarf_sim_config cfg;
   swarf_sim_report rep;
   swarf_stock *stock = NULL;
-  char msg[512];
   swarf_error err;
   swarf_sim_config_init(&cfg);
   memcpy(cfg.stock.lo, box_lo, sizeof box_lo);
@@ -223,7 +222,8 @@ static void run_case(const sim_case *c) {
         v.max_err / VOXEL, v.worst_count);
   CHECK(fabs(removed - c->volume) <= 0.005 * c->volume, "%s: removed %.3f vs %.3f", c->name,
         removed, c->volume);
-  CHECK(swarf_stock_check(stock, msg, sizeof msg) == 0, "%s: level set valid: %s", c->name, msg);
+  CHECK(swarf_stock_check(stock, &err) == SWARF_OK, "%s: level set valid: %s", c->name,
+        err.message);
   swarf_stock_free(stock);
 }
 

@@ -104,7 +104,7 @@ static swarf_stock *reference(const swarf_sim_config *cfg, const char *pre, cons
   if (s == NULL) return NULL;
   swarf_sweep_init_voxel(&sw, c, m, VOXEL);
   swarf_sweep_bounds(&sw, lo, hi);
-  CHECK(swarf_stock_remove(s, lo, hi, pose_sdf, &ps, NULL, 0) == 0, "reference removal");
+  CHECK(swarf_stock_remove(s, lo, hi, pose_sdf, &ps, NULL) == SWARF_OK, "reference removal");
   return s;
 }
 

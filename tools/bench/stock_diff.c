@@ -44,17 +44,16 @@ static void visit(void *ctx, const double c[3], float value) {
 }
 
 int main(int argc, char **argv) {
-  char msg[512];
-  swarf_stock *a, *b;
+  swarf_error err = {0};
+  swarf_stock *a = NULL, *b = NULL;
   diff_acc d = {0};
   if (argc != 3) {
     fprintf(stderr, "usage: stock_diff REFERENCE.vdb OTHER.vdb\n");
     return 2;
   }
-  a = swarf_stock_read(argv[1], msg, sizeof msg);
-  b = a ? swarf_stock_read(argv[2], msg, sizeof msg) : NULL;
+  if (swarf_stock_read(argv[1], &a, &err) == SWARF_OK) swarf_stock_read(argv[2], &b, &err);
   if (b == NULL || swarf_stock_voxel(a) != swarf_stock_voxel(b)) {
-    fprintf(stderr, "stock_diff: %s\n", b == NULL ? msg : "the voxel sizes differ");
+    fprintf(stderr, "stock_diff: %s\n", b == NULL ? err.message : "the voxel sizes differ");
     swarf_stock_free(a);
     swarf_stock_free(b);
     return 2;

@@ -1,5 +1,5 @@
 /* cli_envelope.c -- `swarf envelope`: the characteristic curve of a moving
- * QSS of revolution (paper eq. 12) at one instant, by the fast path
+ * QSS of revolution (paper eq. 12), or of any cutter (--tool), at one instant, by the fast path
  * (engine.h) or, with --exact, by the exact path (envelope_exact.h), which
  * prints every intermediate result for checking against the paper.
  *
@@ -16,9 +16,12 @@
 #include "cli.h"
 #include "engine.h"
 #include "envelope_exact.h"
+#include "swarf_sim.h"
 
 static const char envelope_help[] =
     "usage: swarf envelope --qss A,B,C,D,E,F --axis WX,WY,WZ --tdot VX,VY,VZ --half-angle B\n"
+    "       swarf envelope --tool SPEC --axis WX,WY,WZ --tdot VX,VY,VZ --half-angle B [--points "
+    "N]\n"
     "                      [--exact] [--at-z Z1,Z2,...] [--points N]\n"
     "\n"
     "The characteristic curve of the QSS h = A(x^2+y^2) + Bz^2 + Cx + Dy + Ez + F (paper\n"
@@ -29,6 +32,11 @@ static const char envelope_help[] =
     "              its certified roots (needs an axis of rational length, e.g. 2,1,2)\n"
     "  --at-z      print the curve's points at these slices n_z = Z as CSV\n"
     "  --points N  print N slices per component, spread over its z range, as CSV\n"
+    "  --tool SPEC instead of --qss: any cutter of `swarf simulate --tool` (vee,D6,A90;\n"
+    "              lollipop,D6,K3; qss,2,3,0,0; ...; a leading T<n>= is optional) in its\n"
+    "              own frame (tip at the origin); --points N prints N points of each\n"
+    "              component of its curve (chord tolerance 1e-3 mm), `branch` then being\n"
+    "              the component's number; --exact and --at-z need --qss\n"
     "CSV columns: z,branch,nx,ny,nz,X,Y,Z,Xw,Yw,Zw (moving-frame normal, moving-frame\n"
     "surface point, world point t + U x). Exit status 2 on bad options.\n";
 
@@ -37,6 +45,8 @@ typedef struct {
   fmpq_t B;
   fmpq *atz;
   int natz, points, exact;
+  int use_tool; /* --tool given: the cutter below instead of the QSS */
+  swarf_sim_tool tool;
 } options;
 
 /* p, p/q or a decimal (-1.25) into x. Returns 0 or -1. */
@@ -103,9 +113,19 @@ static int parse_options(options *o, int argc, char **argv) {
     }
     if (val == NULL) return bad(a, "unknown option or missing value");
     i++;
-    if (!strcmp(a, "--qss"))
+    if (!strcmp(a, "--qss")) {
+      if (o->use_tool) return bad(a, "give --qss or --tool, not both");
       have[0] = parse_list(val, o->h, 6, NULL) == 6;
-    else if (!strcmp(a, "--axis"))
+    } else if (!strcmp(a, "--tool")) {
+      char spec[256];
+      swarf_error err;
+      if (have[0]) return bad(a, "give --qss or --tool, not both");
+      snprintf(spec, sizeof spec, "%s%s", (val[0] == 'T' || val[0] == 't') ? "" : "T1=", val);
+      swarf_error_init(&err);
+      if (swarf_sim_parse_tool(spec, &o->tool, &err) != SWARF_OK) return bad(a, err.message);
+      have[0] = o->use_tool = 1;
+      continue;
+    } else if (!strcmp(a, "--axis"))
       have[1] = parse_list(val, o->w, 3, NULL) == 3;
     else if (!strcmp(a, "--tdot"))
       have[2] = parse_list(val, o->td, 3, NULL) == 3;
@@ -133,7 +153,9 @@ static int parse_options(options *o, int argc, char **argv) {
     if (!have[3] && !strcmp(a, "--half-angle")) return bad(a, "a rational B");
   }
   if (!have[0] || !have[1] || !have[2] || !have[3])
-    return bad("options", "--qss, --axis, --tdot and --half-angle are all required");
+    return bad("options", "--qss (or --tool), --axis, --tdot and --half-angle are all required");
+  if (o->use_tool && (o->exact || o->natz > 0))
+    return bad(o->exact ? "--exact" : "--at-z", "works on --qss only (not with --tool)");
   if (fmpq_is_zero(o->w + 0) && fmpq_is_zero(o->w + 1) && fmpq_is_zero(o->w + 2))
     return bad("--axis", "the axis direction must not be zero");
   return 0;
@@ -290,6 +312,35 @@ static int run_exact(const options *o, const pose *p, swarf_envelope_exact *E) {
   return rc;
 }
 
+/* --tool: the cutter's curve at the pose, its summary and CSV rows. */
+static int tool_curve(const pose *p, const swarf_cutter *c, int points) {
+  swarf_char_curve cc;
+  char desc[160];
+  swarf_char_curve_init(&cc);
+  swarf_cutter_describe(c, desc, sizeof desc);
+  printf("tool: %s\n", desc);
+  if (swarf_char_curve_compute(&cc, c, p->t, p->U, p->v, p->omega, 1e-3) != SWARF_OK) {
+    fprintf(stderr, "swarf envelope: out of memory\n");
+    swarf_char_curve_clear(&cc);
+    return 1;
+  }
+  printf("fast: components %zu, points %zu (chord tolerance 1e-3)\n", cc.ncomp, cc.len);
+  if (points > 0) {
+    printf("\nz,branch,nx,ny,nz,X,Y,Z,Xw,Yw,Zw\n");
+    for (size_t k = 0; k < cc.ncomp; k++) {
+      size_t a = cc.start[k], n = cc.start[k + 1] - a;
+      for (int j = 0; j < points && n > 0; j++) {
+        const swarf_char_point *q =
+            &cc.pts[a + (size_t)((double)j * (n - 1) / (points > 1 ? points - 1 : 1))];
+        printf("%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", q->n[2], k + 1,
+               q->n[0], q->n[1], q->n[2], q->x[0], q->x[1], q->x[2], q->w[0], q->w[1], q->w[2]);
+      }
+    }
+  }
+  swarf_char_curve_clear(&cc);
+  return 0;
+}
+
 int swarf_cli_envelope(int argc, char **argv) {
   options o;
   pose p;
@@ -311,10 +362,13 @@ int swarf_cli_envelope(int argc, char **argv) {
     make_pose(&p, &o);
     printf("alpha: %.17g\nv: %.17g, %.17g, %.17g\nomega: %.17g, %.17g, %.17g\n", p.alpha, p.v[0],
            p.v[1], p.v[2], p.omega[0], p.omega[1], p.omega[2]);
-    nr = fast_summary(&p, lo, hi, 64);
+    if (o.use_tool)
+      rc = tool_curve(&p, &o.tool.cutter, o.points), nr = 0;
+    else
+      nr = fast_summary(&p, lo, hi, 64);
     if (o.exact) rc = run_exact(&o, &p, &E);
   }
-  if (rc == 0 && (o.natz > 0 || o.points > 0)) {
+  if (rc == 0 && !o.use_tool && (o.natz > 0 || o.points > 0)) {
     printf("\nz,branch,nx,ny,nz,X,Y,Z,Xw,Yw,Zw\n");
     for (int k = 0; k < o.natz; k++)
       print_slice(&p, o.exact ? &E : NULL, o.atz + k);

@@ -130,15 +130,16 @@ int swarf_cli_parse(int argc, char **argv) {
 }
 
 static swarf_stock *open_grid(const char *cmd, const char *path) {
-  char msg[512];
-  swarf_stock *s = swarf_stock_read(path, msg, sizeof msg);
-  if (s == NULL) fprintf(stderr, "swarf %s: %s\n", cmd, msg);
+  swarf_error err;
+  swarf_stock *s = NULL;
+  if (swarf_stock_read(path, &s, &err) != SWARF_OK)
+    fprintf(stderr, "swarf %s: %s\n", cmd, err.message);
   return s;
 }
 
 int swarf_cli_info(int argc, char **argv) {
   double lo[3], hi[3];
-  char msg[1024];
+  swarf_error err;
   swarf_stock *s;
   if (argc != 2 || argv[1][0] == '-') {
     fputs(info_help, argc == 2 && !strcmp(argv[1], "--help") ? stdout : stderr);
@@ -151,8 +152,10 @@ int swarf_cli_info(int argc, char **argv) {
   printf("active_voxels %llu\nvolume %.3f mm^3\n", swarf_stock_active_voxels(s),
          swarf_stock_volume(s));
   printf("bounds %.3f %.3f %.3f %.3f %.3f %.3f mm\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
-  if (swarf_stock_check(s, msg, sizeof msg) == 0) printf("level_set valid\n");
-  else printf("level_set INVALID: %s\n", msg);
+  if (swarf_stock_check(s, &err) == SWARF_OK)
+    printf("level_set valid\n");
+  else
+    printf("level_set INVALID: %s\n", err.message);
   swarf_stock_free(s);
   return 0;
 }

@@ -57,6 +57,26 @@ static const char help[] =
     "                   Repeat for several tools; a single tool is loaded at the start,\n"
     "                   otherwise T<n> M6 selects one. The controlled point is the\n"
     "                   tool tip (bottom centre).\n"
+    "                   Assembly fields: S<mm> stick-out (tip to holder face) and\n"
+    "                   N<mm> shank diameter (default D) from L to S, e.g.\n"
+    "                   T1=flat,D6,L10,S25: shank and holder never cut; entering\n"
+    "                   material is a collision. Without S nothing above L exists.\n"
+    "  --holder T1=20x40,20-32x10   the holder of T1: cylinders DxH and cones\n"
+    "                   D1-D2xH (bottom-top diameter), stacked up from the holder\n"
+    "                   face (mm); needs the tool's S\n"
+    "  --tool-table FILE  a LinuxCNC tool table (T1 P1 D6 Z+30 ;comment): tool\n"
+    "                   numbers, diameters (flat end mills unless described\n"
+    "                   otherwise) and G43 lengths: G43 H<n> moves the controlled\n"
+    "                   point as the machine does\n"
+    "  --tool-table-units mm|in  the table's unit (default mm)\n"
+    "  --tool-library FILE  full assemblies in JSON (README: tool libraries);\n"
+    "                   --tool and --holder override the table and the library\n"
+    "  --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX   a body (vice, clamp) no part\n"
+    "                   of the tool may enter, cutter included; repeatable\n"
+    "  --fail-on collision  exit status 4 after the run (outputs written) when a\n"
+    "                   shank, holder or fixture collision was found\n"
+    "  --collision-depths N  measure the depth of the first N collisions of each\n"
+    "                   kind (default 100, the warnings printed; 0: all)\n"
     "  --voxel MM       voxel edge (default 0.2); halving it takes ~4x the time\n"
     "  --band N         narrow band half width in voxels (default 3, at least 3)\n"
     "  --out FILE.vdb   remaining material: OpenVDB float level set named \"stock\"\n"
@@ -66,18 +86,33 @@ static const char help[] =
     "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "\n"
-    "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ...), 1 on an\n"
-    "internal failure, 4 with --fail-on gouge when a gouge was found. Nothing is\n"
-    "written unless the whole program ran.\n";
+    "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ..., or\n"
+    "FILE:LINE: for tool tables and libraries), 1 on an internal failure, 3 aborted\n"
+    "by a Modbus command, 4 with --fail-on gouge or --fail-on collision when one was\n"
+    "found. Nothing is written unless the whole program ran.\n";
+
+#define MAX_SPECS 128
 
 typedef struct {
   const char *program, *out, *mesh, *image;
-  int quiet;
+  int quiet, fail_on_collision;
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
   swarf_verify verify;
   swarf_cli_stock stock; /* stocks from files, placement, views */
+  /* tool descriptions, applied in this order once all options are read */
+  const char *tool_table, *tool_library;
+  double table_mm_per_unit;
+  const char *tools[MAX_SPECS], *holders[MAX_SPECS];
+  int ntools, nholders;
 } sim_options;
+
+/* Alarms as they come (printed after the run, in program order). */
+#define MAX_KEPT_ALARMS 10000
+typedef struct {
+  swarf_alarm *a;
+  long n, cap, dropped;
+} alarm_list;
 
 /* What the run's callbacks reach: the progress bar, the Modbus service, the
  * verification (alarms, lines). */
@@ -85,6 +120,7 @@ typedef struct {
   swarf_progress *bar; /* NULL when quiet */
   swarf_modbus_service *modbus;
   swarf_verify *verify;
+  alarm_list alarms;
 } sim_clients;
 
 static int usage_error(const char *what) {
@@ -110,6 +146,8 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   double d;
   int rc = swarf_modbus_option(&o->modbus, flag, val, i);
   if (rc >= 0) return rc;
+  if (!strcmp(flag, "--fail-on") && val != NULL && !strcmp(val, "collision"))
+    return (*i)++, o->fail_on_collision = 1, 0;
   if ((rc = swarf_verify_option(&o->verify, flag, val, i)) >= 0) return rc;
   if ((rc = swarf_cli_stock_option(&o->stock, flag, val, i)) >= 0) return rc;
   if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
@@ -147,20 +185,73 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     if (swarf_machine_parse(&o->cfg.machine, val, &err) != SWARF_OK) return usage_error(err.message);
     return 0;
   }
-  if (!strcmp(flag, "--tool")) return -1; /* handled by the caller */
+  if (!strcmp(flag, "--tool") || !strcmp(flag, "--holder")) {
+    int *n = flag[2] == 't' ? &o->ntools : &o->nholders;
+    if (*n == MAX_SPECS) return usage_error("too many --tool or --holder options");
+    (flag[2] == 't' ? o->tools : o->holders)[(*n)++] = val;
+    return 0;
+  }
+  if (!strcmp(flag, "--tool-table")) return o->tool_table = val, 0;
+  if (!strcmp(flag, "--tool-library")) return o->tool_library = val, 0;
+  if (!strcmp(flag, "--tool-table-units")) {
+    if (strcmp(val, "mm") && strcmp(val, "in"))
+      return usage_error("--tool-table-units: give mm or in");
+    return o->table_mm_per_unit = val[0] == 'i' ? 25.4 : 1.0, 0;
+  }
+  if (!strcmp(flag, "--fixture")) {
+    swarf_error err;
+    if (o->cfg.nfixtures == SWARF_SIM_MAX_FIXTURES) return usage_error("--fixture: 16 at most");
+    if (swarf_sim_parse_fixture(val, &o->cfg.fixtures[o->cfg.nfixtures], &err))
+      return usage_error(err.message);
+    return o->cfg.nfixtures++, 0;
+  }
+  if (!strcmp(flag, "--collision-depths")) {
+    if (read_double(flag, val, 0, &d) || d != floor(d) || d > 1e9)
+      return usage_error("--collision-depths: give a whole number (0: all)");
+    return o->cfg.collision_depths = (long)d, 0;
+  }
   snprintf(msg, sizeof msg, "unknown option \"%s\"", flag);
   return usage_error(msg);
 }
 
-static int add_tool(sim_options *o, const char *spec) {
-  char msg[600];
-  swarf_sim_tool t;
+/* A tool table's or library's error: FILE:LINE: what is wrong. */
+static int file_error(const swarf_error *e) {
+  char msg[1024];
+  swarf_error_format(e, msg, sizeof msg);
+  fprintf(stderr, "%s\n", msg);
+  return 2;
+}
+
+/* The tool table: the table, then the library, then each --tool and --holder. */
+static int build_tools(sim_options *o) {
   swarf_error err;
-  if (swarf_sim_parse_tool(spec, &t, &err)) return usage_error(err.message);
-  if (swarf_sim_config_add_tool(&o->cfg, &t, &err)) {
-    snprintf(msg, sizeof msg, "--tool: %s", err.message);
-    return usage_error(msg);
+  char msg[700];
+  swarf_error_init(&err);
+  if (o->tool_table &&
+      swarf_sim_config_load_tool_table(&o->cfg, o->tool_table, o->table_mm_per_unit, &err))
+    return file_error(&err);
+  if (o->tool_library && swarf_sim_config_load_tool_library(&o->cfg, o->tool_library, &err))
+    return file_error(&err);
+  int given[MAX_SPECS];
+  for (int i = 0; i < o->ntools; i++) {
+    swarf_sim_tool t;
+    if (swarf_sim_parse_tool(o->tools[i], &t, &err)) return usage_error(err.message);
+    given[i] = t.number;
+    for (int k = 0; k < i; k++)
+      if (given[k] == t.number) {
+        snprintf(msg, sizeof msg, "--tool: T%d is given twice", t.number);
+        return usage_error(msg);
+      }
+    if (swarf_sim_config_put_tool(&o->cfg, &t, &err)) return usage_error(err.message);
   }
+  for (int i = 0; i < o->nholders; i++) {
+    swarf_sim_tool t;
+    if (swarf_sim_parse_holder(o->holders[i], &t, &err) ||
+        swarf_sim_config_put_holder(&o->cfg, &t, &err))
+      return usage_error(err.message);
+  }
+  for (int i = 0; i < o->cfg.ntools; i++)
+    if (swarf_sim_check_tool(&o->cfg.tools[i], &err)) return usage_error(err.message);
   return 0;
 }
 
@@ -178,6 +269,8 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   int have_stock = 0, rc;
   memset(o, 0, sizeof *o);
   swarf_sim_config_init(&o->cfg);
+  o->table_mm_per_unit = 1.0;
+  o->cfg.collision_depths = 100; /* the warnings printed; the rest are counted */
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs("\nStock from files, placement and outputs:\n", stdout), fputs(swarf_cli_stock_help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
@@ -186,13 +279,14 @@ static int parse_args(sim_options *o, int argc, char **argv) {
       continue;
     }
     have_stock |= !strcmp(argv[i], "--stock");
-    rc = parse_option(o, argc, argv, &i);
-    if (rc == -1) rc = add_tool(o, argv[i]);
-    if (rc) return rc;
+    if ((rc = parse_option(o, argc, argv, &i))) return rc;
   }
   if (!o->program) return usage_error("no PROGRAM given");
   if (!have_stock) return usage_error("--stock box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX is required");
-  if (o->cfg.ntools == 0) return usage_error("--tool is required, e.g. --tool T1=ball,D3.175");
+  if ((rc = build_tools(o))) return rc;
+  if (o->cfg.ntools == 0)
+    return usage_error("--tool (or --tool-table, --tool-library) is required, e.g. --tool "
+                       "T1=ball,D3.175");
   if (!o->out) return usage_error("--out FILE.vdb is required");
   if (swarf_cli_mesh_name("--mesh", o->mesh)) return 2;
   return check_output("--out", o->out) || check_output("--mesh", o->mesh) ||
@@ -217,27 +311,56 @@ static int check_size(const swarf_sim_config *cfg) {
 }
 
 static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
-  char msg[512];
-  if (swarf_stock_write_vdb(stock, o->out, msg, sizeof msg) != 0) {
-    fprintf(stderr, "swarf simulate: %s\n", msg);
+  swarf_error err;
+  if (swarf_stock_write_vdb(stock, o->out, &err) != SWARF_OK) {
+    fprintf(stderr, "swarf simulate: %s\n", err.message);
     return 1;
   }
   return swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design, o->verify.tolerance,
                                o->stock.view, ntri);
 }
 
-/* Each alarm (up to the report's record of them) as a located warning. */
-static void print_alarms(const sim_options *o, const swarf_sim_report *r) {
-  long rapids = r->alarm_count[SWARF_ALARM_RAPID], told = 0;
-  for (long i = 0; i < r->alarms && i < SWARF_SIM_MAX_ALARMS; i++) {
-    if (r->alarm[i].kind != SWARF_ALARM_RAPID) continue;
-    fprintf(stderr, "%s:%ld:%d: warning: rapid move (G0) cuts into the material\n", o->program,
-            r->alarm[i].line, r->alarm[i].column);
-    told++;
+static void print_alarm(const sim_options *o, const swarf_alarm *a) {
+  static const char *part[] = {"cutter", "shank", "holder"};
+  char deep[48] = "";
+  if (isfinite(a->depth)) snprintf(deep, sizeof deep, " (%.1f mm deep)", a->depth);
+  fprintf(stderr, "%s:%ld:%d: warning: ", o->program, a->line, a->column);
+  switch (a->kind) {
+  case SWARF_ALARM_RAPID:
+    fprintf(stderr, "rapid move (G0) cuts into the material\n");
+    break;
+  case SWARF_ALARM_SHANK:
+  case SWARF_ALARM_HOLDER:
+    fprintf(stderr, "%s of T%d hits the material%s\n", part[a->kind == SWARF_ALARM_SHANK ? 1 : 2],
+            a->tool, deep);
+    break;
+  case SWARF_ALARM_FIXTURE:
+    fprintf(stderr, "T%d %s hits fixture %d%s\n", a->tool,
+            part[a->part >= 0 && a->part <= 2 ? a->part : 0], a->index, deep);
+    break;
+  default:
+    fprintf(stderr, "alarm %d\n", (int)a->kind);
   }
-  if (rapids > told)
-    fprintf(stderr, "%s: warning: %ld more rapid moves cut into the material\n", o->program,
-            rapids - told);
+}
+
+/* Each alarm as a located warning, in program order: the first 100 of each
+ * kind, then how many more. */
+static void print_alarms(const sim_options *o, const alarm_list *l, const swarf_sim_report *r) {
+  static const char *what[] = {"rapid moves cut into the material", "shank collisions",
+                               "holder collisions", "fixture collisions", "gouges"};
+  long told[5] = {0};
+  for (long i = 0; i < l->n; i++) {
+    const swarf_alarm *a = &l->a[i];
+    if ((unsigned)a->kind >= 5 || a->kind == SWARF_ALARM_GOUGE || told[a->kind]++ >= 100)
+      continue;
+    print_alarm(o, a);
+  }
+  for (int k = 0; k < SWARF_ALARM_GOUGE; k++) {
+    long shown = told[k] < 100 ? told[k] : 100;
+    if (r->alarm_count[k] > shown)
+      fprintf(stderr, "%s: warning: %ld more %s\n", o->program, r->alarm_count[k] - shown,
+              what[k]);
+  }
 }
 
 static void print_summary(const sim_options *o, const swarf_stock *stock,
@@ -251,8 +374,12 @@ static void print_summary(const sim_options *o, const swarf_stock *stock,
   printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
          r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
          r->volume_after);
-  printf("  alarms %ld (%ld rapid moves cutting into material, %ld moves gouging the design)\n",
-         r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE]);
+  printf("  alarms %ld (%ld rapid moves cutting into material, %ld moves gouging the design, %ld "
+         "collisions: %ld shank, %ld holder, %ld fixture)\n",
+         r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE],
+         r->collisions, r->alarm_count[SWARF_ALARM_SHANK], r->alarm_count[SWARF_ALARM_HOLDER],
+         r->alarm_count[SWARF_ALARM_FIXTURE]);
+  if (r->collision_s > 0) printf("  collision check %.2f s CPU\n", r->collision_s);
   printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
          r->seconds > 0 ? r->moves / r->seconds : 0.0, total_s);
   printf("  grid: voxel %g mm, active voxels %llu\n", swarf_stock_voxel(stock),
@@ -270,7 +397,20 @@ static int on_progress(void *user, const swarf_sim_progress *p) {
 }
 
 static void on_alarm(void *user, const swarf_alarm *a) {
-  swarf_verify_alarm(((sim_clients *)user)->verify, a);
+  sim_clients *c = user;
+  alarm_list *l = &c->alarms;
+  swarf_verify_alarm(c->verify, a);
+  if (l->n == l->cap) {
+    long cap = l->cap ? 2 * l->cap : 64;
+    swarf_alarm *p = cap <= MAX_KEPT_ALARMS ? realloc(l->a, sizeof *p * (size_t)cap) : NULL;
+    if (p == NULL) {
+      l->dropped++;
+      return;
+    }
+    l->a = p;
+    l->cap = cap;
+  }
+  l->a[l->n++] = *a;
 }
 
 static void on_line(void *user, const swarf_line_result *l) {
@@ -307,7 +447,7 @@ int swarf_cli_simulate(int argc, char **argv) {
   if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb)))
     return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
   swarf_progress_init(&pb);
-  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify};
+  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}};
   o.cfg.cb.progress = on_progress;
   o.cfg.cb.alarm = on_alarm;
   if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
@@ -318,10 +458,12 @@ int swarf_cli_simulate(int argc, char **argv) {
     rc = report_failure(&err, mb);
     swarf_modbus_finish(mb, rc, &rep);
     swarf_verify_free(&o.verify);
+    free(clients.alarms.a);
     return rc;
   }
   swarf_progress_finish(&pb);
-  print_alarms(&o, &rep);
+  print_alarms(&o, &clients.alarms, &rep);
+  free(clients.alarms.a);
   swarf_verify_warn(&o.verify, o.program, &rep);
   rc = write_outputs(&o, stock, &ntri);
   if (rc == 0 && !o.quiet) {
@@ -329,6 +471,11 @@ int swarf_cli_simulate(int argc, char **argv) {
     swarf_verify_summary(&o.verify, &rep);
   }
   if (rc == 0) rc = swarf_verify_finish(&o.verify, o.program, &o.cfg, &rep);
+  if (rc == 0 && o.fail_on_collision && rep.collisions > 0) {
+    fprintf(stderr, "%s: %ld collisions (--fail-on collision): exit status 4\n", o.program,
+            rep.collisions);
+    rc = 4;
+  }
   swarf_modbus_finish(mb, rc == 4 ? 0 : rc, &rep); /* a gouge is the part's, not the run's */
   swarf_stock_free(stock);
   swarf_verify_free(&o.verify);

@@ -69,12 +69,12 @@ static int stock_error(const swarf_error *e) {
 }
 
 /* The box or cylinder of cfg as a stock (to place it). */
-static swarf_stock *shape_stock(const swarf_sim_config *cfg, char *msg, size_t len) {
+static swarf_status shape_stock(const swarf_sim_config *cfg, swarf_stock **out, swarf_error *err) {
   const swarf_sim_stock_spec *sp = &cfg->stock;
   if (sp->kind == SWARF_SIM_STOCK_CYLINDER)
     return swarf_stock_new_cylinder(sp->axis, sp->radius, sp->lo[sp->axis], sp->hi[sp->axis], cfg->voxel,
-                                    cfg->half_width, msg, len);
-  return swarf_stock_new_box(sp->lo, sp->hi, cfg->voxel, cfg->half_width, msg, len);
+                                    cfg->half_width, out, err);
+  return swarf_stock_new_box(sp->lo, sp->hi, cfg->voxel, cfg->half_width, out, err);
 }
 
 int swarf_cli_stock_make(const swarf_cli_stock *c, swarf_sim_config *cfg, swarf_stock **out) {
@@ -89,9 +89,8 @@ int swarf_cli_stock_make(const swarf_cli_stock *c, swarf_sim_config *cfg, swarf_
   else if (c->file != NULL)
     st = swarf_stock_read_stl(c->file, p, cfg->voxel, cfg->half_width, out, &err);
   else {
-    char msg[512];
-    swarf_stock *s = shape_stock(cfg, msg, sizeof msg);
-    if (s == NULL) return fprintf(stderr, "swarf simulate: --stock: %s\n", msg), 2;
+    swarf_stock *s = NULL;
+    if (shape_stock(cfg, &s, &err) != SWARF_OK) return stock_error(&err);
     st = swarf_stock_place(s, p, out, &err);
     swarf_stock_free(s);
   }

@@ -54,6 +54,7 @@ typedef struct {
   long moves_total;        /* motion moves in the program, 0 while unknown */
   double removed;          /* mm^3 removed so far (refreshed now and then) */
   long alarms;             /* alarms raised by the simulation */
+  long collisions;         /* among them: shank, holder and fixture collisions */
   int tool;                /* tool in the spindle, 0 none */
   unsigned long heartbeat; /* publications so far */
   double start, end;       /* monotonic seconds; end 0 while not ended */

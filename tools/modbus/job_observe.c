@@ -47,6 +47,7 @@ int swarf_job_observe(swarf_job_observer *ob, const swarf_sim_progress *p) {
   ob->snap.tool = p->tool;
   ob->snap.moves_done = p->report->moves;
   ob->snap.alarms = p->report->alarms;
+  ob->snap.collisions = p->report->collisions;
   refresh_volume(ob, p->report, p->stock, now);
   if (swarf_job_pause_requested(ob->status)) hold_while_paused(ob);
   swarf_job_publish(ob->status, &ob->snap);
@@ -62,6 +63,7 @@ void swarf_job_observer_final(swarf_job_observer *ob, int rc, const swarf_sim_re
     if (rc == 0) ob->snap.line = rep->lines;
     ob->snap.moves_done = rep->moves;
     ob->snap.alarms = rep->alarms;
+    ob->snap.collisions = rep->collisions;
     if (rc == 0) ob->snap.removed = rep->volume_before - rep->volume_after;
   }
   swarf_job_publish_final(ob->status, &ob->snap);

@@ -29,7 +29,7 @@
 #define SWARF_MB_CMD_REG 64  /* holding register: commands */
 #define SWARF_MB_NAME_REG 32 /* 32..63: program name, two ASCII bytes each */
 #define SWARF_MB_NBITS 7     /* discrete inputs 0..6 */
-#define SWARF_MB_MAP_VERSION 1
+#define SWARF_MB_MAP_VERSION 2 /* +1 whenever a register is added or changes meaning */
 
 enum {
   SWARF_MB_REG_STATE = 0,
@@ -45,7 +45,8 @@ enum {
   SWARF_MB_REG_TOOL = 16,
   SWARF_MB_REG_HEARTBEAT = 17,
   SWARF_MB_REG_FLAGS = 18,
-  SWARF_MB_REG_VERSION = 19
+  SWARF_MB_REG_VERSION = 19,
+  SWARF_MB_REG_COLLISIONS = 20
 };
 
 /* Fill the 64 status registers for the snapshot at monotonic time `now`. */

@@ -85,6 +85,7 @@ static void raise_gouge(swarf_sim *s, int i) {
                    tool,
                    e->gouge_depth,
                    {e->gouge_at[0], e->gouge_at[1], e->gouge_at[2]},
+                   0,
                    0};
   swarf_sim_raise(s, &a);
 }
@@ -107,13 +108,13 @@ static int flush_measured(swarf_sim *s) {
 }
 
 int swarf_sim_batch_flush(swarf_sim *s) {
-  char msg[512];
+  swarf_error e;
   if (s->n > 0 && s->measured) {
     if (flush_measured(s) != 0) return 1;
     s->n = 0;
   } else if (s->n > 0) {
-    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, msg, sizeof msg) != 0) {
-      swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", msg);
+    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, &e) != SWARF_OK) {
+      swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
       return 1;
     }
     s->n = 0;
@@ -139,11 +140,11 @@ static int boxes_overlap(const double alo[3], const double ahi[3], const double 
 
 /* The rapid in slot 0 against the stock as it stands. */
 static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *c) {
-  char msg[512];
+  swarf_error e;
   int hit = 0;
   double where[3];
-  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, msg, sizeof msg) != 0) {
-    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", msg);
+  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, &e) != SWARF_OK) {
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", e.message);
     return 1;
   }
   if (hit) {
@@ -153,6 +154,7 @@ static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cu
                      s->tool->number,
                      NAN,
                      {where[0], where[1], where[2]},
+                     0,
                      0};
     swarf_sim_raise(s, &a);
   }
@@ -175,11 +177,14 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
   *m = *mv;
   swarf_sweep_init_voxel(w, &s->tool->cutter, m, s->cfg.voxel);
   swarf_sweep_bounds(w, c->lo, c->hi);
-  if (!boxes_overlap(c->lo, c->hi, s->pad_lo, s->pad_hi)) return 0;
-  if (m->rapid && s->n > 0) /* checked against the stock as it stands: from slot 0 */
+  const int reach = boxes_overlap(c->lo, c->hi, s->pad_lo, s->pad_hi);
+  if (reach && m->rapid && s->n > 0) /* checked against the stock as it stands: from slot 0 */
     return swarf_sim_batch_flush(s) != 0 ? 1 : swarf_sim_batch_queue(s, mv);
   c->sdf = sweep_sdf;
   c->ctx = w;
+  /* shank, holder, fixtures: against the material as the move finds it */
+  if (swarf_sim_collide_move(s, m, w, reach ? c : NULL) != 0) return 1;
+  if (!reach) return 0;
   if (s->cfg.stamp_step > 0) {
     set_stamps(s, &s->stamps[s->n], m);
     c->sdf = stamp_sdf;

@@ -101,16 +101,42 @@ static int take_motion(swarf_sim *s, swarf_motion *m) {
   if (swarf_sim_lines_add(s, m, tool) != 0) return 1;
   if (tell_progress(s, m->line, tool)) return 1;
   if (s->tool == NULL || swarf_motion_is_null(m)) return 0;
+  if (!(s->tool->cutter.diameter > 0)) {
+    swarf_sim_fail(s, SWARF_ERR_TOOL, m->line, m->column,
+                   "tool T%d has no shape (diameter 0 in the tool table); describe it with "
+                   "--tool T%d=<shape>,D<diameter> or in a tool library",
+                   s->tool->number, s->tool->number);
+    return 1;
+  }
   return swarf_sim_batch_queue(s, m);
+}
+
+/* The parser's positions are the machine's: with G43 the controlled point
+ * is the tip of the tool whose length H names, without it the spindle's
+ * gauge line. The simulator follows the tip of the tool in the spindle,
+ * which lies its length below: G43 with that tool's H puts it where the
+ * program says, as on the machine. One exception: the machine's start
+ * position (0,0,0, where no homing put it) is taken as the tip's, so the
+ * first straight move starts there and not a tool length below. */
+static const swarf_move *tip_move(swarf_sim *s, const swarf_move *mv, swarf_move *buf) {
+  const double len = s->tool != NULL ? s->tool->length : 0.0;
+  const int first = !s->moved && mv->kind != SWARF_MOVE_ARC;
+  s->moved = 1;
+  if (len == 0.0) return mv;
+  *buf = *mv;
+  if (!first) buf->start[SWARF_AXIS_Z] -= len;
+  buf->end[SWARF_AXIS_Z] -= len;
+  buf->center[2] -= len;
+  return buf;
 }
 
 static int on_move(const swarf_move *machine_mv, void *user) {
   swarf_sim *s = user;
   swarf_motion m;
-  swarf_move w, *mv = &w;
+  swarf_move w, tip, *mv = &w;
   if (machine_mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, machine_mv);
   if (machine_mv->kind == SWARF_MOVE_DWELL) return 0;
-  swarf_sim_to_workpiece(s, machine_mv, &w);
+  swarf_sim_to_workpiece(s, tip_move(s, machine_mv, &tip), &w);
   swarf_sim_check_units(s, mv);
   swarf_error e;
   swarf_status rc = swarf_machine_motion(&s->cfg.machine, mv, &m, &e);
@@ -122,9 +148,9 @@ static int on_move(const swarf_move *machine_mv, void *user) {
   return take_motion(s, &m);
 }
 
-/* The parser's tool table is the cutters given, with their length offsets
- * (0: the simulated point is the tool tip, so G43 H<n> changes nothing; an
- * H of a tool not given is an error at its line). */
+/* The parser's tool table is the tools given, with their length offsets
+ * (G43 H<n> applies tool n's; an H of a tool not given is an error at its
+ * line). With length 0 (tools given by --tool alone) G43 changes nothing. */
 static void set_tool_table(swarf_sim *s) {
   swarf_gcode_parser_clear_tools(s->parser);
   for (int i = 0; i < s->cfg.ntools; i++)
@@ -134,14 +160,15 @@ static void set_tool_table(swarf_sim *s) {
 
 static swarf_stock *build_stock(const swarf_sim_config *cfg, swarf_error *err) {
   const swarf_sim_stock_spec *k = &cfg->stock;
-  char msg[512] = "";
-  swarf_stock *st;
+  swarf_error e = {0};
+  swarf_stock *st = NULL;
+  swarf_status rc;
   if (k->kind == SWARF_SIM_STOCK_CYLINDER)
-    st = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
-                                  cfg->half_width, msg, sizeof msg);
+    rc = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
+                                  cfg->half_width, &st, &e);
   else
-    st = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, msg, sizeof msg);
-  if (st == NULL) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", msg);
+    rc = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, &st, &e);
+  if (rc != SWARF_OK) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", e.message);
   return st;
 }
 
@@ -174,6 +201,10 @@ static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
   if ((st = swarf_sim_setup(s, err)) != SWARF_OK || (st = swarf_sim_design_init(s, err)) != SWARF_OK)
     return st;
   if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
+  if (swarf_sim_collide_init(s) != 0) {
+    if (err != NULL) *err = s->err;
+    return s->err.status != SWARF_OK ? s->err.status : SWARF_ERR_MEMORY;
+  }
   s->rep.volume_before = swarf_stock_volume(s->stock);
   s->rep.volume_after = NAN;
   s->fraction = -1.0;
@@ -189,6 +220,11 @@ static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_new: no config, stock or output");
   }
+  for (int i = 0; i < cfg->ntools; i++)
+    if ((st = swarf_sim_check_tool(&cfg->tools[i], err)) != SWARF_OK) {
+      swarf_stock_free(stock);
+      return st;
+    }
   if ((s = calloc(1, sizeof *s)) == NULL) {
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
@@ -335,6 +371,7 @@ swarf_stock *swarf_sim_take_stock(swarf_sim *s) {
 void swarf_sim_free(swarf_sim *s) {
   if (s == NULL) return;
   swarf_gcode_parser_free(s->parser);
+  swarf_sim_collide_clear(s);
   swarf_sim_batch_clear(s);
   swarf_stock_free(s->stock);
   swarf_stock_free(s->initial);

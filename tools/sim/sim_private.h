@@ -5,6 +5,7 @@
 #ifndef SWARF_SIM_PRIVATE_H
 #define SWARF_SIM_PRIVATE_H
 
+#include "assembly.h"
 #include "gcode.h"
 #include "move_motion.h"
 #include "swarf_sim.h"
@@ -41,6 +42,8 @@ struct swarf_sim {
   swarf_line_result cur;
   swarf_line_result *pending;
   int npending, pending_cap;
+  swarf_sim_collide col; /* collisions (collide.c) */
+  int moved;             /* a motion move was seen (the start position is the tip's) */
   long cur_id;   /* lines opened so far: cur's id; pending[i]'s is cur_id - npending + i */
   long *cut_id;  /* batch: the line each cut belongs to (measured removal) */
   swarf_stock_cut_effect *effects; /* batch: what each cut did (measured removal) */
@@ -84,5 +87,13 @@ int swarf_sim_lines_add(swarf_sim *s, const swarf_motion *m, int tool);
 int swarf_sim_lines_flush(swarf_sim *s, int at_end);
 /* Add what a removed cut of line `id` did to that line's result. */
 void swarf_sim_lines_removed(swarf_sim *s, long id, double removed);
+
+/* collide.c: init after the stock (fixtures as level sets), clear; check a
+ * motion's shank, holder and fixtures (w: its cutter sweep, own: its cut when
+ * queued, NULL otherwise). Return 0, or 1 after swarf_sim_fail. */
+int swarf_sim_collide_init(swarf_sim *s);
+void swarf_sim_collide_clear(swarf_sim *s);
+int swarf_sim_collide_move(swarf_sim *s, const swarf_motion *m, const swarf_sweep *w,
+                           const swarf_stock_cut *own);
 
 #endif

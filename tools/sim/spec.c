@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "swarf_sim.h"
+#include "assembly.h"
 
 /* Read one finite number at *s; advances *s. Returns 0 or -1. */
 static int read_number(const char **s, double *out) {
@@ -201,6 +201,16 @@ static int parse_qss(const char *s, swarf_cutter_spec *sp, char *bad, size_t bad
   "tslot,D,H,K,L; qss,a,b,e,f (swarf simulate --help)"
 
 swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_error *err) {
+  char cutter_spec[512];
+  double stickout, shank;
+  swarf_status st = swarf_sim_split_assembly(spec, cutter_spec, sizeof cutter_spec, &stickout,
+                                             &shank, err);
+  if (st != SWARF_OK) return st;
+  memset(out, 0, sizeof *out);
+  out->stickout = stickout;
+  out->shank = shank;
+  const char *given = spec;
+  spec = cutter_spec;
   const char *s = spec;
   char bad[160];
   long n;
@@ -219,14 +229,15 @@ swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_e
   sp.shape = families[fam].shape;
   if ((sp.shape == SWARF_CUTTER_QSS ? parse_qss(s, &sp, bad, sizeof bad)
                                     : parse_fields(s, fam, &sp, bad, sizeof bad)) != 0)
-    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, spec, TOOL_USAGE);
+    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, given,
+                           TOOL_USAGE);
   swarf_error_init(&sub);
   if (swarf_cutter_make(&out->cutter, &sp, &sub) != SWARF_OK)
-    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"", sub.message, spec);
+    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"", sub.message, given);
   out->number = (int)n;
   out->length = 0.0;
   return SWARF_OK;
 usage_err:
-  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", spec ? spec : "",
+  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", given,
                          TOOL_USAGE);
 }

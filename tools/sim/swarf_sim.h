@@ -49,12 +49,39 @@ extern "C" {
 
 /* ---- Configuration -------------------------------------------------------- */
 
-/* A tool in the tool table. */
+#define SWARF_SIM_MAX_HOLDER 8   /* cylinders and cones of a holder */
+#define SWARF_SIM_MAX_FIXTURES 16
+
+/* One piece of a holder: a cylinder (d0 == d1) or a cone frustum from
+ * diameter d0 at its bottom to d1 at its top, `height` tall (mm). */
+typedef struct {
+  double d0, d1, height;
+} swarf_sim_holder_part;
+
+/* A tool in the tool table: the cutter and, when stickout > 0, the assembly
+ * above its flutes, all bodies of revolution about the tool axis:
+ *   z in [0, L]:         the cutter (cutter.length = L, the flute length)
+ *   z in [L, S]:         the shank, diameter `shank` (0: the cutter's D)
+ *   z from S upward:     the holder's pieces, stacked, the first on the
+ *                        holder face at z = S (the stick-out)
+ * Shank and holder never cut; entering material is a collision (SHANK,
+ * HOLDER alarms). With stickout 0 nothing above the flutes is modelled. */
 typedef struct {
   int number;          /* T number, >= 1 */
-  swarf_cutter cutter; /* the cutting body (engine.h) */
+  swarf_cutter cutter; /* the cutting body (engine.h); diameter 0: none (a table entry
+                        * without a diameter: cutting with it is an error) */
   double length;       /* G43 length offset, mm; 0: the controlled point is the tip */
+  double stickout;     /* S, tip to holder face, mm; 0: no shank or holder modelled */
+  double shank;        /* N, shank diameter, mm; 0: the cutter's diameter */
+  int nholder;         /* pieces of the holder; 0: none */
+  swarf_sim_holder_part holder[SWARF_SIM_MAX_HOLDER];
 } swarf_sim_tool;
+
+/* A body no part of the tool may enter, cutter included (a vice, a clamp):
+ * an axis-aligned box in the workpiece frame, mm. */
+typedef struct {
+  double lo[3], hi[3];
+} swarf_sim_fixture;
 
 typedef enum {
   SWARF_SIM_STOCK_BOX = 0, /* lo..hi */
@@ -90,6 +117,8 @@ typedef struct {
   double depth; /* mm, deepest penetration found (NaN when not measured) */
   double at[3]; /* mm, workpiece frame: where (NaN when not measured) */
   int index;    /* FIXTURE: which fixture (1-based); 0 otherwise */
+  int part;     /* FIXTURE: the part that entered it: 0 cutter, 1 shank, 2 holder;
+                 * SHANK 1, HOLDER 2; 0 otherwise */
 } swarf_alarm;
 
 /* Progress, after every motion move (and after each chunk of a file). */
@@ -131,6 +160,11 @@ typedef struct {
   swarf_sim_tool tools[SWARF_SIM_MAX_TOOLS];
   int ntools;       /* one tool: loaded at the start; more: T<n> M6 selects */
   int line_volumes; /* 1: measure each line's removed volume (swarf_line_result) */
+  swarf_sim_fixture fixtures[SWARF_SIM_MAX_FIXTURES];
+  int nfixtures;    /* fixtures (FIXTURE alarms, index 1-based in this order) */
+  /* Measure the depth (a bisection: ~8 passes over the part's blocks) of the
+   * first N collisions of each kind only, the later ones get NaN; 0: all. */
+  long collision_depths;
   /* Benchmark baseline only: when > 0 each move is not swept exactly but
    * stamped at poses stamp_step mm apart, as stamping simulators do. */
   double stamp_step;
@@ -219,6 +253,8 @@ struct swarf_sim_report {
   double seconds;                          /* wall time from new to finish */
   long alarms;                             /* all alarms */
   long alarm_count[5];                     /* per swarf_alarm_kind */
+  long collisions;                         /* among them: SHANK, HOLDER and FIXTURE alarms */
+  double collision_s;                      /* CPU time checking for collisions, s */
   swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */
   double start[3];         /* where the tool tip started, workpiece frame, mm */
   int start_default;       /* 1: the default start (not cfg.start) */
@@ -257,6 +293,45 @@ SWARF_API swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *ou
 /* "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" or "cylinder:AXIS,RADIUS,START,END". */
 SWARF_API swarf_status swarf_sim_parse_stock(const char *spec, swarf_sim_stock_spec *out,
                                              swarf_error *err);
+
+/* "T<n>=<D>x<H>[,<D1>-<D2>x<H>...]": the holder of tool n, pieces stacked
+ * upward from the holder face (mm): cylinders D x H and cones D1 (bottom) to
+ * D2 (top) over H. Fills out->number and the holder fields only. */
+SWARF_API swarf_status swarf_sim_parse_holder(const char *spec, swarf_sim_tool *out,
+                                              swarf_error *err);
+/* "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" (mm). */
+SWARF_API swarf_status swarf_sim_parse_fixture(const char *spec, swarf_sim_fixture *out,
+                                               swarf_error *err);
+
+/* ---- Tool tables and libraries (the tool table of cfg) ------------------- */
+
+/* Reads a LinuxCNC tool table ("T1 P1 D6 Z+30 ;comment", tooltable.c), its
+ * lengths in mm_per_unit mm (1, or 25.4 for a table in inches): each tool's
+ * G43 length becomes `length`; a tool not yet in cfg is added as a flat end
+ * mill of the table's diameter (none when D is 0). A bad line gives
+ * SWARF_ERR_TOOL with FILE:LINE in err; cfg may then hold the lines before. */
+SWARF_API swarf_status swarf_sim_config_load_tool_table(swarf_sim_config *cfg, const char *path,
+                                                        double mm_per_unit, swarf_error *err);
+
+/* Reads a tool library (JSON, library.c; the README documents the format):
+ * full assemblies that replace the description of tools already in cfg
+ * (their G43 length stays unless the library gives one) or add new ones.
+ * Errors: FILE:LINE: what is wrong (SWARF_ERR_TOOL, SWARF_ERR_FORMAT). */
+SWARF_API swarf_status swarf_sim_config_load_tool_library(swarf_sim_config *cfg,
+                                                          const char *path, swarf_error *err);
+
+/* Puts a --tool description into cfg: the cutter and the assembly fields the
+ * spec gave (S, N) replace those of a tool already there (from a table or a
+ * library), whose length and holder stay; otherwise the tool is added. */
+SWARF_API swarf_status swarf_sim_config_put_tool(swarf_sim_config *cfg, const swarf_sim_tool *t,
+                                                 swarf_error *err);
+/* Checks a tool's assembly: S, N, holder pieces finite and > 0, a holder
+ * only with a stick-out (SWARF_ERR_TOOL naming the tool). swarf_sim_new
+ * checks every tool of the config. */
+SWARF_API swarf_status swarf_sim_check_tool(const swarf_sim_tool *t, swarf_error *err);
+/* Puts a --holder into cfg: tool t->number must be there already. */
+SWARF_API swarf_status swarf_sim_config_put_holder(swarf_sim_config *cfg,
+                                                   const swarf_sim_tool *t, swarf_error *err);
 
 #ifdef __cplusplus
 }

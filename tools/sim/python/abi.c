@@ -208,8 +208,8 @@ static void functions(void) {
   FN(swarf_sim_stock, "\"c_void_p\"", "\"c_void_p\"", const swarf_stock *, const swarf_sim *);
   FN(swarf_sim_take_stock, "\"c_void_p\"", "\"c_void_p\"", swarf_stock *, swarf_sim *);
   FN(swarf_sim_free, "None", "\"c_void_p\"", void, swarf_sim *);
-  FN(swarf_stock_read, "\"c_void_p\"", "\"c_char_p\", \"c_char_p\", \"c_size_t\"", swarf_stock *,
-     const char *, char *, size_t);
+  FN(swarf_stock_read, "\"c_int\"", "\"c_char_p\", \"POINTER(c_void_p)\", \"" P_ERR "\"",
+     swarf_status, const char *, swarf_stock **, swarf_error *);
   FN(swarf_stock_set_read_isolation, "None", "\"c_int\"", void, int);
   FN(swarf_stock_read_isolation, "\"c_int\"", "", int, void);
   FN(swarf_stock_free, "None", "\"c_void_p\"", void, swarf_stock *);
@@ -222,16 +222,16 @@ static void functions(void) {
      const swarf_stock *, double *, double *);
   FN(swarf_stock_sample, "\"c_double\"", "\"c_void_p\", \"c_double\", \"c_double\", \"c_double\"",
      double, const swarf_stock *, double, double, double);
-  FN(swarf_stock_check, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"c_size_t\"", int,
-     const swarf_stock *, char *, size_t);
-  FN(swarf_stock_write_vdb, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"c_char_p\", \"c_size_t\"",
-     int, const swarf_stock *, const char *, char *, size_t);
+  FN(swarf_stock_check, "\"c_int\"", "\"c_void_p\", \"" P_ERR "\"", swarf_status,
+     const swarf_stock *, swarf_error *);
+  FN(swarf_stock_write_vdb, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"" P_ERR "\"",
+     swarf_status, const swarf_stock *, const char *, swarf_error *);
   FN(swarf_stock_write_stl, "\"c_int\"",
-     "\"c_void_p\", \"c_char_p\", \"POINTER(c_size_t)\", \"c_char_p\", \"c_size_t\"", int,
-     const swarf_stock *, const char *, size_t *, char *, size_t);
+     "\"c_void_p\", \"c_char_p\", \"POINTER(c_size_t)\", \"" P_ERR "\"", swarf_status,
+     const swarf_stock *, const char *, size_t *, swarf_error *);
   FN(swarf_stock_write_png, "\"c_int\"",
-     "\"c_void_p\", \"c_char_p\", \"c_int\", \"c_int\", \"c_char_p\", \"c_size_t\"", int,
-     const swarf_stock *, const char *, int, int, char *, size_t);
+     "\"c_void_p\", \"c_char_p\", \"c_int\", \"c_int\", \"" P_ERR "\"", swarf_status,
+     const swarf_stock *, const char *, int, int, swarf_error *);
   fprintf(out, "}\n\n");
 }
 

@@ -103,11 +103,6 @@ def _raise_msg(status_name, msg, word=""):
     raise _error_class(status)(status, text, word=word)
 
 
-# stock.h's own status codes, as the project's statuses.
-_STOCK_STATUS = {1: "SWARF_ERR_ARG", 2: "SWARF_ERR_IO", 3: "SWARF_ERR_FORMAT",
-                 4: "SWARF_ERR_MEMORY", 5: "SWARF_ERR_INTERNAL"}
-
-
 def _path(p):
     return os.fsencode(os.fspath(p))
 
@@ -212,12 +207,11 @@ class Stock:
     def read(cls, path) -> "Stock":
         """The grid named "stock" (or the first float level set) of a .vdb
         file (read in a child process unless set_read_isolation(False))."""
-        msg = create_string_buffer(512)
-        h = lib.swarf_stock_read(_path(path), msg, len(msg))
-        if not h:
-            status = "SWARF_ERR_FORMAT" if os.path.exists(path) else "SWARF_ERR_OPEN"
-            _raise_msg(status, msg.value)
-        return cls(h)
+        err = S["swarf_error"]()
+        h = c_void_p()
+        if lib.swarf_stock_read(_path(path), byref(h), byref(err)) != 0:
+            _raise(err)
+        return cls(h.value)
 
     def _handle(self):
         if self._h is None or not self._h.value:
@@ -276,15 +270,14 @@ class Stock:
 
     def check(self):
         """Raises InternalError unless the grid is a valid narrow-band level set."""
-        msg = create_string_buffer(512)
-        if lib.swarf_stock_check(self._handle(), msg, len(msg)) != 0:
-            _raise_msg("SWARF_ERR_INTERNAL", msg.value)
+        err = S["swarf_error"]()
+        if lib.swarf_stock_check(self._handle(), byref(err)) != 0:
+            _raise_msg("SWARF_ERR_INTERNAL", err.message)
 
     def _write(self, fn, path, *args):
-        msg = create_string_buffer(512)
-        rc = fn(self._handle(), _path(path), *args, msg, len(msg))
-        if rc != 0:
-            _raise_msg(_STOCK_STATUS.get(rc, "SWARF_ERR_INTERNAL"), msg.value)
+        err = S["swarf_error"]()
+        if fn(self._handle(), _path(path), *args, byref(err)) != 0:
+            _raise(err)
 
     def write_vdb(self, path):
         """OpenVDB file with one float level-set grid named "stock"."""

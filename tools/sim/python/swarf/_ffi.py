@@ -23,7 +23,11 @@ def _library_path():
 
 
 def _load():
+    """The library beside the module (as installed together), else by its
+    SONAME through the dynamic loader's search path."""
     path = _library_path()
+    if not os.path.exists(path) and not os.environ.get("SWARF_LIBRARY"):
+        path = os.path.basename(path)
     try:
         return ctypes.CDLL(path)
     except OSError as e:

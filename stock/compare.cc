@@ -47,6 +47,7 @@ struct Work {
 /// The blocks of g that may hold values below `limit`: every leaf, and the
 /// tiles below it split into 8^3 blocks.
 std::vector<Work> blocks_below(const swarf_stock &g, float limit) {
+  constexpr uint64_t kMaxBlocks = uint64_t(1) << 27;  // 6.9e10 voxels
   std::vector<Work> w;
   const Tree &tree = g.grid->constTree();
   for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) w.push_back({leaf->origin(), &*leaf, 0.0f});
@@ -55,6 +56,8 @@ std::vector<Work> blocks_below(const swarf_stock &g, float limit) {
   for (; it; ++it) {
     if (!(*it < limit)) continue;
     const openvdb::CoordBBox b = it.getBoundingBox();
+    if (w.size() + b.volume() / 512 > kMaxBlocks)
+      throw Error(SWARF_ERR_LIMIT, "the grid's material is too large to compare (over 6.9e10 voxels)");
     for (int x = b.min()[0]; x <= b.max()[0]; x += 8)
       for (int y = b.min()[1]; y <= b.max()[1]; y += 8)
         for (int z = b.min()[2]; z <= b.max()[2]; z += 8) w.push_back({Coord(x, y, z), nullptr, *it});

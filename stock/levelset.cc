@@ -311,6 +311,8 @@ swarf_stock *resample(const swarf_stock &s, const Rigid &m, double voxel, int ha
   std::vector<PlacedBlock> blocks;
   if (!s.content.empty()) {
     const openvdb::CoordBBox box = placed_box(s, m.rot, scale);
+    if (box.volume() / 512 > (uint64_t(1) << 27))
+      throw Error(SWARF_ERR_LIMIT, "the stock is too large to place or resample (over 6.9e10 voxels)");
     for (int x = box.min()[0]; x <= box.max()[0]; x += 8)
       for (int y = box.min()[1]; y <= box.max()[1]; y += 8)
         for (int z = box.min()[2]; z <= box.max()[2]; z += 8) blocks.push_back({Coord(x, y, z), 0});

@@ -8,6 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "stock.h"
+
 /* Corners of each face, counter-clockwise seen from outside (bits x, y, z). */
 static const int stl_box_faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                         {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
@@ -20,6 +22,12 @@ static inline void stl_box_triangles(const double lo[3], const double hi[3], flo
       for (int c = 0; c < 3; c++)
         for (int k = 0; k < 3; k++) tri[2 * f + h][c][k] = (float)((idx[c] >> k) & 1 ? hi[k] : lo[k]);
     }
+}
+
+/* A box stock, NULL on failure. */
+static inline swarf_stock *test_box_(const double lo[3], const double hi[3], double voxel, int half_width) {
+  swarf_stock *s = NULL;
+  return swarf_stock_new_box(lo, hi, voxel, half_width, &s, NULL) == SWARF_OK ? s : NULL;
 }
 
 enum { STL_GOOD = 0, STL_OPEN, STL_NONMANIFOLD, STL_FLIPPED };

@@ -30,9 +30,8 @@ static const double V = 0.1, T = 0.05;
 
 static swarf_stock *stock_box(void) {
   const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, 0.05};
-  char msg[256];
-  swarf_stock *s = swarf_stock_new_box(lo, hi, V, 3, msg, sizeof msg);
-  CHECK(s != NULL, "box: %s", msg);
+  swarf_stock *s = test_box_(lo, hi, V, 3);
+  CHECK(s != NULL, "box");
   return s;
 }
 
@@ -119,9 +118,8 @@ static void test_gouge(swarf_stock *s, const swarf_stock *d) {
   swarf_stock *plain = copy(s);
   swarf_stock_cut_effect e[3];
   double before = swarf_stock_volume(s);
-  char msg[256];
   CHECK(swarf_stock_remove_batch_measured(s, cuts, 3, d, T, e, &err) == SWARF_OK, "%s", err.message);
-  CHECK(swarf_stock_remove_batch(plain, cuts, 3, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(swarf_stock_remove_batch(plain, cuts, 3, NULL) == SWARF_OK, "call failed");
   CHECK(stock_differences(s, plain) == 0, "measured grid = plain grid bit for bit");
   double after = swarf_stock_volume(s), sum = e[0].removed + e[1].removed + e[2].removed;
   printf("measured: removed %.6f %.6f %.6f (sum %.9f, change %.9f), gouges %.5f %.5f %.5f\n", e[0].removed,
@@ -156,10 +154,9 @@ static void test_cleared_blocks(void) {
   swarf_stock_cut cuts[2] = {capsule_cut(&small), capsule_cut(&big)};
   swarf_stock_cut_effect e[2];
   swarf_error err;
-  char msg[256];
   double before = swarf_stock_volume(s);
   CHECK(swarf_stock_remove_batch_measured(s, cuts, 2, NULL, T, e, &err) == SWARF_OK, "%s", err.message);
-  CHECK(swarf_stock_remove_batch(plain, cuts, 2, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(swarf_stock_remove_batch(plain, cuts, 2, NULL) == SWARF_OK, "call failed");
   CHECK(stock_differences(s, plain) == 0, "measured = plain with cleared blocks");
   double change = before - swarf_stock_volume(s);
   printf("cleared blocks: removed %.6f + %.6f = %.9f, change %.9f\n", e[0].removed, e[1].removed,

@@ -70,9 +70,8 @@ static void rotated_visit(void *ctx, const double c[3], float v) {
 
 static void test_stl_box(void) {
   const double lo[3] = {0.13, -0.41, -5.07}, hi[3] = {10.37, 7.93, 0.21}, v = 0.2;
-  char msg[256];
-  swarf_stock *box = swarf_stock_new_box(lo, hi, v, 3, msg, sizeof msg);
-  CHECK(box != NULL, "box: %s", msg);
+  swarf_stock *box = test_box_(lo, hi, v, 3);
+  CHECK(box != NULL, "box");
   for (int ascii = 0; ascii < 2; ascii++) {
     swarf_stock *s = NULL;
     swarf_error err;
@@ -85,7 +84,7 @@ static void test_stl_box(void) {
            swarf_stock_active_voxels(s), swarf_stock_active_voxels(box));
     CHECK(d <= 0.01, "STL stock = box stock: %.3g voxel", d);
     CHECK(swarf_stock_active_voxels(s) == swarf_stock_active_voxels(box), "same band");
-    CHECK(swarf_stock_check(s, msg, sizeof msg) == 0, "valid level set: %s", msg);
+    CHECK(swarf_stock_check(s, &err) == SWARF_OK, "valid level set: %s", err.message);
     swarf_stock_free(s);
   }
   swarf_stock_free(box);
@@ -111,22 +110,21 @@ static void test_stl_placed(void) {
 
 static void test_place(void) {
   const double lo[3] = {0, 0, -5}, hi[3] = {10, 8, 0}, v = 0.2;
-  char msg[256];
   swarf_error err;
   swarf_stock_placement p;
-  swarf_stock *s = swarf_stock_new_box(lo, hi, v, 3, msg, sizeof msg), *t = NULL;
+  swarf_stock *s = test_box_(lo, hi, v, 3), *t = NULL;
   capsule_shape c = {{2, 2, 0.5}, {7, 3, -1}, 1.2};
   swarf_stock_cut cut = capsule_cut(&c);
-  CHECK(swarf_stock_remove_batch(s, &cut, 1, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(swarf_stock_remove_batch(s, &cut, 1, NULL) == SWARF_OK, "call failed");
   /* Quarter turns: rx=180 maps (x, y, z) to (x, -y, -z), then tz=-25. */
   CHECK(swarf_stock_placement_parse("rx=180,tz=-25", &p, &err) == SWARF_OK, "%s", err.message);
   CHECK(swarf_stock_place(s, &p, &t, &err) == SWARF_OK, "place: %s", err.message);
   if (t != NULL) {
     const double elo[3] = {0, -8, -25}, ehi[3] = {10, 0, -20};
-    swarf_stock *e = swarf_stock_new_box(elo, ehi, v, 3, msg, sizeof msg);
+    swarf_stock *e = test_box_(elo, ehi, v, 3);
     capsule_shape ec = {{2, -2, -25.5}, {7, -3, -24}, 1.2};
     swarf_stock_cut ecut = capsule_cut(&ec);
-    CHECK(swarf_stock_remove_batch(e, &ecut, 1, msg, sizeof msg) == 0, "%s", msg);
+    CHECK(swarf_stock_remove_batch(e, &ecut, 1, NULL) == SWARF_OK, "call failed");
     double d = max_diff(e, t);
     printf("placed rx=180,tz=-25 vs the analytic image: max %.2e mm\n", d);
     CHECK(d <= 1e-6, "quarter-turn placement exact: %.3g mm", d);
@@ -136,7 +134,7 @@ static void test_place(void) {
     t = NULL;
   }
   /* Any rotation: rz=30 about the origin, then tx=5. */
-  swarf_stock *b = swarf_stock_new_box(lo, hi, v, 3, msg, sizeof msg);
+  swarf_stock *b = test_box_(lo, hi, v, 3);
   CHECK(swarf_stock_placement_parse("tx=5,rz=30", &p, &err) == SWARF_OK, "%s", err.message);
   CHECK(swarf_stock_place(b, &p, &t, &err) == SWARF_OK, "place: %s", err.message);
   if (t != NULL) {
@@ -146,7 +144,7 @@ static void test_place(void) {
            swarf_stock_volume(t));
     CHECK(r.max / v <= 0.3, "resampled placement within 0.3 voxel: %.3f", r.max / v);
     CHECK(fabs(swarf_stock_volume(t) - 400.0) <= 0.002 * 400.0, "volume %.3f", swarf_stock_volume(t));
-    CHECK(swarf_stock_check(t, msg, sizeof msg) == 0, "valid level set: %s", msg);
+    CHECK(swarf_stock_check(t, &err) == SWARF_OK, "valid level set: %s", err.message);
     swarf_stock_free(t);
   }
   swarf_stock_free(b);
@@ -155,13 +153,13 @@ static void test_place(void) {
 
 static void test_band_background(void) {
   const double lo[3] = {0, 0, -1}, hi[3] = {2, 2, 0};
-  char msg[512];
   int bad = 0;
   for (int i = 1; i <= 200; i++) {
     double v = 0.005 * i; /* 0.005 .. 1 mm, 0.3 among them */
-    swarf_stock *s = swarf_stock_new_box(lo, hi, v, 3, msg, sizeof msg);
-    if (s == NULL || swarf_stock_check(s, msg, sizeof msg) != 0) {
-      if (bad++ < 3) fprintf(stderr, "voxel %g: %s\n", v, msg);
+    swarf_stock *s = test_box_(lo, hi, v, 3);
+    swarf_error err;
+    if (s == NULL || swarf_stock_check(s, &err) != SWARF_OK) {
+      if (bad++ < 3) fprintf(stderr, "voxel %g: %s\n", v, s ? err.message : "no stock");
     }
     swarf_stock_free(s);
   }
@@ -170,13 +168,12 @@ static void test_band_background(void) {
 
 static void test_vdb(void) {
   const double lo[3] = {0, 0, -4}, hi[3] = {6, 5, 0};
-  char msg[256];
   swarf_error err;
-  swarf_stock *s = swarf_stock_new_box(lo, hi, 0.2, 3, msg, sizeof msg), *r = NULL;
+  swarf_stock *s = test_box_(lo, hi, 0.2, 3), *r = NULL;
   capsule_shape c = {{1, 1, 0.2}, {5, 4, -1.5}, 1.0};
   swarf_stock_cut cut = capsule_cut(&c);
-  CHECK(swarf_stock_remove_batch(s, &cut, 1, msg, sizeof msg) == 0, "%s", msg);
-  CHECK(swarf_stock_write_vdb(s, "stockio.vdb", msg, sizeof msg) == 0, "%s", msg);
+  CHECK(swarf_stock_remove_batch(s, &cut, 1, NULL) == SWARF_OK, "call failed");
+  CHECK(swarf_stock_write_vdb(s, "stockio.vdb", NULL) == SWARF_OK, "call failed");
   CHECK(swarf_stock_read_vdb("stockio.vdb", NULL, 0.0, 0, &r, &err) == SWARF_OK, "%s", err.message);
   if (r) CHECK(stock_differences(s, r) == 0, "a .vdb stock is the stock bit for bit");
   swarf_stock_free(r);
@@ -193,7 +190,7 @@ static void test_vdb(void) {
     CHECK(fabs(a - b) < 0.01 * a, "resampled volume %.3f vs %.3f", b, a);
     CHECK(fabs(swarf_stock_sample(r, 3.0, 4.85, -2.0) - (-0.15)) < 1e-6, "a face's distance kept: %.6f",
           swarf_stock_sample(r, 3.0, 4.85, -2.0));
-    CHECK(swarf_stock_check(r, msg, sizeof msg) == 0, "valid: %s", msg);
+    CHECK(swarf_stock_check(r, &err) == SWARF_OK, "valid: %s", err.message);
   }
   swarf_stock_free(r);
   swarf_stock_free(s);

@@ -392,8 +392,8 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
     stored *s = &l->v[pc];
     *fl->err_line = s->line;
     if (++fl->executed > SWARF_GC_MAX_EXECUTED) {
-      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT, s->ctl.kind != O_NONE ? s->ctl.column : 1,
-                             SWARF_GC_MAX_EXECUTED);
+      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT,
+                             s->ctl.kind != O_NONE ? s->ctl.column : 1, SWARF_GC_MAX_EXECUTED);
       break;
     }
     switch (s->ctl.kind) {

@@ -21,7 +21,6 @@
 #include <stddef.h>
 
 #include "swarf_status.h"
-#include "swarf_status.h"
 
 #ifdef __cplusplus
 extern "C" {

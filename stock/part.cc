@@ -167,13 +167,14 @@ extern "C" swarf_status swarf_stock_set_region(swarf_stock *s, const int lo[3], 
   });
 }
 
-extern "C" void swarf_stock_set_tally(swarf_stock *s, int axis, int first,
-                                      unsigned long long *counts, size_t n) {
+extern "C" void swarf_stock_set_tally(swarf_stock *s, const int lo[3], const int n[3],
+                                      unsigned long long *counts) {
   if (s == nullptr) return;
-  s->tally = axis >= 0 && axis < 3 ? counts : nullptr;
-  s->ntally = s->tally ? n : 0;
-  s->tally_axis = axis;
-  s->tally_first = first & ~7;
+  s->tally = lo != nullptr && n != nullptr ? counts : nullptr;
+  for (int k = 0; s->tally && k < 3; k++) {
+    s->tally_lo[k] = lo[k] & ~7;
+    s->tally_n[k] = n[k] > 0 ? n[k] : 0;
+  }
 }
 
 extern "C" swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, size_t *len,

@@ -129,8 +129,10 @@ static func_id function_name(swarf_gc_lexer *lx) {
                                 "ROUND", "SIN", "SQRT", "TAN", "ATAN", "EXISTS"};
   /* Longest names first where one is a prefix of another: none are, but
    * ATAN must not be read as A... (axes are not functions). */
+  int c = peek(lx);
+  c = c >= 0 ? toupper(c) : c; /* only the names that start with the next letter */
   for (int i = F_EXISTS; i >= 0; i--)
-    if (match(lx, names[i])) return (func_id)i;
+    if (names[i][0] == c && match(lx, names[i])) return (func_id)i;
   return F_NONE;
 }
 
@@ -223,8 +225,9 @@ static int read_op(swarf_gc_lexer *lx) {
   if (c == '/') return lx->pos++, OP_DIV;
   if (c == '+') return lx->pos++, OP_ADD;
   if (c == '-') return lx->pos++, OP_SUB;
+  c = c >= 0 ? toupper(c) : c; /* only the words that start with the next letter */
   for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
-    if (match(lx, words[i].text)) return words[i].op;
+    if (words[i].text[0] == c && match(lx, words[i].text)) return words[i].op;
   return OP_NONE;
 }
 

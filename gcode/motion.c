@@ -5,12 +5,17 @@
  * machine coordinates and are turned back into program coordinates, as
  * LinuxCNC does, so that the canon shows where the move goes in the active
  * system. Under G93 (inverse time) every feed move first sets its feed rate:
- * the move's length (XYZ, else ABC) times F, as interp_inverse.cc does.
+ * the move's length (XYZ, else ABC) times F, at least 0.1 units a minute,
+ * as interp_inverse.cc does (rs274 prints SET_FEED_RATE(0.1000) for G93 G1
+ * or G2 with F0): so a G93 F0 line and arc alike move at that crawl, and no
+ * move, compensated or not, ever carries a feed of 0.
  */
 #include <math.h>
 #include <string.h>
 
 #include "gcode_private.h"
+
+#define INVERSE_RATE_MIN 0.1 /* units/min: LinuxCNC's floor of an inverse-time rate */
 
 static const char axes[SWARF_NAXES] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
 
@@ -65,7 +70,7 @@ static int inverse_feed(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_ex
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_INVERSE_FEED_MISSING, b->motion_column,
                          b->motion == 10 ? "G1" : "arc");
   len = inverse_length(st, end, arc);
-  rate = len * st->feed;
+  rate = fmax(INVERSE_RATE_MIN, len * st->feed);
   swarf_gc_out_text(ex->out, "SET_FEED_RATE(%.4f)", rate);
   return SWARF_OK;
 }
@@ -82,7 +87,7 @@ static void fix_inverse(swarf_gc_exec *ex, const swarf_gc_state *st, const doubl
   xyz = len > 0 &&
         (arc != NULL ||
          fabs(end[0] - st->pos[0]) + fabs(end[1] - st->pos[1]) + fabs(end[2] - st->pos[2]) > 0);
-  feed = len * st->feed * (xyz ? swarf_gc_scale(st) : 1);
+  feed = fmax(INVERSE_RATE_MIN, len * st->feed) * (xyz ? swarf_gc_scale(st) : 1);
   for (size_t i = first - ex->out->pending; i < ex->out->count; i++)
     if (ex->out->calls[i].kind != SWARF_GC_CALL_TEXT) ex->out->calls[i].move.feed = feed;
 }

@@ -10,8 +10,12 @@
  * set #<_value>. Names: o123 and o<name> (lower case, blanks removed);
  * LinuxCNC matches the words of one construct by that name.
  *
- * Bounds of ours, so that no program hangs: calls nest at most 50 deep and
- * all loops together turn at most SWARF_GC_MAX_ITERATIONS times.
+ * Bounds of ours, so that no program hangs: calls nest at most 50 deep,
+ * and the lines run from recordings (loop bodies, sub bodies, calls,
+ * control lines: the work, which grows with turns times body and with call
+ * trees, unlike a bound on turns or depth) number at most
+ * SWARF_GC_MAX_EXECUTED in all, a few seconds of interpreting. Every loop
+ * turn runs at least one stored line, so this also bounds the turns.
  * The flow owns its recordings and subs (freed by swarf_gc_flow_free).
  */
 #include <ctype.h>
@@ -25,7 +29,7 @@
 #define MAX_CALL_DEPTH 50
 #define MAX_ARGS 30
 #define MAX_NEST 64
-#define SWARF_GC_MAX_ITERATIONS 10000000L
+#define SWARF_GC_MAX_EXECUTED 5000000L /* stored lines run, all calls and loops together */
 
 typedef enum {
   O_NONE,
@@ -87,7 +91,7 @@ struct swarf_gc_flow {
   int nopen;
   sub_def *subs;
   int depth; /* calls running */
-  long iterations;
+  long executed; /* stored lines run so far */
   long *err_line;
   const char *path; /* subroutine files: ':'-separated directories (borrowed) */
 };
@@ -405,12 +409,6 @@ static size_t find_back(const line_list *l, size_t from, const char *name, okind
   return l->n;
 }
 
-static int count_turn(swarf_gc_flow *fl, const stored *s, swarf_gc_fault *f) {
-  if (++fl->iterations > SWARF_GC_MAX_ITERATIONS)
-    return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_LOOP_LIMIT, s->ctl.column, SWARF_GC_MAX_ITERATIONS);
-  return SWARF_OK;
-}
-
 enum { DONE_END = 100 }; /* run_lines status: a return/endsub ended the sub */
 
 /* The if chain: where to go from an if or elseif whose test failed. */
@@ -447,14 +445,12 @@ static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts
     if (status != SWARF_OK) return status;
     if (s->closes_do) {
       j = find_back(l, *pc, name, O_DO);
-      if (v != 0 && (status = count_turn(fl, s, f)) != SWARF_OK) return status;
       *pc = v != 0 ? j + 1 : *pc + 1;
       return SWARF_OK;
     }
     *pc = v != 0 ? *pc + 1 : find_fwd(l, *pc, name, O_ENDWHILE, O_ENDWHILE, O_ENDWHILE) + 1;
     return SWARF_OK;
   case O_ENDWHILE:
-    if ((status = count_turn(fl, s, f)) != SWARF_OK) return status;
     *pc = find_back(l, *pc, name, O_WHILE);
     return SWARF_OK;
   case O_REPEAT:
@@ -466,11 +462,7 @@ static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts
     return SWARF_OK;
   case O_ENDREPEAT:
     j = find_back(l, *pc, name, O_REPEAT);
-    if (j < l->n && --counts[j] > 0) {
-      if ((status = count_turn(fl, s, f)) != SWARF_OK) return status;
-      *pc = j + 1;
-    } else
-      *pc = *pc + 1;
+    *pc = j < l->n && --counts[j] > 0 ? j + 1 : *pc + 1;
     return SWARF_OK;
   case O_BREAK:
     j = find_fwd(l, *pc, name, O_ENDWHILE, O_ENDREPEAT, O_WHILE);
@@ -492,6 +484,11 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
   while (status == SWARF_OK && pc < l->n) {
     stored *s = &l->v[pc];
     *fl->err_line = s->line;
+    if (++fl->executed > SWARF_GC_MAX_EXECUTED) {
+      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT,
+                             s->ctl.kind != O_NONE ? s->ctl.column : 1, SWARF_GC_MAX_EXECUTED);
+      break;
+    }
     switch (s->ctl.kind) {
     case O_NONE:
       status = fl->run(fl->ctx, s->text, s->len, s->line);

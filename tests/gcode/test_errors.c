@@ -102,7 +102,7 @@ static const bad_case cases[] = {
     {"G0 X1\no100 sub\nG0 X2\n", 2, 1, SEM, SWARF_GCODE_E_O_OPEN_AT_END},
     {"o100 endwhile\n", 1, 1, SEM, SWARF_GCODE_E_O_NOT_OPEN},
     {"o<nope> call\n", 1, 1, SEM, SWARF_GCODE_E_O_UNKNOWN_SUB},
-    {"o1 while [1]\no1 endwhile\n", 2, 1, LIM, SWARF_GCODE_E_O_LOOP_LIMIT},
+    {"o1 while [1]\no1 endwhile\n", 1, 1, LIM, SWARF_GCODE_E_O_WORK_LIMIT},
     {"G81 X1 Y1 Z-1 F10\n", 1, 1, SEM, SWARF_GCODE_E_CYCLE_R_MISSING},
     {"G0 Z0\nG81 X1 Z1 R0 F10\n", 2, 1, SEM, SWARF_GCODE_E_CYCLE_R_BELOW_DEPTH},
     {"G43 H7\n", 1, 1, SEM, SWARF_GCODE_E_TOOL_NOT_FOUND},

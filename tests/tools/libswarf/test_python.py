@@ -97,13 +97,7 @@ def test_trench_lines():
     near(lines[4].path_mm, 10, 1e-9, "trench: line 4 path")
     near(lines[4].time_s, 10 / 100 * 60, 1e-9, "trench: line 4 time at F100")
     near(sum(x.path_mm for x in r.lines), r.report.path_mm, 1e-12, "trench: line paths add up")
-    try:
-        r = swarf.simulate(line_volumes=True, **opts)
-    except swarf.InternalError as e:
-        if "not implemented yet" not in str(e):
-            raise
-        print("SKIP per-line volumes: the library does not measure them yet (%s)" % e)
-        return
+    r = swarf.simulate(line_volumes=True, **opts)
     lines = {x.line: x for x in r.lines}
     near(lines[3].removed, 2 / 3 * math.pi * rr ** 3, 0.02, "trench: plunge removes a half ball")
     near(lines[4].removed, math.pi * rr * rr * 10 / 2, 0.02,

@@ -304,7 +304,7 @@ static void test_fanuc_jumps(void) {
   refused("GOTO a missing block", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nGOTO 5\nM30\n"), 2,
           SWARF_GCODE_E_FANUC_NO_SEQUENCE);
   refused("a loop that never ends", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nDO1\nEND1\nM30\n"), 3,
-          SWARF_GCODE_E_FANUC_LOOP_LIMIT);
+          SWARF_GCODE_E_O_WORK_LIMIT);
   refused("macro alarm", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\n#3000 = 12 (TOOL BROKEN)\n"), 2,
           SWARF_GCODE_E_FANUC_ALARM);
 }

@@ -148,11 +148,11 @@ typedef struct {
   int (*progress)(void *user, const swarf_sim_progress *p);
   void (*alarm)(void *user, const swarf_alarm *a);
   void (*line)(void *user, const swarf_line_result *r);
+  void *user;
   /* What the G-code front end accepted without acting on it (a vendor M
    * code, a grbl `$` line, a probe move that found nothing): gcode.h's
    * notes, with the program line and column. NULL: none. */
   void (*note)(void *user, long line, int column, const char *text);
-  void *user;
 } swarf_sim_callbacks;
 
 typedef struct {

@@ -130,16 +130,27 @@ static const swarf_move *tip_move(swarf_sim *s, const swarf_move *mv, swarf_move
   return buf;
 }
 
+/* The machine for the tool in the spindle: a spindle head's pivot lies
+ * --machine's head=L above the gauge line, so the tool's length further
+ * above its tip (swarf_machine.head is measured from the tip). */
+static swarf_machine machine_for_tool(const swarf_sim *s) {
+  swarf_machine mc = s->cfg.machine;
+  if (s->tool != NULL) mc.head += s->tool->length;
+  return mc;
+}
+
 static int on_move(const swarf_move *machine_mv, void *user) {
   swarf_sim *s = user;
   swarf_motion m;
+  swarf_machine mc;
   swarf_move w, tip, *mv = &w;
   if (machine_mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, machine_mv);
   if (machine_mv->kind == SWARF_MOVE_DWELL) return 0;
   swarf_sim_to_workpiece(s, tip_move(s, machine_mv, &tip), &w);
   swarf_sim_check_units(s, mv);
   swarf_error e;
-  swarf_status rc = swarf_machine_motion(&s->cfg.machine, mv, &m, &e);
+  mc = machine_for_tool(s);
+  swarf_status rc = swarf_machine_motion(&mc, mv, &m, &e);
   if (rc == SWARF_ERR_MACHINE) {
     swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column, "%s", e.message);
     return 1;

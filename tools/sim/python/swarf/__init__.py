@@ -393,7 +393,8 @@ class Simulation:
     .vdb read back), which the simulation then owns. tools: spec strings
     "T<n>=<shape>,D<diameter>[,R<corner>][,L<length>]" (ball, flat, bull).
     voxel (mm, default 0.2), machine ("xyz", "xyza[,pivot=Y,Z]",
-    "xyzac-trt[,mode=tcp|joint][,pivot=X,Y,Z]", ...), band (voxels, >= 3),
+    "xyzac-trt[,mode=tcp|joint][,pivot=X,Y,Z]", "xyzab-tdr", "xyzbc-hh,mode=joint,head=L",
+    "xyzbc-ht[,pivot=X,Y][,head=L]", ...), band (voxels, >= 3),
     line_volumes (measure each line's removed volume) as `swarf simulate`.
     The machine's setup, as `swarf simulate` --start, --g54, --units,
     --offsets: start (X, Y, Z: the tool tip when the program starts, mm,

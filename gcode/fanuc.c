@@ -165,8 +165,9 @@ static size_t keyword(const char *t, size_t n, size_t i, char *out, size_t cap) 
   return k >= 2 ? i : 0;
 }
 
-/* What the line is: a program number, a macro statement, or a block. */
-static void classify(fline *l) {
+/* What the line is: a program number, a macro statement, or a block
+ * (`lcnc`: a LinuxCNC program with M98: program numbers only). */
+static void classify(fline *l, int lcnc) {
   const char *t = l->text;
   size_t n = l->len, i = skip(t, n, 0), j;
   char kw[8];
@@ -181,6 +182,7 @@ static void classify(fline *l) {
     }
   }
   i = body_start(t, n, &l->nnum);
+  if (lcnc) return;
   if (i < n && t[i] == '#') {
     l->kind = ST_ASSIGN;
     l->at = i;
@@ -226,7 +228,7 @@ int swarf_gc_fanuc_store(swarf_gc_fanuc *fa, const char *text, size_t len, long 
   l->text[len] = '\0';
   l->len = len;
   l->line = line;
-  classify(l);
+  classify(l, fa->p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC);
   fa->n++;
   return SWARF_OK;
 }
@@ -455,6 +457,7 @@ static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
   swarf_gc_token t;
   size_t spans[64][2];
   int kinds[64], nspan = 0, haas = fa->p->state->dialect == SWARF_GCODE_DIALECT_HAAS;
+  int lcnc = fa->p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC;
   memset(w, 0, sizeof *w);
   swarf_gc_lexer_init(&lx, l->text, l->len, &fa->p->params);
   for (;;) {
@@ -465,7 +468,7 @@ static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
     if (t.kind == SWARF_GC_TOKEN_END) break;
     if (t.kind != SWARF_GC_TOKEN_WORD || nspan == 64) continue;
     if ((t.letter == 'M' && (v == 98 || v == 99 || (v == 97 && haas))) ||
-        (t.letter == 'G' && v == 65)) {
+        (t.letter == 'G' && v == 65 && !lcnc)) {
       w->code = (int)v;
       w->column = t.column;
       kind = 0;
@@ -473,7 +476,7 @@ static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
       *(t.letter == 'P' ? &w->p : &w->l) = v;
       *(t.letter == 'P' ? &w->has_p : &w->has_l) = 1;
       kind = 1;
-    } else if (arg_local(t.letter) > 0) {
+    } else if (arg_local(t.letter) > 0 && !lcnc) {
       w->args[arg_local(t.letter)] = v;
       kind = 2;
     }
@@ -574,6 +577,29 @@ static int call(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_gc_fa
 
 /* ---- running ---------------------------------------------------------------------- */
 
+/* A line through the block path; in a LinuxCNC program through its O-word
+ * flow (subs, loops, ifs), which hands ordinary lines to the block path. */
+static int run_text(swarf_gc_fanuc *fa, const char *text, size_t len, long line) {
+  if (fa->p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC)
+    return swarf_gc_parser_flow_line(fa->p, text, len, line);
+  return swarf_gc_parser_run_line(fa->p, text, len, line);
+}
+
+int swarf_gc_has_m98(const char *t, size_t n) {
+  for (size_t i = 0; i + 2 < n; i++) {
+    size_t j;
+    if (t[i] == '(' || t[i] == ';') return 0; /* a comment: not a call (simplified) */
+    if (t[i] != 'M' && t[i] != 'm') continue;
+    j = skip(t, n, i + 1);
+    while (j < n && t[j] == '0')
+      j = skip(t, n, j + 1);
+    if (j + 1 < n && t[j] == '9' && t[j + 1] == '8' &&
+        (j + 2 >= n || !isdigit((unsigned char)t[j + 2])))
+      return 1;
+  }
+  return 0;
+}
+
 /* A block: its motion first, then its call or return. */
 static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
   const fline *l = &fa->v[*pc];
@@ -582,14 +608,14 @@ static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
   int status;
   if (!may_have_flow(l->text, l->len)) {
     ++*pc;
-    return swarf_gc_parser_run_line(fa->p, l->text, l->len, l->line);
+    return run_text(fa, l->text, l->len, l->line);
   }
   fa->p->cur_line = l->line;
   if ((b = buffer(fa, l->len + 1)) == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
   status = take_flow(fa, l, b, &w, f);
   if (status != SWARF_OK) return status;
   if (w.code == 0 || !rest_empty(b, l->len, body_start(b, l->len, &(long){0}))) {
-    status = swarf_gc_parser_run_line(fa->p, b, l->len, l->line);
+    status = run_text(fa, b, l->len, l->line);
     if (status != SWARF_OK || w.code == 0) {
       ++*pc;
       return status;

@@ -546,6 +546,9 @@ void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
 
+/* The flow's line entry for fanuc.c (LinuxCNC programs with M98). */
+int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t len, long line);
+
 /* ---- parser.c: the parser itself (setup.c sets up its machine) ----------- */
 
 #define SWARF_GC_NTOOLS 1000 /* tool numbers 1..999 */
@@ -623,6 +626,10 @@ void swarf_gc_fanuc_free(swarf_gc_fanuc *fa);
 /* Keeps one line of the program. */
 int swarf_gc_fanuc_store(swarf_gc_fanuc *fa, const char *text, size_t len, long line,
                          swarf_gc_fault *f);
+/* The line has an M98 word (LinuxCNC 2.9 reads Fanuc-style calls too: the
+ * parser then keeps the rest of the program and runs it through fanuc.c,
+ * with O-word lines still going to oword.c). */
+int swarf_gc_has_m98(const char *text, size_t n);
 /* Runs the program kept; *err_line says where a fault is. */
 int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_gc_fault *f);
 

@@ -285,6 +285,17 @@ static int run_line(void *ctx, const char *text, size_t n, long line) {
   return swarf_gc_parser_run_line(ctx, text, n, line);
 }
 
+int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t len, long line) {
+  swarf_gc_fault f;
+  long err_line = line;
+  int status = swarf_gc_flow_line(p->flow, text, len, line, &err_line, &f);
+  if (status != SWARF_OK && p->status == SWARF_OK) {
+    p->cur_line = err_line;
+    return err_line == line ? fail(p, &f, text, len) : fail(p, &f, NULL, 0);
+  }
+  return p->status;
+}
+
 /* Runs a Fanuc or Haas program kept whole (at its closing `%` or the end). */
 static swarf_status run_fanuc(swarf_gcode_parser *p) {
   swarf_gc_fault f;
@@ -367,6 +378,12 @@ static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t
   if (p->state->dialect == SWARF_GCODE_DIALECT_GRBL) return grbl_line(p, text, n, first, rest);
   if (text[first] == '%' && rest == n) return percent_line(p, text, n, first);
   p->seen_code = 1;
+  /* LinuxCNC 2.9 reads M98 P<n> too: from the first M98 on, the program is
+   * kept whole like a Fanuc one (its O<n> ... M99 may come after M2). */
+  if (p->fanuc == NULL && p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC &&
+      swarf_gc_flow_open_line(p->flow) == 0 && swarf_gc_has_m98(text, n) &&
+      (p->fanuc = swarf_gc_fanuc_new(p)) == NULL)
+    return fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
   if (p->fanuc != NULL) {
     status = swarf_gc_fanuc_store(p->fanuc, text, n, p->lines, &f);
     return status == SWARF_OK ? SWARF_OK : fail(p, &f, text, n);

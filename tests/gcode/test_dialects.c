@@ -305,6 +305,15 @@ static void test_fanuc_jumps(void) {
           SWARF_GCODE_E_FANUC_NO_SEQUENCE);
   refused("a loop that never ends", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nDO1\nEND1\nM30\n"), 3,
           SWARF_GCODE_E_O_WORK_LIMIT);
+  /* "#0 is always vacant" (read as 0 here); it cannot be set. rs274:
+   * "Parameter number out of range". */
+  run(SWARF_GCODE_DIALECT_FANUC, "#1 = 7\n#1 = #0\nG0 X[#1 + 5.]\n");
+  CHECK(out.status == SWARF_OK && out.n == 1 && out.v[0].end[0] == 5, "fanuc #0 reads 0 (%s)",
+        out.err.message);
+  refused("fanuc #0 = 1", run(SWARF_GCODE_DIALECT_FANUC, "#0 = 1\n"), 1,
+          SWARF_GCODE_E_PARAMETER_RANGE);
+  refused("#0 in linuxcnc", run(SWARF_GCODE_DIALECT_LINUXCNC, "G0 X#0\n"), 1,
+          SWARF_GCODE_E_PARAMETER_RANGE);
   refused("macro alarm", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\n#3000 = 12 (TOOL BROKEN)\n"), 2,
           SWARF_GCODE_E_FANUC_ALARM);
 }

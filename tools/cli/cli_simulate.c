@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_mpi.h"
 #include "cli_stock.h"
 #include "modbus_service.h"
 #include "swarf_sim.h"
@@ -91,6 +92,13 @@ static const char help[] =
     "  --quiet          no progress bar and no summary\n"
     "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
+    "  --balance N      after the run, how evenly 2 to N processes would share the\n"
+    "                   removal (busiest rank's voxels over the mean; one process)\n"
+    "\n"
+    "Several processes (README: scale): under mpirun or srun every rank plays the\n"
+    "whole program on its slab of the stock; rank 0 prints and writes the same\n"
+    "outputs, voxel for voxel, as one process. Every rank needs the program and\n"
+    "the input files; only rank 0 writes.\n"
     "\n"
     "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ..., or\n"
     "FILE:LINE: for tool tables and libraries), 1 on an internal failure, 3 aborted\n"
@@ -102,6 +110,7 @@ static const char help[] =
 typedef struct {
   const char *program, *out, *mesh, *image;
   int quiet, fail_on_collision;
+  int balance; /* --balance N */
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
   swarf_verify verify;
@@ -176,6 +185,10 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   if (!strcmp(flag, "--batch")) {
     if (read_double(flag, val, 1, &d)) return 2;
     return o->cfg.batch = (int)d, 0;
+  }
+  if (!strcmp(flag, "--balance")) {
+    if (read_double(flag, val, 2, &d) || d > 1024) return usage_error("--balance: give 2 to 1024");
+    return o->balance = (int)d, o->cfg.tally = 1, 0;
   }
   if (!strcmp(flag, "--stamp")) {
     if (read_double(flag, val, 1e-3, &o->cfg.stamp_step)) return 2;
@@ -262,10 +275,14 @@ static int build_tools(sim_options *o) {
   return 0;
 }
 
-/* Refuse an output whose folder does not exist or is not writable. */
+/* 0 on the rank that writes (rank 0, or the one process). */
+static int writer_rank = 0;
+
+/* Refuse an output whose folder does not exist or is not writable (where
+ * it is written: on rank 0). */
 static int check_output(const char *flag, const char *path) {
   char copy[4096], what[4200];
-  if (path == NULL) return 0;
+  if (path == NULL || writer_rank != 0) return 0;
   snprintf(copy, sizeof copy, "%s", path);
   if (access(dirname(copy), W_OK) == 0) return 0;
   snprintf(what, sizeof what, "%s: cannot write \"%s\": %s", flag, path, strerror(errno));
@@ -441,7 +458,36 @@ static int report_failure(const swarf_error *e, const swarf_modbus_service *mb) 
   return (int)swarf_status_classify(e->status);
 }
 
-int swarf_cli_simulate(int argc, char **argv) {
+/* Several processes: every rank must read the program (the driver opens it
+ * inside the run, where a rank failing alone would leave the others
+ * waiting): the driver's own message when it cannot. */
+static int check_program(const char *path) {
+  FILE *f = fopen(path, "rb");
+  swarf_error e;
+  char msg[1024];
+  if (f != NULL) return fclose(f), 0;
+  swarf_error_init(&e);
+  swarf_error_at(&e, path, 0, 0, NULL);
+  swarf_error_set(&e, SWARF_ERR_OPEN, "cannot open the program: %s", strerror(errno));
+  swarf_error_format(&e, msg, sizeof msg);
+  fprintf(stderr, "%s\n", msg);
+  return (int)swarf_status_classify(SWARF_ERR_OPEN);
+}
+
+/* The run failed: bad input and a stop are every rank's (the same program
+ * everywhere), reported once by rank 0; anything else may be this rank's
+ * alone: all ranks end (MPI_Abort, status 1). Returns the exit status. */
+static int run_failed(swarf_cli_mpi *mpi, const swarf_error *e, const swarf_modbus_service *mb) {
+  const swarf_status_class c = swarf_status_classify(e->status);
+  if (c != SWARF_CLASS_INPUT && e->status != SWARF_ERR_ABORTED) {
+    char msg[1024];
+    swarf_error_format(e, msg, sizeof msg);
+    swarf_cli_mpi_abort(mpi, msg, 1);
+  }
+  return report_failure(e, mb);
+}
+
+static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   sim_options o;
   swarf_sim_report rep;
   swarf_stock *stock = NULL;
@@ -450,14 +496,23 @@ int swarf_cli_simulate(int argc, char **argv) {
   swarf_error err;
   size_t ntri = 0;
   swarf_stock *initial = NULL;
+  const int parts = mpi->comm.size > 1, rank = mpi->comm.rank;
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
-  if (rc || (o.stock.file == NULL && (rc = check_size(&o.cfg)))) return rc;
-  if ((rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial))) return rc;
-  if ((rc = swarf_verify_prepare(&o.verify, &o.cfg)))
+  if (rc == 0 && o.stock.file == NULL) rc = check_size(&o.cfg);
+  if (rc == 0 && parts && o.balance) rc = usage_error("--balance: run it on one process");
+  if (rc == 0 && parts) rc = check_program(o.program);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
+  rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return swarf_stock_free(initial), rc;
+  rc = swarf_verify_prepare(&o.verify, &o.cfg);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc)))
     return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
-  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb)))
-    return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
+  if (rank == 0) rc = swarf_modbus_start(&o.modbus, o.program, &mb); /* rank 0's only */
+  if ((rc = swarf_cli_mpi_agree(mpi, rc)))
+    return swarf_stock_free(initial), swarf_verify_free(&o.verify), swarf_modbus_finish(mb, rc, NULL), rc;
+  if (rank != 0) o.quiet = 1;
+  if (parts) o.cfg.comm = &mpi->comm;
   swarf_progress_init(&pb);
   sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}};
   o.cfg.cb.progress = on_progress;
@@ -466,15 +521,21 @@ int swarf_cli_simulate(int argc, char **argv) {
   if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
   o.cfg.cb.user = &clients;
   swarf_error_init(&err);
-  if (swarf_cli_run(&o.cfg, o.program, initial, &stock, &rep, &err) != SWARF_OK) {
+  if (swarf_cli_run(&o.cfg, o.program, initial, o.balance, &stock, &rep, &err) != SWARF_OK) {
     swarf_progress_finish(&pb);
-    rc = report_failure(&err, mb);
+    rc = run_failed(mpi, &err, mb);
     swarf_modbus_finish(mb, rc, &rep);
     swarf_verify_free(&o.verify);
     free(clients.alarms.a);
     return rc;
   }
   swarf_progress_finish(&pb);
+  if (rank != 0) { /* rank 0 prints and writes; this rank's stock is its slab */
+    free(clients.alarms.a);
+    swarf_stock_free(stock);
+    swarf_verify_free(&o.verify);
+    return 0;
+  }
   print_alarms(&o, &clients.alarms, &rep);
   free(clients.alarms.a);
   swarf_verify_warn(&o.verify, o.program, &rep);
@@ -493,4 +554,12 @@ int swarf_cli_simulate(int argc, char **argv) {
   swarf_stock_free(stock);
   swarf_verify_free(&o.verify);
   return rc;
+}
+
+int swarf_cli_simulate(int argc, char **argv) {
+  swarf_cli_mpi mpi;
+  int rc = swarf_cli_mpi_start(&mpi);
+  if (rc != 0) return rc;
+  writer_rank = mpi.comm.rank;
+  return swarf_cli_mpi_end(&mpi, simulate(argc, argv, &mpi));
 }

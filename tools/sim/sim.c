@@ -83,9 +83,13 @@ static int spindle_tool(const swarf_sim *s, int move_tool) {
   return move_tool;
 }
 
+/* Several processes: the stock is this one's slab only (not shown), and a
+ * stop is obeyed at the next batch, on all of them (part.c). */
 static int tell_progress(swarf_sim *s, long line, int tool) {
-  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, s->stock};
+  const int parts = swarf_sim_parts(s);
+  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, parts ? NULL : s->stock};
   if (s->cfg.cb.progress == NULL || s->cfg.cb.progress(s->cfg.cb.user, &p) == 0) return 0;
+  if (parts) return s->abort_pending = 1, 0;
   swarf_sim_fail(s, SWARF_ERR_ABORTED, line, 0, "aborted by the caller");
   return 1;
 }
@@ -312,6 +316,7 @@ swarf_status swarf_sim_feed(swarf_sim *s, const char *text, size_t len) {
   swarf_status st = check_open(s);
   if (st != SWARF_OK) return st;
   if (text == NULL && len > 0) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no text");
+  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
   return parser_outcome(s, swarf_gcode_parser_feed(s->parser, text, len));
 }
 
@@ -324,6 +329,7 @@ swarf_status swarf_sim_feed_file(swarf_sim *s, const char *path) {
   size_t n;
   if (st != SWARF_OK) return st;
   if (path == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no program path");
+  if (swarf_sim_part_plan(s, path) != 0) return s->err.status;
   if ((f = fopen(path, "rb")) == NULL)
     return swarf_sim_fail(s, SWARF_ERR_OPEN, 0, 0, "cannot open the program: %s", strerror(errno));
   double total = fstat(fileno(f), &sb) == 0 && sb.st_size > 0 ? (double)sb.st_size : 0.0, done = 0;
@@ -348,6 +354,7 @@ swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
   swarf_motion copy;
   if (st != SWARF_OK) return st;
   if (m == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no motion");
+  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
   copy = *m;
   if (m->tool != 0 && (s->tool == NULL || s->tool->number != m->tool)) {
     const swarf_sim_tool *t = find_tool(s, m->tool);
@@ -362,15 +369,18 @@ swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
 swarf_status swarf_sim_finish(swarf_sim *s) {
   swarf_status st = check_open(s);
   if (st != SWARF_OK) return st;
+  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
   st = parser_outcome(s, swarf_gcode_parser_finish(s->parser));
   s->rep.lines = swarf_gcode_parser_lines(s->parser);
   s->rep.units_line = swarf_gcode_parser_units_line(s->parser);
   if (st == SWARF_OK && swarf_sim_batch_flush(s) != 0) st = s->err.status;
   if (st == SWARF_OK && swarf_sim_lines_flush(s, 1) != 0) st = s->err.status;
-  if (st == SWARF_OK) st = swarf_sim_design_compare(s);
+  if (st == SWARF_OK && swarf_sim_part_merge(s) != 0) st = s->err.status;
+  const int whole = !swarf_sim_parts(s) || s->cfg.comm->rank == 0; /* the whole stock here */
+  if (st == SWARF_OK && whole) st = swarf_sim_design_compare(s);
   s->rep.seconds = now_seconds() - s->t0;
   if (st != SWARF_OK) return st;
-  s->rep.volume_after = swarf_stock_volume(s->stock);
+  if (whole) s->rep.volume_after = swarf_stock_volume(s->stock);
   s->state = SIM_FINISHED;
   return SWARF_OK;
 }
@@ -403,6 +413,7 @@ void swarf_sim_free(swarf_sim *s) {
   swarf_sim_batch_clear(s);
   swarf_stock_free(s->stock);
   swarf_stock_free(s->initial);
+  swarf_sim_part_clear(s);
   free(s);
 }
 

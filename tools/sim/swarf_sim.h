@@ -155,6 +155,32 @@ typedef struct {
   void (*note)(void *user, long line, int column, const char *text);
 } swarf_sim_callbacks;
 
+/* Several processes on one stock (MPI ranks: the CLI's cli_mpi.c; any
+ * transport will do). Every process runs the same handle on the same
+ * program and input; the stock's index space is cut into slabs, one a
+ * process, balanced by the work each will do (a first pass over the
+ * program estimates it, feed_file only; text fed directly gets slabs of
+ * equal size). Each removes in its slab only; the queries that read the
+ * stock (rapid and collision alarms) and the measured removals (line
+ * volumes, gouges) are combined at once, so every process raises the same
+ * alarms in program order; finish gathers the slabs into rank 0's stock,
+ * which is then the one-process grid voxel for voxel, with the same report.
+ * The other ranks' stocks hold their slab only: write rank 0's. A progress
+ * callback asking to stop is obeyed at the next batch, on every rank.
+ * A transport failure ends the run (SWARF_ERR_INTERNAL). */
+typedef struct {
+  int rank, size; /* this process, 0..size-1; size 1: one process (no calls) */
+  /* Every process calls it with its n bytes; recv (size * n bytes) gets all
+   * of them in rank order. 0 on success. */
+  int (*allgather)(void *user, const void *send, size_t n, void *recv);
+  /* Every process calls it with its n bytes (n may differ); on rank 0, take
+   * gets each other rank's bytes in rank order (a non-zero return stops).
+   * 0 on success, on every rank. */
+  int (*gather)(void *user, const void *send, size_t n,
+                int (*take)(void *ctx, int rank, const void *buf, size_t n), void *ctx);
+  void *user;
+} swarf_sim_comm;
+
 typedef struct {
   swarf_machine machine;      /* kinematics (toolpath.h); zero: xyz */
   swarf_sim_stock_spec stock; /* the initial stock, unless swarf_sim_new_with_stock */
@@ -202,6 +228,10 @@ typedef struct {
    * outlive the handle. NULL: none. */
   const swarf_stock *design;
   double tolerance; /* mm; <= 0: half the stock's voxel */
+  const swarf_sim_comm *comm; /* several processes (borrowed; must outlive the handle);
+                               * NULL: one */
+  int tally; /* 1: plan slabs and count the blocks removal visits in each, for
+              * swarf_sim_balance (one process) */
 } swarf_sim_config;
 
 /* How far above the stock the tool starts by default, mm. */
@@ -284,6 +314,14 @@ SWARF_API const swarf_stock *swarf_sim_stock(const swarf_sim *sim);
 SWARF_API swarf_stock *swarf_sim_take_stock(swarf_sim *sim);
 
 SWARF_API void swarf_sim_free(swarf_sim *sim);
+
+/* After a finished run with cfg.tally: how evenly `nranks` processes (>= 1)
+ * would have shared the work, from the blocks each slab's removal visited
+ * (*visited, may be NULL: 512 voxels a block) and the slabs the plan would
+ * have given them: *max_over_mean = the busiest rank's voxels over the
+ * mean (1: perfect). SWARF_ERR_STATE without a tally. */
+SWARF_API swarf_status swarf_sim_balance(const swarf_sim *sim, int nranks, double *max_over_mean,
+                                         double *visited);
 
 /* ---- One-shot conveniences ------------------------------------------------ */
 

@@ -191,6 +191,8 @@ typedef struct {
    * outlive the handle. NULL: none. */
   const swarf_stock *design;
   double tolerance; /* mm; <= 0: half the stock's voxel */
+  /* Threads the stock passes run on (swarf_stock_set_threads): 0 all cores. */
+  int threads;
 } swarf_sim_config;
 
 /* How far above the stock the tool starts by default, mm. */

@@ -98,6 +98,11 @@ bool cut_blocks(const Pass &p, const swarf_stock_cut &c, Coord &bmin, Coord &bma
     if (!(a <= b)) return false;
     lo[k] = int(a) & ~7;
     hi[k] = int(b) & ~7;
+    if (p.s.has_region) { // only the blocks of this part (swarf_stock_set_region)
+      lo[k] = std::max(lo[k], p.s.region_lo[k]);
+      hi[k] = std::min(hi[k], p.s.region_hi[k]);
+      if (lo[k] > hi[k]) return false;
+    }
   }
   bmin = Coord(lo[0], lo[1], lo[2]);
   bmax = Coord(hi[0], hi[1], hi[2]);
@@ -194,6 +199,12 @@ void classify(const Pass &p, ConstAcc &acc, Block &b) {
   if (kept > 0) b.action = leaf ? kVisitLeaf : kVisitTile;
 }
 
+/// Count a visited block in its slab (swarf_stock_set_tally).
+inline void tally_block(swarf_stock &s, const Coord &o) {
+  const long i = (long(o[s.tally_axis]) - s.tally_first) / 8;
+  if (i >= 0 && size_t(i) < s.ntally) s.tally[i]++;
+}
+
 /// Pass 3: topology changes, serial. Collects the blocks to visit.
 void change_topology(Pass &p) {
   RemoveScratch &w = p.s.scratch;
@@ -203,7 +214,10 @@ void change_topology(Pass &p) {
     Block &b = w.blocks[i];
     if (b.action == kClear) tree.addTile(1, b.origin, p.bgf, false);
     if (b.action == kVisitTile) tree.touchLeaf(b.origin);
-    if (b.action == kVisitLeaf || b.action == kVisitTile) w.visit.push_back(uint32_t(i));
+    if (b.action == kVisitLeaf || b.action == kVisitTile) {
+      w.visit.push_back(uint32_t(i));
+      if (p.s.tally) tally_block(p.s, b.origin);
+    }
   }
 }
 
@@ -389,13 +403,15 @@ void report_effects(const Pass &p, size_t ncuts) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), v3 = p.voxel * p.voxel * p.voxel;
   std::vector<double> removed(ncuts, 0.0);
   for (size_t i = 0; i < ncuts; i++)
-    e[i].removed = 0.0, e[i].gouge_depth = 0.0,
+    e[i].removed = e[i].removed_voxels = 0.0, e[i].gouge_depth = 0.0,
     e[i].gouge_at[0] = e[i].gouge_at[1] = e[i].gouge_at[2] = nan;
   for (const Block &b : w.blocks)
     for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
       if (b.action == kSkip) break;
       swarf_stock_cut_effect &c = e[w.pairs[i].cut];
-      removed[w.pairs[i].cut] += w.removed[i];
+      // whole multiples of 2^-16 voxel: sums exact in any order or grouping
+      // (up to 2^37 voxels a cut), so parts of a stock add up to the same bits
+      removed[w.pairs[i].cut] += std::ldexp(std::round(std::ldexp(w.removed[i], 16)), -16);
       if (w.gouge[i] > c.gouge_depth) {
         c.gouge_depth = w.gouge[i];
         for (int k = 0; k < 3; k++)
@@ -403,7 +419,7 @@ void report_effects(const Pass &p, size_t ncuts) {
       }
     }
   for (size_t i = 0; i < ncuts; i++)
-    e[i].removed = removed[i] * v3;
+    e[i].removed_voxels = removed[i], e[i].removed = removed[i] * v3;
 }
 
 /// Pass 5: leaves without band become tiles, serial.

@@ -103,6 +103,14 @@ struct swarf_stock {
   swarf::RemoveScratch scratch;
   int threads = 0;                        ///< swarf_stock_set_threads: 0 all cores
   std::shared_ptr<tbb::task_arena> arena; ///< the removal's threads when threads > 0
+  /// swarf_stock_set_region: removal and queries only in the blocks whose
+  /// origin lies in [region_lo, region_hi] (block origins, multiples of 8).
+  bool has_region = false;
+  openvdb::Coord region_lo, region_hi;
+  /// swarf_stock_set_tally: blocks visited per slab of 8 voxels (the caller's array).
+  unsigned long long *tally = nullptr;
+  size_t ntally = 0;
+  int tally_axis = 0, tally_first = 0;
 };
 
 namespace swarf {

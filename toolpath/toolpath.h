@@ -112,7 +112,9 @@ typedef struct {
   int tcp;         /* 5-axis: 1 tool-centre-point mode (default), 0 joint mode */
   double pivot[3]; /* the table axes pass here, machine = workpiece frame at zero angles, mm */
   double head;     /* head machines: the head's pivot is this far above the tip at zero
-                    * angles (along the tool axis), mm; used in joint mode */
+                    * angles (along the tool axis), mm; used in joint mode. The
+                    * simulation reads --machine head=L from the spindle's gauge
+                    * line and adds the length of the tool in the spindle. */
 } swarf_machine;
 
 /* Fill `m` from "NAME[,key=value...]": NAME xyz, xyza, xyzac-trt, xyzbc-trt,

@@ -90,6 +90,7 @@ static const char help[] =
     "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer;\n"
     "                   with --design, coloured by the deviation, with a legend)\n"
     "  --quiet          no progress bar and no summary\n"
+    "  --threads N      threads for the stock passes (default 0: all cores)\n"
     "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "  --balance N      after the run, how evenly 2 to N processes would share the\n"
@@ -186,6 +187,11 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     if (read_double(flag, val, 1, &d)) return 2;
     return o->cfg.batch = (int)d, 0;
   }
+  if (!strcmp(flag, "--threads")) {
+    if (read_double(flag, val, 0, &d)) return 2;
+    if (d > 4096 || d != floor(d)) return usage_error("--threads: give 0 (all cores) to 4096");
+    return o->cfg.threads = (int)d, 0;
+  }
   if (!strcmp(flag, "--balance")) {
     if (read_double(flag, val, 2, &d) || d > 1024) return usage_error("--balance: give 2 to 1024");
     return o->balance = (int)d, o->cfg.tally = 1, 0;
@@ -201,7 +207,8 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   }
   if (!strcmp(flag, "--machine")) {
     swarf_error err;
-    if (swarf_machine_parse(&o->cfg.machine, val, &err) != SWARF_OK) return usage_error(err.message);
+    if (swarf_machine_parse(&o->cfg.machine, val, &err) != SWARF_OK)
+      return usage_error(err.message);
     return 0;
   }
   if (!strcmp(flag, "--tool") || !strcmp(flag, "--holder")) {
@@ -295,7 +302,10 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   o->table_mm_per_unit = 1.0;
   o->cfg.collision_depths = 100; /* the warnings printed; the rest are counted */
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs("\nStock from files, placement and outputs:\n", stdout), fputs(swarf_cli_stock_help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
+      return fputs(help, stdout), fputs("\nStock from files, placement and outputs:\n", stdout),
+             fputs(swarf_cli_stock_help, stdout), fputs(swarf_verify_help, stdout),
+             fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
       if (o->program) return usage_error("give one PROGRAM only");
       o->program = argv[i];
@@ -323,7 +333,8 @@ static int parse_args(sim_options *o, int argc, char **argv) {
 static int check_size(const swarf_sim_config *cfg) {
   double d[3], area, voxels;
   char what[256];
-  for (int k = 0; k < 3; k++) d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
+  for (int k = 0; k < 3; k++)
+    d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
   area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
   voxels = area / (cfg->voxel * cfg->voxel) * 2.0 * cfg->half_width;
   if (voxels < 2e9) return 0;
@@ -339,8 +350,8 @@ static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t 
     fprintf(stderr, "swarf simulate: %s\n", err.message);
     return 1;
   }
-  return swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design, o->verify.tolerance,
-                               o->stock.view, ntri);
+  return swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
+                               o->verify.tolerance, o->stock.view, ntri);
 }
 
 static void print_alarm(const sim_options *o, const swarf_alarm *a) {
@@ -374,29 +385,26 @@ static void print_alarms(const sim_options *o, const alarm_list *l, const swarf_
   long told[5] = {0};
   for (long i = 0; i < l->n; i++) {
     const swarf_alarm *a = &l->a[i];
-    if ((unsigned)a->kind >= 5 || a->kind == SWARF_ALARM_GOUGE || told[a->kind]++ >= 100)
-      continue;
+    if ((unsigned)a->kind >= 5 || a->kind == SWARF_ALARM_GOUGE || told[a->kind]++ >= 100) continue;
     print_alarm(o, a);
   }
   for (int k = 0; k < SWARF_ALARM_GOUGE; k++) {
     long shown = told[k] < 100 ? told[k] : 100;
     if (r->alarm_count[k] > shown)
-      fprintf(stderr, "%s: warning: %ld more %s\n", o->program, r->alarm_count[k] - shown,
-              what[k]);
+      fprintf(stderr, "%s: warning: %ld more %s\n", o->program, r->alarm_count[k] - shown, what[k]);
   }
 }
 
-static void print_summary(const sim_options *o, const swarf_stock *stock,
-                          const swarf_sim_report *r, double total_s, size_t ntri) {
+static void print_summary(const sim_options *o, const swarf_stock *stock, const swarf_sim_report *r,
+                          double total_s, size_t ntri) {
   double removed = r->volume_before - r->volume_after;
   printf("swarf: %s\n", o->program);
   printf("  lines %ld, moves %ld (%ld rapid, %ld arcs), %ld cutting the stock, %ld tool changes\n",
          r->lines, r->moves, r->rapids, r->arcs, r->cutting_moves, r->tool_changes);
   printf("  path %.1f mm, machining time %.1f min at programmed feeds\n", r->path_mm,
          r->machining_s / 60.0);
-  printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
-         r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
-         r->volume_after);
+  printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n", r->volume_before,
+         removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0, r->volume_after);
   printf("  alarms %ld (%ld rapid moves cutting into material, %ld moves gouging the design, %ld "
          "collisions: %ld shank, %ld holder, %ld fixture)\n",
          r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE],
@@ -438,6 +446,10 @@ static void on_alarm(void *user, const swarf_alarm *a) {
 
 static void on_line(void *user, const swarf_line_result *l) {
   swarf_verify_line(((sim_clients *)user)->verify, l);
+}
+
+static void on_note(void *user, long line, int column, const char *text) {
+  swarf_verify_note(((sim_clients *)user)->verify, line, column, text);
 }
 
 /* The run's failure on stderr; returns the exit status. */
@@ -511,6 +523,7 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}};
   o.cfg.cb.progress = on_progress;
   o.cfg.cb.alarm = on_alarm;
+  o.cfg.cb.note = on_note;
   if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
   o.cfg.cb.user = &clients;
   swarf_error_init(&err);

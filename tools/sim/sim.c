@@ -207,13 +207,30 @@ static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
   }
 }
 
+static void on_note(long line, int column, const char *text, void *user) {
+  swarf_sim *s = user;
+  if (s->cfg.cb.note != NULL) s->cfg.cb.note(s->cfg.cb.user, line, column, text);
+}
+
+/* The dialect, the block delete switch, the subroutine path, the notes. */
+static swarf_status set_reading(swarf_sim *s, swarf_error *err) {
+  swarf_status st = swarf_gcode_parser_set_dialect(s->parser, s->cfg.dialect, err);
+  if (st == SWARF_OK) st = swarf_gcode_parser_set_block_delete(s->parser, s->cfg.block_delete, err);
+  if (st == SWARF_OK && s->cfg.subroutine_path != NULL)
+    st = swarf_gcode_parser_set_subroutine_path(s->parser, s->cfg.subroutine_path, err);
+  if (st == SWARF_OK) swarf_gcode_parser_set_notes(s->parser, on_note, s);
+  return st;
+}
+
 static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
   swarf_status st;
   if (swarf_gcode_parser_new(s->name, on_move, s, &s->parser) != SWARF_OK ||
       swarf_sim_batch_init(s) != 0)
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   set_tool_table(s);
-  if ((st = swarf_sim_setup(s, err)) != SWARF_OK || (st = swarf_sim_design_init(s, err)) != SWARF_OK)
+  if ((st = set_reading(s, err)) != SWARF_OK) return st;
+  if ((st = swarf_sim_setup(s, err)) != SWARF_OK ||
+      (st = swarf_sim_design_init(s, err)) != SWARF_OK)
     return st;
   if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
   if (swarf_sim_collide_init(s) != 0) {
@@ -240,6 +257,10 @@ static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf
       swarf_stock_free(stock);
       return st;
     }
+  if (swarf_stock_set_threads(stock, cfg->threads, err) != SWARF_OK) {
+    swarf_stock_free(stock);
+    return SWARF_ERR_ARG;
+  }
   if ((s = calloc(1, sizeof *s)) == NULL) {
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");

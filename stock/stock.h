@@ -194,6 +194,13 @@ SWARF_API swarf_status swarf_stock_set_region(swarf_stock *s, const int lo[3], c
 SWARF_API void swarf_stock_set_tally(swarf_stock *s, const int lo[3], const int n[3],
                                      unsigned long long *counts);
 
+/* Free the leaves outside the region (they become outside tiles): a copy
+ * that keeps to its region then holds its part only. The values outside
+ * the region are meaningless afterwards, until parts are loaded there (a
+ * part holds every leaf of its region, so the stock gathering the parts
+ * may be cropped too). Without a region: nothing. */
+SWARF_API swarf_status swarf_stock_part_crop(swarf_stock *s, swarf_error *err);
+
 /* The part of the stock in its region (the whole stock without one): its
  * blocks below the tree's level-1 nodes, which are the only ones removal
  * changes, into a new buffer *buf (free() it) of *len bytes, for a stock of

@@ -201,7 +201,8 @@ static int set_region(swarf_sim *s, const part_box *b) {
     if (b->lo[d] > 0) lo[k] = s->blo[k] + 8 * b->lo[d];
     if (b->hi[d] < s->nb[k]) hi[k] = s->blo[k] + 8 * b->hi[d] - 1;
   }
-  if (swarf_stock_set_region(s->stock, lo, hi, &e) != SWARF_OK) {
+  if (swarf_stock_set_region(s->stock, lo, hi, &e) != SWARF_OK ||
+      swarf_stock_part_crop(s->stock, &e) != SWARF_OK) { /* memory: this part only */
     swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
     return 1;
   }

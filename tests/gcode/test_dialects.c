@@ -299,6 +299,12 @@ static void test_fanuc_jumps(void) {
   expect("fanuc M99 P and GOTO", run(SWARF_GCODE_DIALECT_FANUC, prog), w, 4);
   CHECK(out.nnotes == 1 && out.note_line[0] == 8 && strstr(out.note[0], "M99") != NULL,
         "M99 in the main program: a note at line 8 (%d notes)", out.nnotes);
+  /* "O9000-O9999: programs the machine builder keeps in the control" (a
+   * probing macro): skipped with a note, no motion. */
+  run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nG65 P9810 Z-5. F1000.\nG0 X2\nM30\n");
+  CHECK(out.status == SWARF_OK && out.n == 2 && out.nnotes == 1 && out.note_line[0] == 2,
+        "G65 P9810 skipped with a note (%d moves, %d notes, %s)", out.n, out.nnotes,
+        out.err.message);
   refused("M98 to a missing program", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nM98 P77\nM30\n"), 2,
           SWARF_GCODE_E_FANUC_NO_PROGRAM);
   refused("GOTO a missing block", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nGOTO 5\nM30\n"), 2,

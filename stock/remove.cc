@@ -652,7 +652,7 @@ extern "C" swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], c
     cut.sdf = sdf;
     cut.ctx = ctx;
     check_cut(cut, 0);
-    swarf::remove_cuts(*s, &cut, 1);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, &cut, 1); });
   });
 }
 
@@ -705,7 +705,7 @@ extern "C" swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_sto
     if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
     for (size_t i = 0; i < ncuts; i++)
       check_cut(cuts[i], i);
-    swarf::remove_cuts(*s, cuts, ncuts);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts); });
   });
 }
 
@@ -743,6 +743,6 @@ swarf_stock_remove_batch_measured(swarf_stock *s, const swarf_stock_cut *cuts, s
     for (size_t i = 0; i < ncuts; i++)
       check_cut(cuts[i], i);
     const swarf::Measure m{design, tolerance, effects};
-    swarf::remove_cuts(*s, cuts, ncuts, &m);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, &m); });
   });
 }

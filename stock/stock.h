@@ -115,6 +115,11 @@ SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_
                                              double depth, int *hit, double where[3],
                                              swarf_error *err);
 
+/* Threads the stock's passes (removal, the checks of cuts) may use: n >= 1,
+ * or 0 for all cores (the default). Per handle; not while a pass runs on it. */
+SWARF_API swarf_status swarf_stock_set_threads(swarf_stock *s, int n, swarf_error *err);
+SWARF_API int swarf_stock_threads(const swarf_stock *s); /* 0: all cores */
+
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);
 SWARF_API int swarf_stock_half_width(const swarf_stock *s);

@@ -11,8 +11,11 @@
 
 #include <openvdb/openvdb.h>
 
+#include <tbb/task_arena.h>
+
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
@@ -98,6 +101,8 @@ struct swarf_stock {
   int half_width;               ///< band half-width in voxels (background / voxel, rounded)
   openvdb::CoordBBox content;   ///< index box holding all material and band; never grows
   swarf::RemoveScratch scratch;
+  int threads = 0;                        ///< swarf_stock_set_threads: 0 all cores
+  std::shared_ptr<tbb::task_arena> arena; ///< the removal's threads when threads > 0
   /// swarf_stock_set_region: removal and queries only in the blocks whose
   /// origin lies in [region_lo, region_hi] (block origins, multiples of 8).
   bool has_region = false;
@@ -115,6 +120,14 @@ namespace swarf {
 /// scale, finite positive voxel and background, index box within +-2^30.
 /// Throws Error(SWARF_ERR_FORMAT) with the reason otherwise.
 swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid);
+
+/// Run f on the stock's threads (swarf_stock_set_threads; all cores unless set).
+template <class F> void in_arena(swarf_stock &s, F &&f) {
+  if (s.arena)
+    s.arena->execute(f);
+  else
+    f();
+}
 
 /// Apply stock = max(stock, -sdf) for every cut (remove.cc). Arguments are
 /// assumed checked. On an exception the stock may be partly cut but stays a

@@ -129,6 +129,20 @@ static void test_streaming(void) {
     check_same(one, split, "random splits = one feed");
     swarf_stock_free(split);
   }
+  for (int threads = 1; threads <= 3; threads++) { /* the default above: all cores */
+    swarf_stock *t = NULL;
+    cfg.threads = threads;
+    CHECK(swarf_sim_run_text(&cfg, "p.ngc", program, strlen(program), &t, NULL, &err) == SWARF_OK,
+          "%s", err.message);
+    CHECK(swarf_stock_threads(t) == threads, "the stock runs on %d threads", threads);
+    check_same(one, t, "any number of threads = all cores");
+    swarf_stock_free(t);
+  }
+  cfg.threads = -1;
+  CHECK(swarf_sim_run_text(&cfg, "p.ngc", program, strlen(program), &split, NULL, &err) ==
+                SWARF_ERR_ARG &&
+            strstr(err.message, "threads") != NULL,
+        "threads < 0 is refused: %s", err.message);
   swarf_stock_free(one);
 }
 

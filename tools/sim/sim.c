@@ -257,6 +257,10 @@ static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf
       swarf_stock_free(stock);
       return st;
     }
+  if (swarf_stock_set_threads(stock, cfg->threads, err) != SWARF_OK) {
+    swarf_stock_free(stock);
+    return SWARF_ERR_ARG;
+  }
   if ((s = calloc(1, sizeof *s)) == NULL) {
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");

@@ -228,6 +228,8 @@ typedef struct {
    * outlive the handle. NULL: none. */
   const swarf_stock *design;
   double tolerance; /* mm; <= 0: half the stock's voxel */
+  /* Threads the stock passes run on (swarf_stock_set_threads): 0 all cores. */
+  int threads;
   const swarf_sim_comm *comm; /* several processes (borrowed; must outlive the handle);
                                * NULL: one */
   int tally; /* 1: plan slabs and count the blocks removal visits in each, for

@@ -98,6 +98,14 @@ struct swarf_stock {
   int half_width;               ///< band half-width in voxels (background / voxel, rounded)
   openvdb::CoordBBox content;   ///< index box holding all material and band; never grows
   swarf::RemoveScratch scratch;
+  /// swarf_stock_set_region: removal and queries only in the blocks whose
+  /// origin lies in [region_lo, region_hi] (block origins, multiples of 8).
+  bool has_region = false;
+  openvdb::Coord region_lo, region_hi;
+  /// swarf_stock_set_tally: blocks visited per slab of 8 voxels (the caller's array).
+  unsigned long long *tally = nullptr;
+  size_t ntally = 0;
+  int tally_axis = 0, tally_first = 0;
 };
 
 namespace swarf {

@@ -72,6 +72,17 @@ static int on_move(const swarf_move *mv, void *user) {
   return 0;
 }
 
+/* The dialect an input asks for on its first line: ";fanuc", ";haas" or
+ * ";grbl" (a comment in every dialect), else LinuxCNC. */
+static swarf_gcode_dialect dialect_of(const uint8_t *data, size_t size) {
+  static const char *names[] = {";fanuc", ";haas", ";grbl"};
+  for (int i = 0; i < 3; i++) {
+    size_t n = strlen(names[i]);
+    if (size >= n && memcmp(data, names[i], n) == 0) return (swarf_gcode_dialect)(i + 1);
+  }
+  return SWARF_GCODE_DIALECT_LINUXCNC;
+}
+
 /* Runs `data` in pieces of 1..max_piece bytes (0: whole); returns the status
  * and fills the run and the error place. */
 static int run(const uint8_t *data, size_t size, unsigned max_piece, uint32_t seed, fuzz_run *r,
@@ -86,6 +97,7 @@ static int run(const uint8_t *data, size_t size, unsigned max_piece, uint32_t se
   for (size_t i = 0; i < size; i++)
     r->lines += data[i] == '\n';
   if (p == NULL) fail("out of memory");
+  status = swarf_gcode_parser_set_dialect(p, dialect_of(data, size), NULL);
   while (at < size && status == SWARF_OK) {
     size_t piece = size - at;
     if (max_piece) {

@@ -30,7 +30,7 @@ static const bad_case cases[] = {
     {"G0 X1\nG12.5 X2\n", 2, 1, SEM, SWARF_GCODE_E_UNKNOWN_G_CODE},
     {"M1.5\n", 1, 1, SEM, SWARF_GCODE_E_UNKNOWN_M_CODE},
     {"G0 M528\n", 1, 4, SEM, SWARF_GCODE_E_M_CODE_RANGE},
-    {"G38.2 Z1 F1\n", 1, 1, SEM, SWARF_GCODE_E_CODE_NOT_SUPPORTED},
+    {"G33 Z1 K1\n", 1, 1, SEM, SWARF_GCODE_E_CODE_NOT_SUPPORTED},
     {"G0 X1 U2\n", 1, 7, SEM, SWARF_GCODE_E_LETTER_NOT_SUPPORTED},
     {"G0 X1e5\n", 1, 6, SEM, SWARF_GCODE_E_LETTER_NOT_SUPPORTED},
     /* Cutter radius compensation (messages as rs274 gives them). */

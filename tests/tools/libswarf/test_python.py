@@ -80,6 +80,26 @@ def test_slot():
     check(r.alarms == [], "slot: no alarms")
 
 
+# SLOT's cut as a Haas program: the plunge and the pass in a local
+# subprogram (M97 P100 calls block N100 of the same program, M99 returns).
+HAAS_SLOT = ("%\nO01000\nG21 G90 G17\nG0 X5 Y5 Z2\nM97 P100\nG0 Z2\nM30\n"
+             "N100 G1 Z-1 F100\nG1 X15\nM99\n%\n")
+
+
+def test_dialect():
+    kw = dict(stock="box:0,0,-5,20,10,0", tools=["T1=flat,D4,L12"], voxel=0.1)
+    a = swarf.simulate(text=SLOT, **kw)
+    b = swarf.simulate(text=HAAS_SLOT, dialect="haas", **kw)
+    check(b.report.moves == a.report.moves and b.removed == a.removed,
+          "haas slot: %d moves, %g mm3 removed (linuxcnc: %d, %g)"
+          % (b.report.moves, b.removed, a.report.moves, a.removed))
+    try:
+        swarf.simulate(text=HAAS_SLOT, **kw)
+        check(False, "the Haas program raises under the LinuxCNC dialect (M97)")
+    except swarf.InputError as e:
+        check(e.line == 5, "linuxcnc refuses M97 at line 5: %s" % (e,))
+
+
 TRENCH = "G21 G90\nG0 X5 Y6 Z2\nG1 Z-3 F100\nG1 X15\nG0 Z5\nM2\n"
 
 
@@ -305,7 +325,8 @@ def main():
     os.makedirs(WORK, exist_ok=True)
     for t in (test_version, test_slot, test_trench_lines, test_against_cli,
               test_rotary_against_cli, test_outputs,
-              test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort):
+              test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort,
+              test_dialect):
         print("--", t.__name__)
         try:
             t()

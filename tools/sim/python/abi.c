@@ -133,6 +133,8 @@ static void structs(void) {
   FIELD(swarf_sim_config, g54, "c_double * 3");
   FIELD(swarf_sim_config, start_set, "c_int");
   FIELD(swarf_sim_config, start, "c_double * 3");
+  FIELD(swarf_sim_config, dialect, "c_int");
+  FIELD(swarf_sim_config, block_delete, "c_int");
   end();
   fprintf(out, "]\n\n");
 }

@@ -39,7 +39,8 @@ static int is_arc(int motion) {
 }
 
 static int is_cycle(int motion) {
-  return motion == 730 || motion == 740 || motion == 870 || (motion >= 810 && motion <= 890);
+  return motion == 730 || motion == 740 || motion == 760 || motion == 870 ||
+         (motion >= 810 && motion <= 890);
 }
 
 /* Group 0 codes that take the axis words for themselves (and G43.1: its

@@ -376,6 +376,10 @@ static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t
   if (first == n) return SWARF_OK;
   rest = skip_blanks(text, n, first + 1);
   if (p->state->dialect == SWARF_GCODE_DIALECT_GRBL) return grbl_line(p, text, n, first, rest);
+  /* A LinuxCNC program kept for M98: rs274 seeks the O<n> past a `%`. */
+  if (text[first] == '%' && rest == n && p->fanuc != NULL && !p->percent_open &&
+      p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC)
+    return SWARF_OK;
   if (text[first] == '%' && rest == n) return percent_line(p, text, n, first);
   p->seen_code = 1;
   /* LinuxCNC 2.9 reads M98 P<n> too: from the first M98 on, the program is

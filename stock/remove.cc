@@ -37,6 +37,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -422,6 +423,46 @@ void report_effects(const Pass &p, size_t ncuts) {
     e[i].removed_voxels = removed[i], e[i].removed = removed[i] * v3;
 }
 
+/// Runs a parallel pass in chunks when the stock has a tick
+/// (swarf_stock_set_tick): between chunks, on the calling thread with no
+/// worker running (the stock is a valid narrow band then), the tick is told
+/// the fraction done once `every` seconds have passed since the last call;
+/// chunks aim at a fifth of that. A non-zero answer stops the pass (ABORTED):
+/// the stock stays valid, partly cut.
+struct Ticker {
+  swarf_stock &s;
+  size_t total;
+  double last;
+  Ticker(swarf_stock &st, size_t n) : s(st), total(n), last(now()) {}
+  static double now() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  /// Items [first, first + n) of the pass's total (as numbered by body).
+  template <class Body> void run(size_t first, size_t n, size_t grain, const Body &body) {
+    if (s.tick == nullptr) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(first, first + n, grain), body);
+      return;
+    }
+    const double aim = s.tick_every > 0 ? 0.2 * s.tick_every : 0.0;
+    size_t chunk = 64;
+    for (size_t at = first; at < first + n;) {
+      const size_t end = std::min(first + n, at + chunk);
+      const double t0 = now();
+      tbb::parallel_for(tbb::blocked_range<size_t>(at, end, grain), body);
+      const double t1 = now(), took = t1 - t0;
+      at = end;
+      if (aim > 0 && took > 0) // next chunk: about `aim` seconds, within 16x of this one
+        chunk = std::max<size_t>(
+            grain, size_t(double(chunk) * std::min(16.0, std::max(1.0 / 16, aim / took))));
+      if (t1 - last < s.tick_every) continue;
+      last = t1;
+      if (s.tick(s.tick_user, total ? double(at) / double(total) : 1.0) != 0)
+        throw Error(SWARF_ERR_ABORTED, "removal stopped by the caller");
+    }
+  }
+};
+
 /// Pass 5: leaves without band become tiles, serial.
 void collapse(Pass &p) {
   RemoveScratch &w = p.s.scratch;
@@ -597,28 +638,28 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
     return;
   }
   const Tree &ctree = s.grid->constTree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, w.blocks.size(), 16),
-                    [&](const tbb::blocked_range<size_t> &r) {
-                      ConstAcc acc(ctree);
-                      for (size_t i = r.begin(); i != r.end(); ++i)
-                        classify(p, acc, w.blocks[i]);
-                    });
+  Ticker ticker(s, w.blocks.size() + w.blocks.size());
+  ticker.run(0, w.blocks.size(), 16, [&](const tbb::blocked_range<size_t> &r) {
+    ConstAcc acc(ctree);
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      classify(p, acc, w.blocks[i]);
+  });
   change_topology(p);
   Tree &tree = s.grid->tree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, w.visit.size(), 1),
-                    [&](const tbb::blocked_range<size_t> &r) {
-                      Acc acc(tree);
-                      std::unique_ptr<GridProbe> design;
-                      if (measure && measure->design)
-                        design.reset(new GridProbe(*measure->design, s));
-                      for (size_t i = r.begin(); i != r.end(); ++i) {
-                        Block &b = w.blocks[w.visit[i]];
-                        if (measure)
-                          visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
-                        else
-                          visit_leaf(p, *acc.probeLeaf(b.origin), b);
-                      }
-                    });
+  ticker.total = w.blocks.size() + w.visit.size();
+  ticker.run(w.blocks.size(), w.visit.size(), 1, [&](const tbb::blocked_range<size_t> &r0) {
+    const tbb::blocked_range<size_t> r(r0.begin() - w.blocks.size(), r0.end() - w.blocks.size());
+    Acc acc(tree);
+    std::unique_ptr<GridProbe> design;
+    if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      Block &b = w.blocks[w.visit[i]];
+      if (measure)
+        visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
+      else
+        visit_leaf(p, *acc.probeLeaf(b.origin), b);
+    }
+  });
   collapse(p);
   if (measure) report_effects(p, ncuts);
 }

@@ -103,6 +103,9 @@ struct swarf_stock {
   swarf::RemoveScratch scratch;
   int threads = 0;                        ///< swarf_stock_set_threads: 0 all cores
   std::shared_ptr<tbb::task_arena> arena; ///< the removal's threads when threads > 0
+  swarf_stock_tick_fn tick = nullptr;     ///< swarf_stock_set_tick
+  void *tick_user = nullptr;
+  double tick_every = 0.0; ///< seconds
   /// swarf_stock_set_region: removal and queries only in the blocks whose
   /// origin lies in [region_lo, region_hi] (block origins, multiples of 8).
   bool has_region = false;

@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "gcode_private.h"
+#include "swarf_file.h"
 
 #define READ_CHUNK (64 * 1024)
 
@@ -508,43 +509,11 @@ swarf_status swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_can
   return SWARF_OK;
 }
 
-/* One tool table line: T<n> then words like Z0.5 D0.25; ';' comments. */
-static void tool_line(swarf_gcode_parser *p, const char *line) {
-  int t = -1;
-  double z = 0, d = 0;
-  for (const char *s = line; *s && *s != ';'; s++) {
-    char c = (char)(*s & ~0x20);
-    if (c == 'T') t = atoi(s + 1);
-    if (c == 'Z') z = atof(s + 1);
-    if (c == 'D') d = atof(s + 1);
-  }
-  if (t > 0 && t < SWARF_GC_NTOOLS) {
-    p->tools[t][0] = z * SWARF_GC_MM_PER_INCH;
-    p->tools[t][1] = d * SWARF_GC_MM_PER_INCH;
-  }
-}
-
 /* *err (may be NULL), cleared, names a file of the caller's, no line. */
 static swarf_error *file_at(swarf_error *err, const char *path) {
   swarf_error_init(err);
   swarf_error_at(err, path, 0, 0, NULL);
   return err;
-}
-
-swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                           swarf_error *err) {
-  char line[512];
-  FILE *in;
-  if (p == NULL || path == NULL) return SWARF_ERR_ARG;
-  in = fopen(path, "r");
-  if (in == NULL)
-    return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_OPEN, file_at(err, path), strerror(errno));
-  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
-    p->tools[t][0] = NAN, p->tools[t][1] = 0;
-  while (fgets(line, sizeof line, in) != NULL)
-    tool_line(p, line);
-  fclose(in);
-  return SWARF_OK;
 }
 
 swarf_status swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
@@ -607,12 +576,12 @@ static swarf_status stream_file(FILE *in, swarf_gcode_parser *p, const char *pat
 swarf_status swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
                                     swarf_error *err) {
   swarf_gcode_parser *p;
+  swarf_error why;
   FILE *in;
   swarf_status status;
   if (path == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_NO_FILE_NAME, file_at(err, ""));
-  in = fopen(path, "rb");
-  if (in == NULL)
-    return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), strerror(errno));
+  in = swarf_file_open_input(path, "program", 0, &why); /* regular files only */
+  if (in == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), why.message);
   if (swarf_gcode_parser_new(path, fn, user, &p) != SWARF_OK) {
     fclose(in);
     return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, file_at(err, path));

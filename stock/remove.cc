@@ -38,6 +38,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -66,6 +67,7 @@ struct Pass {
   double eps;                       ///< margin (mm) of the per-voxel Lipschitz test
   float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
+  bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -305,6 +307,22 @@ void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, dou
       }
 }
 
+/// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the
+/// reference the tests compare with): every voxel the block centre's bound
+/// cannot decide is evaluated.
+void visit_flat(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc,
+                BlockValues &bv) {
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        if (!may_raise(bv.m[n], p.bgf, dc, p.radius[n])) continue;
+        const Vec3d q = block_point(p, b.origin, x, y, z);
+        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        if (d > bv.m[n]) bv.m[n] = d;
+      }
+}
+
 /// Pass 4 for one leaf: max over the cuts, clamp, band state. Each cut is
 /// applied to the block top down (8^3 block centre, 4^3 octants, 2^3 cubes,
 /// voxels; the sdf is 1-Lipschitz): a voxel's sdf is evaluated only where the
@@ -319,10 +337,13 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
     bv.m[n] = data[n];
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    for (int x = 0; x < 8; x += 4)
-      for (int y = 0; y < 8; y += 4)
-        for (int z = 0; z < 8; z += 4)
-          visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
+    if (p.flat)
+      visit_flat(p, b, cut, w.centre_sdf[i], bv);
+    else
+      for (int x = 0; x < 8; x += 4)
+        for (int y = 0; y < 8; y += 4)
+          for (int z = 0; z < 8; z += 4)
+            visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];
@@ -629,7 +650,11 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
 
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
                  const Measure *measure) {
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, measure};
+  static const bool flat = [] {
+    const char *e = std::getenv("SWARF_REMOVE_FLAT");
+    return e != nullptr && e[0] == '1';
+  }();
+  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, measure, flat};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);

@@ -77,7 +77,8 @@ static int check_words(const swarf_gc_block *b, const swarf_gc_state *st, const 
   if (!r && !ijk) return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_WORDS_MISSING, a->column);
   if (r && ijk)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_MIXED_FORMAT, swarf_gc_block_word(b, 'R')->column);
-  if (st->feed <= 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_ZERO_FEED, a->column);
+  if (st->feed <= 0 && st->modal.feed_mode != 930) /* G93: rs274's 0.1 floor (motion.c) */
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_ZERO_FEED, a->column);
   if (ijk) return check_offsets(b, st, a, f);
   if (!swarf_gc_block_has(b, a->pl->axis1) && !swarf_gc_block_has(b, a->pl->axis2))
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_END_MISSING, a->column, a->pl->axis1, a->pl->axis2,

@@ -16,9 +16,10 @@
 #define G80 800
 
 /* Letters that are words in LinuxCNC but not in this version, and why. */
-static const char *later_letter(char letter) {
+static const char *later_letter(char letter, int dialect) {
   switch (letter) {
   case 'E':
+    if (dialect == SWARF_GCODE_DIALECT_FANUC || dialect == SWARF_GCODE_DIALECT_HAAS) return NULL;
     return "the E word (G76, M66)";
   case 'U':
   case 'V':
@@ -67,9 +68,10 @@ static void set_code_word(swarf_gc_code_word *cw, int code, const swarf_gc_token
 
 /* G80 next to another motion code gives way to it, as in LinuxCNC's read_g
  * ("G0 G80 X1" is G0 X1): CAM preambles write such lines. */
-static int add_g(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+static int add_g(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
   int code = tenths_of(t->value);
-  const swarf_gc_code *c = code < 0 ? NULL : swarf_gc_g_code(code);
+  const swarf_gc_code *c = code < 0 ? NULL : swarf_gc_dialect_g(dialect, code);
+  if (c == NULL && code >= 0) c = swarf_gc_g_code(code);
   if (c == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNKNOWN_G_CODE, t->column, t->word);
   if (c->later != NULL)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_CODE_NOT_SUPPORTED, t->column, t->word, c->later);
@@ -80,10 +82,12 @@ static int add_g(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) 
   return SWARF_OK;
 }
 
-static int add_m(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+static int add_m(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
   int code = tenths_of(t->value);
-  const swarf_gc_code *c = (code < 0 || code % 10 != 0) ? NULL : swarf_gc_m_code(code);
-  if (t->value > 199.0 && !(t->value >= 400.0 && t->value < 500.0))
+  const swarf_gc_code *c = (code < 0 || code % 10 != 0) ? NULL : swarf_gc_dialect_m(dialect, code);
+  if (c == NULL && code >= 0 && code % 10 == 0) c = swarf_gc_m_code(code);
+  if (c != NULL && c->group == SWARF_GC_MGROUP_VENDOR) { /* any number: the builder's */
+  } else if (t->value > 199.0 && !(t->value >= 400.0 && t->value < 500.0))
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_M_CODE_RANGE, t->column, t->word);
   if (c == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNKNOWN_M_CODE, t->column, t->word);
   if (c->later != NULL)
@@ -92,13 +96,13 @@ static int add_m(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) 
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_M_MODAL_GROUP, t->column, b->m[c->group].text, t->word);
   if (++b->m_count > SWARF_GC_MAX_M_PER_LINE)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOO_MANY_M_CODES, t->column, t->word, b->m_count);
-  set_code_word(&b->m[c->group], code, t);
+  set_code_word(&b->m[c->group], c->code != 0 && c->code != code ? c->code : code, t);
   return SWARF_OK;
 }
 
-static int add_other(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+static int add_other(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
   swarf_gc_word *w = &b->words[t->letter - 'A'];
-  const char *later = later_letter(t->letter);
+  const char *later = later_letter(t->letter, dialect);
   if (later != NULL)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_LETTER_NOT_SUPPORTED, t->column, t->word, later);
   if (t->letter == 'N' && b->word_count > 0)
@@ -113,14 +117,14 @@ static int add_other(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault 
   return SWARF_OK;
 }
 
-static int add_word(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+static int add_word(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
   int status;
   if (t->letter == 'G')
-    status = add_g(b, t, f);
+    status = add_g(b, t, dialect, f);
   else if (t->letter == 'M')
-    status = add_m(b, t, f);
+    status = add_m(b, t, dialect, f);
   else
-    status = add_other(b, t, f);
+    status = add_other(b, t, dialect, f);
   b->word_count++;
   return status;
 }
@@ -140,13 +144,14 @@ int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps,
                         swarf_gc_fault *f) {
   swarf_gc_lexer lx;
   swarf_gc_token t;
+  int dialect = ps != NULL && ps->state != NULL ? ps->state->dialect : 0;
   init_block(b);
   swarf_gc_lexer_init(&lx, line, len, ps);
   for (;;) {
     int status = swarf_gc_lexer_next(&lx, &t, f);
     if (status != SWARF_OK) return status;
     if (t.kind == SWARF_GC_TOKEN_END) return SWARF_OK;
-    if (t.kind == SWARF_GC_TOKEN_WORD) status = add_word(b, &t, f);
+    if (t.kind == SWARF_GC_TOKEN_WORD) status = add_word(b, &t, dialect, f);
     if (t.kind == SWARF_GC_TOKEN_ASSIGN) status = add_assign(b, &t, f);
     if (t.kind == SWARF_GC_TOKEN_COMMENT) {
       b->comment = t.text;

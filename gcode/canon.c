@@ -71,6 +71,7 @@ static swarf_gc_call *push(swarf_gc_out *o, swarf_gc_call_kind kind) {
   c->turns = 0;
   c->sweep = 0;
   c->dir[0] = c->dir[1] = 0;
+  c->print = SWARF_GC_PRINT_MOTION;
   c->move.line = o->line;
   return c;
 }
@@ -188,22 +189,30 @@ static void rotate_xy(double deg, double *x, double *y) {
   *y = u * s + v * c;
 }
 
+const double *swarf_gc_origin(const swarf_gc_state *st) {
+  return st->ext_system > 0 ? st->ext_origin : st->systems[swarf_gc_system_index(st)];
+}
+
+double swarf_gc_rotation(const swarf_gc_state *st) {
+  return st->ext_system > 0 ? 0.0 : st->rotations[swarf_gc_system_index(st)];
+}
+
 void swarf_gc_to_machine(const swarf_gc_state *st, const double p[SWARF_NAXES],
                          double m[SWARF_NAXES]) {
-  int k = swarf_gc_system_index(st);
+  const double *origin = swarf_gc_origin(st);
   for (int i = 0; i < SWARF_NAXES; i++)
     m[i] = p[i] + st->g92[i];
-  rotate_xy(st->rotations[k], &m[0], &m[1]);
+  rotate_xy(swarf_gc_rotation(st), &m[0], &m[1]);
   for (int i = 0; i < SWARF_NAXES; i++)
-    m[i] += st->systems[k][i] + st->tlo[i];
+    m[i] += origin[i] + st->tlo[i];
 }
 
 void swarf_gc_from_machine(const swarf_gc_state *st, const double m[SWARF_NAXES],
                            double p[SWARF_NAXES]) {
-  int k = swarf_gc_system_index(st);
+  const double *origin = swarf_gc_origin(st);
   for (int i = 0; i < SWARF_NAXES; i++)
-    p[i] = m[i] - st->systems[k][i] - st->tlo[i];
-  rotate_xy(-st->rotations[k], &p[0], &p[1]);
+    p[i] = m[i] - origin[i] - st->tlo[i];
+  rotate_xy(-swarf_gc_rotation(st), &p[0], &p[1]);
   for (int i = 0; i < SWARF_NAXES; i++)
     p[i] -= st->g92[i];
 }
@@ -270,7 +279,7 @@ static void make_final(swarf_gc_call *c, const swarf_gc_state *st) {
     memcpy(cm, mv->center, 3 * sizeof(double));
     swarf_gc_to_machine(st, cm, cm);
     memcpy(mv->center, cm, 3 * sizeof(double));
-    rotate_xy(st->rotations[swarf_gc_system_index(st)], &mv->normal[0], &mv->normal[1]);
+    rotate_xy(swarf_gc_rotation(st), &mv->normal[0], &mv->normal[1]);
   }
   swarf_gc_to_machine(st, mv->start, mv->start);
   swarf_gc_to_machine(st, mv->end, mv->end);

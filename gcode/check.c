@@ -9,6 +9,7 @@
  * Reads the state, changes nothing but the block's motion fields.
  */
 #include <math.h>
+#include <string.h>
 
 #include "gcode_private.h"
 
@@ -38,28 +39,85 @@ static int is_arc(int motion) {
 }
 
 static int is_cycle(int motion) {
-  return motion == 730 || (motion >= 810 && motion <= 890);
+  return motion == 730 || motion == 740 || motion == 760 || motion == 870 ||
+         (motion >= 810 && motion <= 890);
 }
 
-/* Group 0 codes that take the axis words for themselves. */
+/* Group 0 codes that take the axis words for themselves (and G43.1: its
+ * axis words are the offset, it makes no move). */
 static int axis_user(int g0) {
   return g0 == 100 || g0 == 280 || g0 == 300 || g0 == 520 || g0 == 920;
+}
+
+/* Fanuc and Haas: canned cycles are a modal group of their own (group 09),
+ * G0-G3 stay in force under them (group 01): after G80, or with G80 on the
+ * line, axis words move in the last of G0-G3 (Fanuc 0i-MF Operator's Manual,
+ * "Canned cycle cancel": "the G code of group 01 is restored"). G53 moves at
+ * rapid whatever the modal motion ("G53 ... the tool moves at rapid
+ * traverse"). */
+static int fanuc_motion(swarf_gc_block *b, const swarf_gc_state *st, int axis_column,
+                        int ijk_column) {
+  const swarf_gc_code_word *g1 = &b->g[SWARF_GC_GROUP_MOTION];
+  int modal = st->modal.motion == MOTION_G80 ? st->motion01 : st->modal.motion;
+  if (g1->code >= 0) {
+    b->motion = g1->code == MOTION_G80 && axis_column ? st->motion01 : g1->code;
+    b->motion_column = g1->column;
+  } else if (b->g[SWARF_GC_GROUP_NONMODAL].code == 530 && axis_column) {
+    b->motion = MOTION_G0;
+    b->motion_column = axis_column;
+  } else if (axis_column) {
+    b->motion = modal;
+    b->motion_column = axis_column;
+  } else if (ijk_column && is_arc(modal)) {
+    b->motion = modal;
+    b->motion_column = ijk_column;
+  }
+  return SWARF_OK;
+}
+
+/* Fanuc and Haas words that read differently: a dwell P without a decimal
+ * point is milliseconds (Fanuc: "P cannot use a decimal point ... 1 ms";
+ * Haas G04: "P1000 = 1 second ... P1. = 1 second"), G4 X is seconds, and a
+ * canned cycle's K is its repeat count (L on LinuxCNC and older Fanucs). */
+static void fanuc_words(swarf_gc_block *b) {
+  swarf_gc_word *p = &b->words['P' - 'A'], *x = &b->words['X' - 'A'];
+  int g0 = b->g[SWARF_GC_GROUP_NONMODAL].code, g1 = b->g[SWARF_GC_GROUP_MOTION].code;
+  if (g0 == 40 && x->present && !p->present) {
+    *p = *x;
+    x->present = 0;
+    b->letters &= ~L('X');
+    b->letters |= L('P');
+    return;
+  }
+  if (p->present && (g0 == 40 || is_cycle(g1)) && strchr(p->text, '.') == NULL &&
+      strchr(p->text, '#') == NULL && strchr(p->text, '[') == NULL)
+    p->value /= 1000.0;
+}
+
+static void fanuc_repeats(swarf_gc_block *b) {
+  swarf_gc_word *k = &b->words['K' - 'A'];
+  if (!is_cycle(b->motion) || b->motion == 870 || !k->present || swarf_gc_block_has(b, 'L')) return;
+  b->words['L' - 'A'] = *k;
+  k->present = 0;
+  b->letters = (b->letters & ~L('K')) | L('L');
 }
 
 static int find_motion(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   const swarf_gc_code_word *g1 = &b->g[SWARF_GC_GROUP_MOTION];
   int axis_column = first_column(b, AXES);
   int ijk_column = first_column(b, OFFSETS);
-  if (axis_user(b->g[SWARF_GC_GROUP_NONMODAL].code)) {
+  const swarf_gc_code_word *user = &b->g[SWARF_GC_GROUP_NONMODAL];
+  if (b->g[SWARF_GC_GROUP_TOOL_LENGTH].code == 431) user = &b->g[SWARF_GC_GROUP_TOOL_LENGTH];
+  if (axis_user(user->code) || user->code == 431) {
     if (g1->code >= 0 && g1->code != MOTION_G80 && axis_column)
-      return SWARF_GC_FAIL(f, SWARF_GCODE_E_TWO_AXIS_CODES, g1->column,
-                           b->g[SWARF_GC_GROUP_NONMODAL].text, g1->text);
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_TWO_AXIS_CODES, g1->column, user->text, g1->text);
     if (g1->code >= 0) {
       b->motion = g1->code;
       b->motion_column = g1->column;
     }
     return SWARF_OK;
   }
+  if (swarf_gc_fanuc_like(st)) return fanuc_motion(b, st, axis_column, ijk_column);
   if (g1->code >= 0) {
     if (g1->code == MOTION_G80 && axis_column)
       return SWARF_GC_FAIL(f, SWARF_GCODE_E_AXES_WITH_G80, axis_column);
@@ -143,7 +201,8 @@ static int check_arc_p(const swarf_gc_word *p, swarf_gc_fault *f) {
 }
 
 static int is_user_m(const swarf_gc_block *b) {
-  return b->m[SWARF_GC_MGROUP_USER].code >= 0 || b->m[SWARF_GC_MGROUP_IO].code >= 0;
+  return b->m[SWARF_GC_MGROUP_USER].code >= 0 || b->m[SWARF_GC_MGROUP_IO].code >= 0 ||
+         b->m[SWARF_GC_MGROUP_VENDOR].code >= 0;
 }
 
 static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
@@ -168,14 +227,23 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   int g0 = b->g[SWARF_GC_GROUP_NONMODAL].code;
   int g4 = g0 == 40, g10 = g0 == 100;
   int g64 = b->g[SWARF_GC_GROUP_PATH_CONTROL].code == 640;
-  int user_m = is_user_m(b);
+  int user_m = is_user_m(b) || b->m[SWARF_GC_MGROUP_SPINDLE].code == 190;
+  int vendor = b->g[SWARF_GC_GROUP_VENDOR].code >= 0;
+  int ext = b->g[SWARF_GC_GROUP_COORD_SYSTEM].code == 541 ||
+            b->g[SWARF_GC_GROUP_COORD_SYSTEM].code == 1540;
   const swarf_gc_word *w;
   if ((w = swarf_gc_block_word(b, 'H'))->present && b->g[SWARF_GC_GROUP_TOOL_LENGTH].code != 430 &&
       !g10)
     return unused(w, "G43", f);
+  int spline = b->motion == 50 || b->motion == 51, g87 = b->motion == 870;
   for (const char *l = "IJK"; (b->letters & OFFSETS) && *l; l++)
-    if ((w = swarf_gc_block_word(b, *l))->present && !arc) return unused(w, "G2 or G3", f);
-  if ((w = swarf_gc_block_word(b, 'R'))->present && !arc && !cycle && !g10)
+    if ((w = swarf_gc_block_word(b, *l))->present && !arc && !g87 && !(spline && *l != 'K'))
+      return unused(w, "G2 or G3", f);
+  if ((w = swarf_gc_block_word(b, 'R'))->present && g64 &&
+      b->m[SWARF_GC_MGROUP_SPINDLE].code == 190)
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_M19_G64_R, w->column, w->text);
+  if ((w = swarf_gc_block_word(b, 'E'))->present && !vendor) return unused(w, "G187", f);
+  if ((w = swarf_gc_block_word(b, 'R'))->present && !arc && !cycle && !g10 && !vendor && !user_m)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNUSED_R_WORD, w->column, w->text);
   if ((w = swarf_gc_block_word(b, 'L'))->present && !cycle && !g10)
     return unused(w, "G10 or canned cycle", f);
@@ -183,11 +251,12 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
       b->g[SWARF_GC_GROUP_CUTTER_COMP].code <= 400)
     return unused(w, "G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96", f);
   if ((w = swarf_gc_block_word(b, 'P'))->present) {
-    if (!arc && !g4 && !g64 && !g10 && !cycle && !user_m)
+    if (!arc && !g4 && !g64 && !g10 && !cycle && !user_m && !vendor && !ext && b->motion != 50)
       return unused(w, "G2, G3, G4, G10, G64, canned cycle or M code", f);
     if (arc) return check_arc_p(w, f);
   }
-  if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64 && !cycle && !user_m)
+  if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64 && !cycle && !user_m && !vendor &&
+      b->motion != 50)
     return unused(w, "G64, G73, G83 or M code", f);
   if (cycle) return check_cycle(b, st, f);
   return SWARF_OK;
@@ -195,7 +264,11 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
 
 int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
   int status = check_values(b, f);
+  if (status == SWARF_OK && st->dialect == SWARF_GCODE_DIALECT_GRBL)
+    status = swarf_gc_grbl_check(b, f);
+  if (swarf_gc_fanuc_like(st)) fanuc_words(b);
   if (status == SWARF_OK) status = find_motion(b, st, f);
+  if (swarf_gc_fanuc_like(st)) fanuc_repeats(b);
   if (status == SWARF_OK) status = check_nonmodal(b, st, f);
   if (status == SWARF_OK) status = check_users(b, st, f);
   return status;

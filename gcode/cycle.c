@@ -10,6 +10,7 @@
  * block of the same cycle. The whole cycle is framed by exact-path mode.
  */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "gcode_private.h"
@@ -20,6 +21,7 @@ typedef struct {
   int a1, a2, a3;    /* plane position axes and the drill axis */
   char drill_letter; /* the word holding the bottom */
   double r, bottom, clear, q, p;
+  double middle; /* G87: the top of the back bore */
 } cycle_geom;
 
 typedef struct {
@@ -109,14 +111,81 @@ static void tap(cycle_run *c) {
   text(c, "ENABLE_SPEED_OVERRIDE(0)");
 }
 
+/* A rapid in the plane, at the current height. */
+static void traverse_at(cycle_run *c, double u, double v) {
+  double end[SWARF_NAXES];
+  memcpy(end, c->st->pos, sizeof end);
+  end[c->g.a1] = u, end[c->g.a2] = v;
+  swarf_gc_out_straight(c->ex->out, c->st, SWARF_GC_CALL_TRAVERSE, end, c->b->motion_column);
+  memcpy(c->st->pos, end, sizeof end);
+}
+
+/* G87 back boring, as rs274ngc's convert_cycle_g87: at R, shift by I J
+ * with the spindle stopped and oriented, go down to the bottom through the
+ * hole, shift back, start the spindle, feed up to the middle (K) and back
+ * down to the bottom, stop and orient, shift, rapid out to the clearance and
+ * back over the hole, start the spindle again. */
+static void back_bore(cycle_run *c) {
+  double x = c->st->pos[c->g.a1], y = c->st->pos[c->g.a2];
+  double ox = x + c->st->cycle_i, oy = y + c->st->cycle_j;
+  char orient[64];
+  snprintf(orient, sizeof orient, "ORIENT_SPINDLE(0, 0.0000, %d)", c->st->spindle_dir > 0 ? 2 : 3);
+  traverse_at(c, ox, oy);
+  text(c, "STOP_SPINDLE_TURNING(0)");
+  text(c, orient);
+  traverse(c, c->g.bottom);
+  traverse_at(c, x, y);
+  text(c, spindle_on(c->st));
+  feed(c, c->g.middle);
+  feed(c, c->g.bottom);
+  text(c, "STOP_SPINDLE_TURNING(0)");
+  text(c, orient);
+  traverse_at(c, ox, oy);
+  traverse(c, c->g.clear);
+  traverse_at(c, x, y);
+  text(c, spindle_on(c->st));
+}
+
+/* Fanuc/Haas G76 fine boring (Fanuc 0i-MF: "the spindle stops at a fixed
+ * rotation position at the bottom of the hole and the tool is moved in the
+ * direction opposite to the tool tip and retracted"; the shift is Q, to +X
+ * in G17 with the parameters as shipped (Haas: Setting 27, X+)): feed to
+ * the bottom, dwell P, orient, shift by Q, rapid out to the clearance,
+ * shift back, start the spindle. */
+static void fine_bore(cycle_run *c) {
+  double x = c->st->pos[c->g.a1], y = c->st->pos[c->g.a2];
+  feed(c, c->g.bottom);
+  if (c->g.p > 0) dwell(c, c->g.p);
+  text(c, "STOP_SPINDLE_TURNING(0)");
+  text(c, "ORIENT_SPINDLE(0, 0.0000, 0)");
+  traverse_at(c, x + c->g.q, y);
+  traverse(c, c->g.clear);
+  traverse_at(c, x, y);
+  text(c, spindle_on(c->st));
+}
+
 /* One hole, from the R plane down and back. */
 static void hole(cycle_run *c, int motion) {
   if (c->st->pos[c->g.a3] != c->g.r) traverse(c, c->g.r);
   switch (motion) {
-  case 730: pecks(c, 0); return;
-  case 830: pecks(c, 1); return;
-  case 840: tap(c); return;
-  default: break;
+  case 730:
+    pecks(c, 0);
+    return;
+  case 830:
+    pecks(c, 1);
+    return;
+  case 740: /* Fanuc/Haas counter tapping: G84's path (the spindle turns the other way) */
+  case 840:
+    tap(c);
+    return;
+  case 760:
+    fine_bore(c);
+    return;
+  case 870:
+    back_bore(c);
+    return;
+  default:
+    break;
   }
   feed(c, c->g.bottom);
   if (motion == 820 || motion == 860 || motion == 880 || motion == 890) dwell(c, c->g.p);
@@ -140,6 +209,25 @@ static void hole(cycle_run *c, int motion) {
   traverse(c, c->g.clear);
 }
 
+/* G87's I J K (offsets in the plane, the middle height), kept from the last
+ * G87 as R is; the spindle must turn (rs274's checks and messages). */
+static int g87_words(cycle_run *c, int same, swarf_gc_fault *f) {
+  const swarf_gc_block *b = c->b;
+  swarf_gc_state *st = c->st;
+  double s = swarf_gc_scale(st);
+  double *slot[3] = {&st->cycle_i, &st->cycle_j, &st->cycle_k};
+  int axis[3] = {c->g.a1, c->g.a2, c->g.a3}; /* I J K name X Y Z: in G18, K I then J */
+  for (int i = 0; i < 3; i++) {
+    const swarf_gc_word *w = swarf_gc_block_word(b, "IJK"[axis[i]]);
+    if (w->present)
+      *slot[i] = w->value * s;
+    else if (!same)
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_G87_WORD_MISSING, b->motion_column, "IJK"[axis[i]]);
+  }
+  if (st->spindle_dir == 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_G87_SPINDLE, b->motion_column);
+  return SWARF_OK;
+}
+
 /* R, bottom, Q, P from the block or kept from the same cycle before. */
 static int cycle_words(cycle_run *c, swarf_gc_fault *f) {
   const swarf_gc_block *b = c->b;
@@ -147,19 +235,25 @@ static int cycle_words(cycle_run *c, swarf_gc_fault *f) {
   int same = st->modal.motion == b->motion;
   double s = swarf_gc_scale(st);
   const swarf_gc_word *zw = swarf_gc_block_word(b, c->g.drill_letter);
-  if (swarf_gc_block_has(b, 'R')) st->cycle_r = swarf_gc_block_word(b, 'R')->value * s;
+  if (swarf_gc_block_has(b, 'R'))
+    st->cycle_r = swarf_gc_block_word(b, 'R')->value * s;
   else if (!same)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_R_MISSING, b->motion_column);
-  if (zw->present) st->cycle_z = zw->value * s;
+  if (zw->present)
+    st->cycle_z = zw->value * s;
   else if (!same)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_DEPTH_MISSING, b->motion_column, c->g.drill_letter);
-  if (swarf_gc_block_has(b, 'P')) st->cycle_p = swarf_gc_block_word(b, 'P')->value;
-  else if (!same) st->cycle_p = 0;
-  if (swarf_gc_block_has(b, 'Q')) st->cycle_q = fabs(swarf_gc_block_word(b, 'Q')->value) * s;
+  if (swarf_gc_block_has(b, 'P'))
+    st->cycle_p = swarf_gc_block_word(b, 'P')->value;
+  else if (!same)
+    st->cycle_p = 0;
+  if (swarf_gc_block_has(b, 'Q'))
+    st->cycle_q = fabs(swarf_gc_block_word(b, 'Q')->value) * s;
   else if ((b->motion == 730 || b->motion == 830) && !same)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_Q_MISSING, b->motion_column);
   if ((b->motion == 730 || b->motion == 830) && st->cycle_q <= 0)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_Q_NOT_POSITIVE, b->motion_column);
+  if (b->motion == 870) return g87_words(c, same, f);
   return SWARF_OK;
 }
 
@@ -177,6 +271,7 @@ static int cycle_heights(cycle_run *c, double old, swarf_gc_fault *f) {
                          c->g.drill_letter);
   c->g.q = st->cycle_q;
   c->g.p = st->cycle_p;
+  c->g.middle = st->modal.distance == 910 ? c->g.bottom + st->cycle_k : st->cycle_k;
   return SWARF_OK;
 }
 
@@ -187,22 +282,28 @@ int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   int repeats = lw->present ? (int)floor(lw->value + 0.5) : 1, status;
   double old, x, y, s = swarf_gc_scale(st);
   char l1, l2;
-  if (b->motion == 870) return SWARF_GC_FAIL(f, SWARF_GCODE_E_G87_NOT_SUPPORTED, b->motion_column);
   plane_of(st, &c.g);
   l1 = "XYZ"[c.g.a1], l2 = "XYZ"[c.g.a2];
   if (st->feed <= 0 && b->motion != 840)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_ZERO_FEED, b->motion_column);
   status = cycle_words(&c, f);
-  old = st->pos[c.g.a3];
+  /* The initial level (LinuxCNC's cycle_il, Fanuc's): the drill axis where
+   * the first block of the cycles found it; G98 goes back to it, and the
+   * first rapid to a hole goes at it (G99: at the current height). */
+  if (!st->cycle_il_set) st->cycle_il = st->pos[c.g.a3], st->cycle_il_set = 1;
+  old = st->modal.retract == 980 ? st->cycle_il : st->pos[c.g.a3];
   if (status == SWARF_OK) status = cycle_heights(&c, old, f);
   if (status != SWARF_OK) return status;
   if (repeats > 100000)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOO_MANY_REPEATS, lw->column, lw->text);
-  if (old < c.g.r) {
+  /* Below R: up to it first. rs274 also does it (a null rapid) in G99 after
+   * a G87 block, whose end it records below R. */
+  if (old < c.g.r || (st->cycle_after_g87 && st->modal.retract == 990)) {
     traverse(&c, c.g.r);
     old = c.g.r;
   }
-  c.g.clear = st->modal.retract == 990 ? c.g.r : fmax(old, c.g.r);
+  st->cycle_after_g87 = b->motion == 870;
+  c.g.clear = st->modal.retract == 990 ? c.g.r : old;
   swarf_gc_out_text(ex->out, "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
   x = st->pos[c.g.a1], y = st->pos[c.g.a2];
   for (int i = 0; i < repeats; i++) {
@@ -217,6 +318,7 @@ int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
     }
     memcpy(end, st->pos, sizeof end);
     end[c.g.a1] = x, end[c.g.a2] = y;
+    end[c.g.a3] = i == 0 ? old : c.g.clear;
     swarf_gc_out_straight(ex->out, st, SWARF_GC_CALL_TRAVERSE, end, b->motion_column);
     memcpy(st->pos, end, sizeof end);
     hole(&c, b->motion);

@@ -176,8 +176,8 @@ SWARF_API swarf_status swarf_gcode_parser_set_units(swarf_gcode_parser *p, swarf
  * #5210 = 1 puts the G92 offset #5211-#5216 in force. The parameters the
  * interpreter computes (#5021-#5029, #5400, #5420-#5428) are refused
  * (SWARF_ERR_ARG), as is a value that is not finite. */
-SWARF_API swarf_status swarf_gcode_parser_set_param(swarf_gcode_parser *p, int index,
-                                                    double value, swarf_error *err);
+SWARF_API swarf_status swarf_gcode_parser_set_param(swarf_gcode_parser *p, int index, double value,
+                                                    swarf_error *err);
 
 /* Reads LinuxCNC's parameter file (the machine's .var: one parameter a line,
  * "NUMBER VALUE", e.g. "5221 10.000000" for G54's X origin) and sets each
@@ -201,12 +201,69 @@ SWARF_API swarf_status swarf_gcode_parser_set_start(swarf_gcode_parser *p,
  * (machine mm, degrees) and XY rotation (degrees). SWARF_ERR_ARG when
  * system is out of range. */
 SWARF_API swarf_status swarf_gcode_parser_work_system(const swarf_gcode_parser *p, int system,
-                                                      double origin[SWARF_NAXES],
-                                                      double *rotation);
+                                                      double origin[SWARF_NAXES], double *rotation);
 
 /* The source line of the first G20 or G21 the program ran; 0 while none
  * (the program then runs in the machine's unit). */
 SWARF_API long swarf_gcode_parser_units_line(const swarf_gcode_parser *p);
+
+/* ---- Dialects and the operator's switches (call before the first feed) ---
+ * The dialect the program is read in (README.md, "G-code dialects", has the
+ * table of what differs):
+ *   LINUXCNC  LinuxCNC's RS274/NGC, as `rs274` reads it (the default);
+ *   FANUC     Fanuc 0i/30i-style: O program numbers, M98/M99 subprograms
+ *             (also in the same file, after the main program), G65 macro
+ *             calls with arguments, #1-#33 locals, #100-#999 variables,
+ *             GOTO/IF/WHILE, canned cycles in their own modal group (G80
+ *             leaves the last G0-G3 in force), K repeats, G10 L2/L20/L10-L13,
+ *             G54.1 P1-P300; dwell P in milliseconds without a point;
+ *   HAAS      Fanuc's plus Haas's: M97 local subprograms (P = N number),
+ *             G154 P1-P99, vendor M codes (M29, M31, M33, ...) and G187, G103
+ *             accepted without motion, each with a note;
+ *   GRBL      grbl 1.1's subset: its G and M codes and words only, no
+ *             parameters, expressions or O words, `$` lines and `%` lines
+ *             ignored (with a note), no tool table (G43.1 only).
+ * FANUC and HAAS programs are read whole before they run (a subprogram may
+ * follow the main program in the file): moves come out at finish (or at
+ * the closing `%`), and memory grows with the program. */
+typedef enum {
+  SWARF_GCODE_DIALECT_LINUXCNC = 0,
+  SWARF_GCODE_DIALECT_FANUC = 1,
+  SWARF_GCODE_DIALECT_HAAS = 2,
+  SWARF_GCODE_DIALECT_GRBL = 3
+} swarf_gcode_dialect;
+
+/* "linuxcnc", "fanuc", "haas", "grbl" -> *out: 0, or -1 for another name. */
+SWARF_API int swarf_gcode_dialect_from_name(const char *name, swarf_gcode_dialect *out);
+/* The name of a dialect; NULL for a value that is none. */
+SWARF_API const char *swarf_gcode_dialect_name(swarf_gcode_dialect d);
+
+/* Sets the dialect. SWARF_ERR_ARG for a value that is no dialect,
+ * SWARF_ERR_STATE once the first byte was fed. */
+SWARF_API swarf_status swarf_gcode_parser_set_dialect(swarf_gcode_parser *p, swarf_gcode_dialect d,
+                                                      swarf_error *err);
+
+/* The operator's block delete switch (LinuxCNC's "/" button, Fanuc's block
+ * skip): off by default, and then blocks that start with `/` run, as rs274
+ * runs them; on, they are skipped. */
+SWARF_API swarf_status swarf_gcode_parser_set_block_delete(swarf_gcode_parser *p, int on,
+                                                           swarf_error *err);
+
+/* Where `o<name> call` finds a subroutine that the program does not define
+ * (LinuxCNC's [RS274NGC]SUBROUTINE_PATH): directories separated by ':', each
+ * searched for <name>.ngc, which holds `o<name> sub` ... `o<name> endsub`.
+ * The string is copied. Default: none (an undefined subroutine is an error). */
+SWARF_API swarf_status swarf_gcode_parser_set_subroutine_path(swarf_gcode_parser *p,
+                                                              const char *dirs, swarf_error *err);
+
+/* Notes: what the front end accepted without acting on it (a vendor M code,
+ * a grbl `$` line, a probing move that found nothing) or chose where the
+ * controller would ask the operator. Called once per note, in program
+ * order; `line` and `column` are 1-based; the text is only valid during
+ * the call. Set before the first feed. */
+typedef void (*swarf_gcode_note_fn)(long line, int column, const char *note, void *user);
+SWARF_API swarf_status swarf_gcode_parser_set_notes(swarf_gcode_parser *p, swarf_gcode_note_fn fn,
+                                                    void *user);
 
 /* Convenience: stream a whole file through a parser. On error *err (if not
  * NULL) is filled: the parser's error, or the file's (SWARF_ERR_OPEN,

@@ -118,6 +118,16 @@ typedef struct {
   double cycle_r, cycle_q, cycle_p, cycle_k, cycle_z; /* sticky cycle words, mm */
   double cycle_clear;                                 /* G98 clearance of the running cycle */
   int cycle_r_set, cycle_q_set;
+  double cycle_i, cycle_j; /* G87's sticky I J (mm); its K is cycle_k */
+  double cycle_il;         /* the initial level: the drill axis at the first cycle block */
+  int cycle_il_set;        /* cycle_il holds it (cleared when the motion leaves the cycles) */
+  int cycle_after_g87;     /* the last cycle block was a G87 (rs274 then rapids to R first) */
+  int dialect;             /* swarf_gcode_dialect */
+  int motion01;            /* Fanuc/Haas: the last of G0-G3 (0 10 20 30), in force after G80 */
+  int ext_system;          /* Fanuc/Haas: 1.. of G54.1 P (G154 P) in force, 0: none */
+  double ext_origin[SWARF_NAXES]; /* its origin, mm (a copy of the parser's table) */
+  double spline_pq[2];            /* G5: the last P Q (mm), for a G5 without I J */
+  int spline_last;                /* the last motion was a G5 */
   /* Cutter radius compensation (ccomp.c): */
   int comp_side;       /* 0 off, SWARF_GC_COMP_LEFT or SWARF_GC_COMP_RIGHT */
   double comp_radius;  /* mm, >= 0 */
@@ -233,7 +243,8 @@ enum {
   SWARF_GC_GROUP_PATH_CONTROL = 13, /* G61 G61.1 G64 */
   SWARF_GC_GROUP_SPINDLE_MODE = 14, /* G96 G97 */
   SWARF_GC_GROUP_LATHE = 15,        /* (G7 G8: later) */
-  SWARF_GC_NGROUPS = 16
+  SWARF_GC_GROUP_VENDOR = 16,       /* Fanuc/Haas: G5.1 Q1, G8, G103, G187...: noted, no motion */
+  SWARF_GC_NGROUPS = 17
 };
 
 /* M modal groups, numbered as in LinuxCNC. */
@@ -245,7 +256,8 @@ enum {
   SWARF_GC_MGROUP_COOLANT = 8,  /* M7 M8 M9 */
   SWARF_GC_MGROUP_OVERRIDE = 9, /* M48-M53 */
   SWARF_GC_MGROUP_USER = 10,    /* M100-M199, M4xx (REMAP-style user codes) */
-  SWARF_GC_NMGROUPS = 11
+  SWARF_GC_MGROUP_VENDOR = 11,  /* Fanuc/Haas machine codes (M29, M31, ...): noted, no motion */
+  SWARF_GC_NMGROUPS = 12
 };
 #define SWARF_GC_MAX_M_PER_LINE 4 /* as LinuxCNC */
 
@@ -338,7 +350,17 @@ typedef struct {
   int turns;      /* arcs: rs274's signed rotation */
   double sweep;   /* held arcs: signed sweep as enqueued (radians, LinuxCNC's find_turn) */
   double dir[2];  /* held lines: programmed direction in the plane */
+  int print;      /* motions: SWARF_GC_PRINT_* (how the canon shows it) */
 } swarf_gc_call;
+
+enum {
+  SWARF_GC_PRINT_MOTION = 0, /* STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED */
+  SWARF_GC_PRINT_PROBE = 1,  /* STRAIGHT_PROBE (G38.x) */
+  SWARF_GC_PRINT_NONE = 2    /* a piece of a spline: its NURBS_FEED text was printed */
+};
+/* The origin (machine mm) and XY rotation (degrees) of the work system in force. */
+const double *swarf_gc_origin(const swarf_gc_state *st);
+double swarf_gc_rotation(const swarf_gc_state *st);
 
 /* The calls of one block. calls[0, ready) are final and go out when the
  * block commits; calls[ready, count) are held (LinuxCNC's queue under
@@ -423,11 +445,30 @@ void swarf_gc_out_tlo(swarf_gc_out *o, const swarf_gc_state *st);
 
 /* ---- interp.c: execute a checked block ---------------------------------- */
 
+#define SWARF_GC_NOTES_MAX 4 /* notes kept per block */
+typedef struct {
+  int n;
+  int column[SWARF_GC_NOTES_MAX];
+  char text[SWARF_GC_NOTES_MAX][200];
+} swarf_gc_notes;
+
+/* Adds a note (printf-style) to the block's list; they go out when the
+ * block commits. Extra notes past SWARF_GC_NOTES_MAX are dropped. */
+void swarf_gc_note(swarf_gc_notes *n, int column, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+#define SWARF_GC_NEXT (300 + 1) /* G54.1 P1..P300 (Fanuc), G154 P1..P99 (Haas) */
+
 typedef struct {
   swarf_gc_params *params; /* read and written (param writes of G10 etc.) */
   swarf_gc_out *out;
   double (*tools)[2]; /* tool table by tool number: Z offset, diameter (mm) */
   int ntools;
+  swarf_gc_notes *notes;      /* the block's notes */
+  double (*ext)[SWARF_NAXES]; /* extended work offsets by P (mm) */
 } swarf_gc_exec;
 
 int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
@@ -446,6 +487,18 @@ int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
                          swarf_gc_fault *f);
 int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                    swarf_gc_fault *f);
+
+/* ---- spline.c: G5 and G5.1 ------------------------------------------------ */
+
+#define SWARF_GC_SPLINE_TOLERANCE 0.001 /* chord tolerance of a spline's lines, mm */
+int swarf_gc_spline(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                    swarf_gc_fault *f);
+/* G38.2-G38.5 (motion.c). */
+int swarf_gc_probe(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
+                   swarf_gc_fault *f);
+/* G54.1 P / G154 P (offsets.c). */
+int swarf_gc_select_ext(const swarf_gc_block *b, int code, swarf_gc_state *st, swarf_gc_exec *ex,
+                        swarf_gc_fault *f);
 
 /* ---- arc.c: G2/G3 geometry ---------------------------------------------- */
 
@@ -487,8 +540,14 @@ void swarf_gc_flow_free(swarf_gc_flow *fl);
  * fault say where (the line is `line` or a stored line: *err_line). */
 int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line, long *err_line,
                        swarf_gc_fault *f);
+/* Where `o<name> call` looks for <name>.ngc when no such sub was defined
+ * (borrowed: the parser owns the string). */
+void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
+
+/* The flow's line entry for fanuc.c (LinuxCNC programs with M98). */
+int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t len, long line);
 
 /* ---- parser.c: the parser itself (setup.c sets up its machine) ----------- */
 
@@ -522,6 +581,56 @@ struct swarf_gcode_parser {
   double start[SWARF_NAXES]; /* controlled point at the start, machine mm, degrees */
   int params_set;            /* a parameter was set (the unit can no longer change) */
   int g92_restore;           /* #5210 = 1: the G92 offset #5211-#5216 is in force */
+  /* The dialect and the operator's switches (dialect.c): */
+  int block_delete; /* skip `/` blocks */
+  char *subpath;    /* ':'-separated directories of subroutine files, or NULL */
+  swarf_gcode_note_fn note_fn;
+  void *note_user;
+  swarf_gc_notes notes; /* the running block's */
+  char *scratch;        /* a line rewritten (block delete, Fanuc macros) */
+  size_t scratch_cap;
+  struct swarf_gc_fanuc *fanuc;           /* Fanuc/Haas programs: the whole program (fanuc.c) */
+  double ext[SWARF_GC_NEXT][SWARF_NAXES]; /* G54.1 P / G154 P origins, mm */
 };
+
+/* ---- dialect.c: what differs by dialect ----------------------------------- */
+
+static inline int swarf_gc_fanuc_like(const swarf_gc_state *st) {
+  return st->dialect == SWARF_GCODE_DIALECT_FANUC || st->dialect == SWARF_GCODE_DIALECT_HAAS;
+}
+/* Hands a note to the listener (line: the parser's current line). */
+void swarf_gc_parser_note(swarf_gcode_parser *p, int column, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* A copy of `text` in the parser's scratch buffer (NULL: out of memory). */
+char *swarf_gc_scratch(swarf_gcode_parser *p, const char *text, size_t n);
+/* grbl: refuses what grbl 1.1 does not have (a G or M code, a letter). */
+int swarf_gc_grbl_check(const swarf_gc_block *b, swarf_gc_fault *f);
+/* A G or M code's entry in a dialect other than LinuxCNC (NULL: as LinuxCNC). */
+const swarf_gc_code *swarf_gc_dialect_g(int dialect, int tenths);
+const swarf_gc_code *swarf_gc_dialect_m(int dialect, int tenths);
+/* What a vendor code does, for its note ("chip conveyor forward"), or NULL. */
+const char *swarf_gc_vendor_m_name(int dialect, int code);
+
+/* Runs one ordinary line through the block path (parser.c): block delete,
+ * then read, check, execute, commit. */
+int swarf_gc_parser_run_line(void *ctx, const char *text, size_t len, long line);
+
+/* ---- fanuc.c: Fanuc and Haas programs (stored whole, then run) ------------ */
+
+typedef struct swarf_gc_fanuc swarf_gc_fanuc;
+swarf_gc_fanuc *swarf_gc_fanuc_new(swarf_gcode_parser *p);
+void swarf_gc_fanuc_free(swarf_gc_fanuc *fa);
+/* Keeps one line of the program. */
+int swarf_gc_fanuc_store(swarf_gc_fanuc *fa, const char *text, size_t len, long line,
+                         swarf_gc_fault *f);
+/* The line has an M98 word (LinuxCNC 2.9 reads Fanuc-style calls too: the
+ * parser then keeps the rest of the program and runs it through fanuc.c,
+ * with O-word lines still going to oword.c). */
+int swarf_gc_has_m98(const char *text, size_t n);
+/* Runs the program kept; *err_line says where a fault is. */
+int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_gc_fault *f);
 
 #endif

@@ -31,7 +31,7 @@ void swarf_gc_state_init(swarf_gc_state *st) {
   st->modal.tool_length = 490;
   st->modal.coord_system = 540;
   st->modal.path_control = 640;
-  st->modal.retract = 980;
+  st->modal.retract = 990; /* rs274 starts in G99 */
   st->modal.spindle_mode = 970;
 }
 
@@ -136,6 +136,15 @@ static void run_m_codes(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_ex
     if (tool->code == 60) swarf_gc_out_text(ex->out, "CHANGE_TOOL(%d)", st->tool);
     swarf_gc_out_tool(ex->out, st, tool->column);
   }
+  if (spindle == 190) { /* M19: orient (R angle, P direction mode, Q wait) */
+    st->spindle_dir = 0;
+    swarf_gc_out_text(ex->out, "ORIENT_SPINDLE(0, %.4f, %d)", swarf_gc_block_word(b, 'R')->value,
+                      (int)(swarf_gc_block_word(b, 'P')->value + 0.5));
+    if (swarf_gc_block_has(b, 'Q'))
+      swarf_gc_out_text(ex->out, "SPINDLE.0.WAIT_ORIENT_COMPLETE(%.4f)",
+                        swarf_gc_block_word(b, 'Q')->value);
+    return;
+  }
   if (spindle == 30) st->spindle_dir = 1;
   if (spindle == 40) st->spindle_dir = -1;
   if (spindle == 50) st->spindle_dir = 0;
@@ -148,6 +157,21 @@ static void run_m_codes(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_ex
   if (coolant == 80) swarf_gc_out_text(ex->out, "FLOOD_ON()");
   if (coolant == 90)
     swarf_gc_out_text(ex->out, "MIST_OFF()"), swarf_gc_out_text(ex->out, "FLOOD_OFF()");
+}
+
+/* Codes of other controllers that make no motion: a note each. */
+static void run_vendor(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_exec *ex) {
+  const swarf_gc_code_word *g = &b->g[SWARF_GC_GROUP_VENDOR], *m = &b->m[SWARF_GC_MGROUP_VENDOR];
+  if (g->code >= 0)
+    swarf_gc_note(ex->notes, g->column, "%s: %s: accepted, no motion", g->text,
+                  g->code == 50     ? "high-speed machining mode (Fanuc G05 P10000)"
+                  : g->code == 51   ? "AI contour control (Fanuc G05.1 Q1)"
+                  : g->code == 80   ? "look-ahead control (Fanuc G08)"
+                  : g->code == 1030 ? "block look-ahead limit (Haas G103)"
+                                    : "smoothness and accuracy (Haas G187)");
+  if (m->code >= 0)
+    swarf_gc_note(ex->notes, m->column, "%s: %s: accepted, no motion", m->text,
+                  swarf_gc_vendor_m_name(st->dialect, m->code / 10));
 }
 
 static void run_dwell(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex) {
@@ -240,12 +264,17 @@ int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exe
   run_feed_mode(b, next, ex);
   set_values(b, next, ex);
   run_m_codes(b, next, ex);
+  run_vendor(b, next, ex);
   run_dwell(b, next, ex);
   run_plane_units(b, next, ex);
   status = swarf_gc_comp_set(b, next, ex, f);
   if (status == SWARF_OK) status = swarf_gc_tool_length(b, next, ex, f);
   if (status != SWARF_OK) return status;
-  if (system >= 0) swarf_gc_select_system(system, next, ex);
+  if (system == 541 || system == 1540)
+    status = swarf_gc_select_ext(b, system, next, ex, f);
+  else if (system >= 0)
+    swarf_gc_select_system(system, next, ex);
+  if (status != SWARF_OK) return status;
   run_path_control(b, next, ex);
   set_modes(b, &next->modal);
   moves = swarf_gc_out_size(ex->out);

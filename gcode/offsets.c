@@ -39,9 +39,34 @@ int swarf_gc_select_system(int code, swarf_gc_state *st, swarf_gc_exec *ex) {
   double m[SWARF_NAXES];
   swarf_gc_to_machine(st, st->pos, m);
   st->modal.coord_system = code;
+  st->ext_system = 0;
   keep_machine(st, m);
   swarf_gc_out_g5x(ex->out, st);
   swarf_gc_out_g92(ex->out, st);
+  return SWARF_OK;
+}
+
+/* The largest P of the extended work offsets: Fanuc G54.1 P1-P300 (48
+ * standard, 300 with the option), Haas G154 P1-P99 (and G54.1 P1-P99). */
+static int ext_max(const swarf_gc_state *st) {
+  return st->dialect == SWARF_GCODE_DIALECT_HAAS ? 99 : SWARF_GC_NEXT - 1;
+}
+
+int swarf_gc_select_ext(const swarf_gc_block *b, int code, swarf_gc_state *st, swarf_gc_exec *ex,
+                        swarf_gc_fault *f) {
+  const swarf_gc_word *pw = swarf_gc_block_word(b, 'P');
+  const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_COORD_SYSTEM];
+  double pv = pw->present ? pw->value : 1, m[SWARF_NAXES];
+  int k = (int)floor(pv + 0.5);
+  (void)code;
+  if (pv != k || k < 1 || k > ext_max(st))
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_EXT_SYSTEM_RANGE, cw->column, cw->text, pv, ext_max(st));
+  swarf_gc_to_machine(st, st->pos, m);
+  st->modal.coord_system = 540;
+  st->ext_system = k;
+  memcpy(st->ext_origin, ex->ext[k], sizeof st->ext_origin);
+  keep_machine(st, m);
+  swarf_gc_out_text(ex->out, "COMMENT(\"extended work offset P%d\")", k);
   return SWARF_OK;
 }
 
@@ -139,10 +164,53 @@ static int set_tool(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
   return SWARF_OK;
 }
 
+/* Fanuc and Haas G10 (Fanuc 0i-MF "Programmable data input"; Haas "G10 Set
+ * Offsets"): L2 P1-P6 a work system's origin, L20 P an extended one; L10
+ * (or L1) P R a tool length, L11 its wear (added), L12 P R the radius
+ * (Fanuc; Haas: the diameter), L13 its wear (noted only). Under G91 the
+ * values are added to what is there. */
+static int fanuc_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, int l,
+                     swarf_gc_fault *f) {
+  const swarf_gc_word *pw = swarf_gc_block_word(b, 'P'), *rw = swarf_gc_block_word(b, 'R');
+  int p = (int)floor(pw->value + 0.5), inc = st->modal.distance == 910, col = b->g[0].column;
+  double r = rw->value * swarf_gc_scale(st), m[SWARF_NAXES];
+  if (l == 2 && !inc) return set_system(b, st, ex, 0, f);
+  if (l == 2 || l == 20) {
+    double *o;
+    if (l == 2 && (p < 0 || p > 6)) return SWARF_GC_FAIL(f, SWARF_GCODE_E_G10_P_RANGE, col, l);
+    if (l == 20 && (p < 1 || p > ext_max(st)))
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_EXT_SYSTEM_RANGE, col, "G10 L20", pw->value,
+                           ext_max(st));
+    o = l == 20 ? ex->ext[p] : st->systems[p == 0 ? swarf_gc_system_index(st) : p - 1];
+    swarf_gc_to_machine(st, st->pos, m);
+    for (int i = 0; i < SWARF_NAXES; i++)
+      if (has(b, i)) o[i] = (inc ? o[i] : 0) + word_mm(b, st, i);
+    if (l == 20 && st->ext_system == p) memcpy(st->ext_origin, o, sizeof st->ext_origin);
+    keep_machine(st, m);
+    swarf_gc_out_g5x(ex->out, st);
+    return SWARF_OK;
+  }
+  if (p < 1 || ex->tools == NULL || p >= ex->ntools)
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_G10_TOOL_RANGE, col, l);
+  if (isnan(ex->tools[p][0])) ex->tools[p][0] = 0;
+  if (l == 1 || l == 10) ex->tools[p][0] = (inc ? ex->tools[p][0] : 0) + r;
+  if (l == 11) ex->tools[p][0] += r;
+  if (l == 12)
+    ex->tools[p][1] =
+        (inc ? ex->tools[p][1] : 0) + (st->dialect == SWARF_GCODE_DIALECT_HAAS ? r : 2 * r);
+  if (l == 11 || l == 13)
+    swarf_gc_note(ex->notes, col, "G10 L%d: wear offsets are %s", l,
+                  l == 11 ? "added to the tool length" : "not kept (no effect on the path)");
+  if (l != 1 && l != 10 && l != 11 && l != 12 && l != 13)
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_G10_L_MISSING, col);
+  return SWARF_OK;
+}
+
 static int run_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                    swarf_gc_fault *f) {
   const swarf_gc_word *lw = swarf_gc_block_word(b, 'L');
   int l = lw->present ? (int)(lw->value + 0.5) : -1;
+  if (swarf_gc_fanuc_like(st)) return fanuc_g10(b, st, ex, l, f);
   if (l == 2 || l == 20) return set_system(b, st, ex, l == 20, f);
   if (l == 1 || l == 10 || l == 11) return set_tool(b, st, ex, l, f);
   return SWARF_GC_FAIL(f, SWARF_GCODE_E_G10_L_MISSING, lw->present ? lw->column : b->g[0].column);
@@ -171,13 +239,18 @@ static void run_home(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   int any = swarf_gc_block_has_axis(b);
   int column = b->g[0].column;
   /* rs274 always makes the first move, to where it is when no axis word. */
-  if (any) swarf_gc_find_end(b, st, mid);
-  else memcpy(mid, st->pos, sizeof mid);
+  if (any)
+    swarf_gc_find_end(b, st, mid);
+  else
+    memcpy(mid, st->pos, sizeof mid);
   swarf_gc_out_straight(ex->out, st, SWARF_GC_CALL_TRAVERSE, mid, column);
   memcpy(st->pos, mid, sizeof st->pos);
   swarf_gc_to_machine(st, st->pos, m);
+  /* The controlled point goes home: the tool tip's program coordinate is
+   * the home less the tool length offset (rs274 prints Z-5 for G28 under
+   * G43.1 Z5 with the home at 0). */
   for (int i = 0; i < SWARF_NAXES; i++)
-    if (!any || has(b, i)) m[i] = home[i] + st->tlo[i];
+    if (!any || has(b, i)) m[i] = home[i];
   swarf_gc_from_machine(st, m, end);
   swarf_gc_out_straight(ex->out, st, SWARF_GC_CALL_TRAVERSE, end, column);
   memcpy(st->pos, end, sizeof st->pos);
@@ -185,9 +258,8 @@ static void run_home(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
 
 static void store_home(swarf_gc_state *st, int code) {
   double m[SWARF_NAXES];
+  /* The controlled point's machine position, offset included (as rs274). */
   swarf_gc_to_machine(st, st->pos, m);
-  for (int i = 0; i < SWARF_NAXES; i++)
-    m[i] -= st->tlo[i];
   memcpy(code == 281 ? st->g28 : st->g30, m, sizeof m);
 }
 

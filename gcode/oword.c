@@ -10,12 +10,17 @@
  * set #<_value>. Names: o123 and o<name> (lower case, blanks removed);
  * LinuxCNC matches the words of one construct by that name.
  *
- * Bounds of ours, so that no program hangs: calls nest at most 50 deep and
- * all loops together turn at most SWARF_GC_MAX_ITERATIONS times.
+ * Bounds of ours, so that no program hangs: calls nest at most 50 deep,
+ * and the lines run from recordings (loop bodies, sub bodies, calls,
+ * control lines: the work, which grows with turns times body and with call
+ * trees, unlike a bound on turns or depth) number at most
+ * SWARF_GC_MAX_EXECUTED in all, a few seconds of interpreting. Every loop
+ * turn runs at least one stored line, so this also bounds the turns.
  * The flow owns its recordings and subs (freed by swarf_gc_flow_free).
  */
 #include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,11 +29,26 @@
 #define MAX_CALL_DEPTH 50
 #define MAX_ARGS 30
 #define MAX_NEST 64
-#define SWARF_GC_MAX_ITERATIONS 10000000L
+#define SWARF_GC_MAX_EXECUTED 5000000L /* stored lines run, all calls and loops together */
 
 typedef enum {
-  O_NONE, O_SUB, O_ENDSUB, O_CALL, O_RETURN, O_DO, O_WHILE, O_ENDWHILE, O_IF, O_ELSEIF,
-  O_ELSE, O_ENDIF, O_REPEAT, O_ENDREPEAT, O_BREAK, O_CONTINUE
+  O_NONE,
+  O_SUB,
+  O_ENDSUB,
+  O_CALL,
+  O_RETURN,
+  O_DO,
+  O_WHILE,
+  O_ENDWHILE,
+  O_IF,
+  O_ELSEIF,
+  O_ELSE,
+  O_ENDIF,
+  O_REPEAT,
+  O_ENDREPEAT,
+  O_BREAK,
+  O_CONTINUE,
+  O_NUMBER /* a program number alone ("O1001", "O0001 (NAME)"): rs274 does nothing */
 } okind;
 
 typedef struct {
@@ -71,9 +91,14 @@ struct swarf_gc_flow {
   int nopen;
   sub_def *subs;
   int depth; /* calls running */
-  long iterations;
+  long executed; /* stored lines run so far */
   long *err_line;
+  const char *path; /* subroutine files: ':'-separated directories (borrowed) */
 };
+
+void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs) {
+  fl->path = dirs;
+}
 
 swarf_gc_flow *swarf_gc_flow_new(swarf_gc_params *ps, swarf_gc_line_fn run, void *ctx) {
   swarf_gc_flow *fl = calloc(1, sizeof *fl);
@@ -124,11 +149,17 @@ static int read_name(swarf_gc_lexer *lx, char *name, swarf_gc_fault *f) {
 /* The keyword after the name: all letters up to the next non-letter
  * (blanks mean nothing, as everywhere in a line). */
 static okind read_keyword(swarf_gc_lexer *lx) {
-  static const struct { const char *w; okind k; } words[] = {
-      {"endsub", O_ENDSUB}, {"endwhile", O_ENDWHILE}, {"endif", O_ENDIF},
-      {"endrepeat", O_ENDREPEAT}, {"elseif", O_ELSEIF}, {"else", O_ELSE}, {"sub", O_SUB},
-      {"call", O_CALL}, {"return", O_RETURN}, {"do", O_DO}, {"while", O_WHILE}, {"if", O_IF},
-      {"repeat", O_REPEAT}, {"break", O_BREAK}, {"continue", O_CONTINUE}};
+  static const struct {
+    const char *w;
+    okind k;
+  } words[] = {{"endsub", O_ENDSUB},    {"endwhile", O_ENDWHILE},
+               {"endif", O_ENDIF},      {"endrepeat", O_ENDREPEAT},
+               {"elseif", O_ELSEIF},    {"else", O_ELSE},
+               {"sub", O_SUB},          {"call", O_CALL},
+               {"return", O_RETURN},    {"do", O_DO},
+               {"while", O_WHILE},      {"if", O_IF},
+               {"repeat", O_REPEAT},    {"break", O_BREAK},
+               {"continue", O_CONTINUE}};
   char word[16];
   size_t n = 0;
   while (swarf_gc_lexer_peek(lx) != -1 && isalpha((unsigned char)lx->line[lx->pos])) {
@@ -139,6 +170,19 @@ static okind read_keyword(swarf_gc_lexer *lx) {
   for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
     if (strcmp(word, words[i].w) == 0) return words[i].k;
   return O_NONE;
+}
+
+/* Nothing but blanks and comments from the lexer's position on. */
+static int only_comments(swarf_gc_lexer *lx) {
+  for (;;) {
+    int c = swarf_gc_lexer_peek(lx);
+    if (c == -1 || c == ';') return 1;
+    if (c != '(') return 0;
+    while (lx->pos < lx->len && lx->line[lx->pos] != ')')
+      lx->pos++;
+    if (lx->pos == lx->len) return 0;
+    lx->pos++;
+  }
 }
 
 /* The control word of a line, if the line is one ("N10 o100 while [...]"). */
@@ -160,6 +204,7 @@ static int read_ctl(const char *text, size_t len, octl *c, swarf_gc_fault *f) {
   status = read_name(&lx, c->name, f);
   if (status != SWARF_OK) return status;
   c->kind = read_keyword(&lx);
+  if (c->kind == O_NONE && only_comments(&lx)) c->kind = O_NUMBER;
   if (c->kind == O_NONE)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_UNKNOWN_KEYWORD, (int)lx.pos + 1, c->name);
   c->args = lx.pos;
@@ -244,8 +289,8 @@ static int track(swarf_gc_flow *fl, stored *s, swarf_gc_fault *f) {
     return 0;
   }
   if (closes(k)) {
-    static const okind opener[] = {[O_ENDSUB] = O_SUB, [O_ENDWHILE] = O_WHILE,
-                                   [O_ENDIF] = O_IF, [O_ENDREPEAT] = O_REPEAT};
+    static const okind opener[] = {
+        [O_ENDSUB] = O_SUB, [O_ENDWHILE] = O_WHILE, [O_ENDIF] = O_IF, [O_ENDREPEAT] = O_REPEAT};
     if (top == NULL || top->kind != opener[k] || strcmp(top->name, s->ctl.name) != 0)
       return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_CLOSE_MISMATCH, s->ctl.column, s->ctl.name), -1;
     fl->nopen--;
@@ -264,11 +309,62 @@ static sub_def *find_sub(swarf_gc_flow *fl, const char *name) {
   return NULL;
 }
 
+/* Reads o<name> sub ... o<name> endsub out of an open subroutine file; the
+ * stored lines carry `line` (the call's), so that moves and errors point
+ * at the program. 1: found, 0: not in the file, -1: out of memory. */
+static int read_sub_file(swarf_gc_flow *fl, FILE *in, const char *name, long line) {
+  char buf[4096];
+  sub_def *sub = NULL;
+  swarf_gc_fault f;
+  while (fgets(buf, sizeof buf, in) != NULL) {
+    size_t n = strcspn(buf, "\r\n");
+    octl c;
+    if (read_ctl(buf, n, &c, &f) != SWARF_OK) c.kind = O_NONE;
+    if (sub == NULL) {
+      if (c.kind == O_SUB && strcmp(c.name, name) == 0 && (sub = calloc(1, sizeof *sub)) == NULL)
+        return -1;
+      continue;
+    }
+    if (list_push(&sub->body, buf, n, line, &c) != 0) break;
+    if (c.kind == O_ENDSUB && strcmp(c.name, name) == 0) {
+      strcpy(sub->name, name);
+      sub->next = fl->subs;
+      fl->subs = sub;
+      return 1;
+    }
+  }
+  if (sub != NULL) list_clear(&sub->body);
+  free(sub);
+  return 0;
+}
+
+/* A subroutine no line defined: <name>.ngc in the directories of the path
+ * (LinuxCNC's SUBROUTINE_PATH), in order. */
+static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line) {
+  const char *d = fl->path;
+  while (d != NULL && *d) {
+    size_t n = strcspn(d, ":");
+    char path[4096];
+    FILE *in;
+    if (n > 0 && n + strlen(name) + 6 < sizeof path) {
+      snprintf(path, sizeof path, "%.*s/%s.ngc", (int)n, d, name);
+      if ((in = fopen(path, "r")) != NULL) {
+        int found = read_sub_file(fl, in, name, line);
+        fclose(in);
+        if (found > 0) return fl->subs;
+      }
+    }
+    d += n + (d[n] == ':');
+  }
+  return NULL;
+}
+
 static int call(swarf_gc_flow *fl, const stored *s, swarf_gc_fault *f) {
   double args[MAX_ARGS] = {0}, saved[MAX_ARGS];
   swarf_gc_lexer lx;
   swarf_gc_named *locals;
   sub_def *sub = find_sub(fl, s->ctl.name);
+  if (sub == NULL) sub = find_sub_file(fl, s->ctl.name, s->line);
   int n = 0, present = 1, status = SWARF_OK;
   if (sub == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_UNKNOWN_SUB, s->ctl.column, s->ctl.name);
   if (fl->depth >= MAX_CALL_DEPTH)
@@ -313,12 +409,6 @@ static size_t find_back(const line_list *l, size_t from, const char *name, okind
   return l->n;
 }
 
-static int count_turn(swarf_gc_flow *fl, const stored *s, swarf_gc_fault *f) {
-  if (++fl->iterations > SWARF_GC_MAX_ITERATIONS)
-    return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_LOOP_LIMIT, s->ctl.column, SWARF_GC_MAX_ITERATIONS);
-  return SWARF_OK;
-}
-
 enum { DONE_END = 100 }; /* run_lines status: a return/endsub ended the sub */
 
 /* The if chain: where to go from an if or elseif whose test failed. */
@@ -355,29 +445,24 @@ static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts
     if (status != SWARF_OK) return status;
     if (s->closes_do) {
       j = find_back(l, *pc, name, O_DO);
-      if (v != 0 && (status = count_turn(fl, s, f)) != SWARF_OK) return status;
       *pc = v != 0 ? j + 1 : *pc + 1;
       return SWARF_OK;
     }
     *pc = v != 0 ? *pc + 1 : find_fwd(l, *pc, name, O_ENDWHILE, O_ENDWHILE, O_ENDWHILE) + 1;
     return SWARF_OK;
   case O_ENDWHILE:
-    if ((status = count_turn(fl, s, f)) != SWARF_OK) return status;
     *pc = find_back(l, *pc, name, O_WHILE);
     return SWARF_OK;
   case O_REPEAT:
     status = eval_arg(fl, s, &v, 1, f);
     if (status != SWARF_OK) return status;
     counts[*pc] = floor(v + 0.5);
-    *pc = counts[*pc] > 0 ? *pc + 1 : find_fwd(l, *pc, name, O_ENDREPEAT, O_ENDREPEAT, O_ENDREPEAT) + 1;
+    *pc = counts[*pc] > 0 ? *pc + 1
+                          : find_fwd(l, *pc, name, O_ENDREPEAT, O_ENDREPEAT, O_ENDREPEAT) + 1;
     return SWARF_OK;
   case O_ENDREPEAT:
     j = find_back(l, *pc, name, O_REPEAT);
-    if (j < l->n && --counts[j] > 0) {
-      if ((status = count_turn(fl, s, f)) != SWARF_OK) return status;
-      *pc = j + 1;
-    } else
-      *pc = *pc + 1;
+    *pc = j < l->n && --counts[j] > 0 ? j + 1 : *pc + 1;
     return SWARF_OK;
   case O_BREAK:
     j = find_fwd(l, *pc, name, O_ENDWHILE, O_ENDREPEAT, O_WHILE);
@@ -399,6 +484,11 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
   while (status == SWARF_OK && pc < l->n) {
     stored *s = &l->v[pc];
     *fl->err_line = s->line;
+    if (++fl->executed > SWARF_GC_MAX_EXECUTED) {
+      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT,
+                             s->ctl.kind != O_NONE ? s->ctl.column : 1, SWARF_GC_MAX_EXECUTED);
+      break;
+    }
     switch (s->ctl.kind) {
     case O_NONE:
       status = fl->run(fl->ctx, s->text, s->len, s->line);
@@ -434,6 +524,7 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
       break;
     case O_ENDIF:
     case O_DO:
+    case O_NUMBER:
       pc++;
       break;
     default:
@@ -469,14 +560,15 @@ static int finish_recording(swarf_gc_flow *fl, swarf_gc_fault *f) {
   return status;
 }
 
-int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line,
-                       long *err_line, swarf_gc_fault *f) {
+int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line, long *err_line,
+                       swarf_gc_fault *f) {
   octl c;
   int status = read_ctl(text, len, &c, f), closed;
   fl->err_line = err_line;
   *err_line = line;
   if (status != SWARF_OK) return status;
   if (fl->nopen == 0 && c.kind == O_NONE) return fl->run(fl->ctx, text, len, line);
+  if (fl->nopen == 0 && c.kind == O_NUMBER) return SWARF_OK;
   if (fl->nopen == 0 && !opens(c.kind)) {
     line_list one = {0};
     if (list_push(&one, text, len, line, &c) != 0)

@@ -9,9 +9,10 @@
  * inches unless the machine's unit was set, as rs274 without an INI file
  * does (its "user units"); the current position in the active unit.
  *
- * Named parameters live in small lists owned by the store: `_`-names are
+ * Named parameters live in hash tables owned by the store (lookups in
+ * constant time: 200k distinct names parse in linear time): `_`-names are
  * global, others belong to the running sub (main program included). The
- * store owns its lists; swarf_gc_params_clear frees them.
+ * store owns its tables; swarf_gc_params_clear frees them.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -19,11 +20,44 @@
 
 #include "gcode_private.h"
 
-struct swarf_gc_named {
+/* One named set: an open-addressing hash table (linear probing, grown at
+ * half full), so that n distinct names cost O(n), not O(n^2). */
+typedef struct {
   char name[SWARF_GC_NAME_MAX];
   double value;
-  swarf_gc_named *next;
+} named_slot;
+
+struct swarf_gc_named {
+  named_slot *slots; /* cap entries, name[0] == '\0': empty */
+  size_t n, cap;     /* cap a power of two */
 };
+
+static size_t name_hash(const char *name) {
+  size_t h = 1469598103934665603u; /* FNV-1a */
+  for (; *name != '\0'; name++)
+    h = (h ^ (unsigned char)*name) * 1099511628211u;
+  return h;
+}
+
+/* The slot holding `name`, or the empty slot where it would go. */
+static named_slot *named_slot_of(const swarf_gc_named *t, const char *name) {
+  size_t i = name_hash(name) & (t->cap - 1);
+  while (t->slots[i].name[0] != '\0' && strcmp(t->slots[i].name, name) != 0)
+    i = (i + 1) & (t->cap - 1);
+  return &t->slots[i];
+}
+
+static int named_grow(swarf_gc_named *t) {
+  size_t cap = t->cap ? 2 * t->cap : 64;
+  swarf_gc_named bigger = {calloc(cap, sizeof(named_slot)), 0, cap};
+  if (bigger.slots == NULL) return -1;
+  for (size_t i = 0; i < t->cap; i++)
+    if (t->slots[i].name[0] != '\0') *named_slot_of(&bigger, t->slots[i].name) = t->slots[i];
+  bigger.n = t->n;
+  free(t->slots);
+  *t = bigger;
+  return 0;
+}
 
 void swarf_gc_params_init(swarf_gc_params *ps) {
   memset(ps, 0, sizeof *ps);
@@ -31,11 +65,9 @@ void swarf_gc_params_init(swarf_gc_params *ps) {
 }
 
 void swarf_gc_named_free(swarf_gc_named *list) {
-  while (list != NULL) {
-    swarf_gc_named *next = list->next;
-    free(list);
-    list = next;
-  }
+  if (list == NULL) return;
+  free(list->slots);
+  free(list);
 }
 
 void swarf_gc_params_clear(swarf_gc_params *ps) {
@@ -143,10 +175,11 @@ void swarf_gc_param_set(swarf_gc_params *ps, swarf_gc_state *st, int i, double v
   ps->num[i] = v;
 }
 
-static swarf_gc_named *find(swarf_gc_named *list, const char *name) {
-  for (; list != NULL; list = list->next)
-    if (strcmp(list->name, name) == 0) return list;
-  return NULL;
+static named_slot *find(const swarf_gc_named *t, const char *name) {
+  named_slot *s;
+  if (t == NULL || t->cap == 0) return NULL;
+  s = named_slot_of(t, name);
+  return s->name[0] != '\0' ? s : NULL;
 }
 
 /* Read-only names computed from the state (a few of LinuxCNC's). */
@@ -178,7 +211,7 @@ static int predefined(const swarf_gc_params *ps, const char *name, double *v) {
 }
 
 int swarf_gc_param_named(const swarf_gc_params *ps, const char *name, double *v) {
-  const swarf_gc_named *n = find(name[0] == '_' ? ps->globals : ps->locals, name);
+  const named_slot *n = find(name[0] == '_' ? ps->globals : ps->locals, name);
   if (n != NULL) {
     *v = n->value;
     return 0;
@@ -187,14 +220,17 @@ int swarf_gc_param_named(const swarf_gc_params *ps, const char *name, double *v)
 }
 
 int swarf_gc_param_set_named(swarf_gc_params *ps, const char *name, double v) {
-  swarf_gc_named **list = name[0] == '_' ? &ps->globals : &ps->locals;
-  swarf_gc_named *n = find(*list, name);
+  swarf_gc_named **t = name[0] == '_' ? &ps->globals : &ps->locals;
+  named_slot *n;
+  if (name[0] == '\0') return -1;
+  if (*t == NULL && (*t = calloc(1, sizeof **t)) == NULL) return -1;
+  n = find(*t, name);
   if (n == NULL) {
-    n = calloc(1, sizeof *n);
-    if (n == NULL) return -1;
+    if (2 * ((*t)->n + 1) > (*t)->cap && named_grow(*t) != 0) return -1;
+    n = named_slot_of(*t, name);
     strncpy(n->name, name, sizeof n->name - 1);
-    n->next = *list;
-    *list = n;
+    n->name[sizeof n->name - 1] = '\0';
+    (*t)->n++;
   }
   n->value = v;
   return 0;

@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "gcode_private.h"
+#include "swarf_file.h"
 
 #define READ_CHUNK (64 * 1024)
 
@@ -155,9 +156,12 @@ static void print_call(swarf_gcode_parser *p, const swarf_gc_call *c, const char
     return;
   case SWARF_GC_CALL_TRAVERSE:
   case SWARF_GC_CALL_FEED:
+    if (c->print == SWARF_GC_PRINT_NONE) return;
     snprintf(buf, sizeof buf, "%s(%.4f, %.4f, %.4f, %.4f, %.4f, %.4f)",
-             c->kind == SWARF_GC_CALL_FEED ? "STRAIGHT_FEED" : "STRAIGHT_TRAVERSE", v[0], v[1],
-             v[2], v[3], v[4], v[5]);
+             c->print == SWARF_GC_PRINT_PROBE ? "STRAIGHT_PROBE"
+             : c->kind == SWARF_GC_CALL_FEED  ? "STRAIGHT_FEED"
+                                              : "STRAIGHT_TRAVERSE",
+             v[0], v[1], v[2], v[3], v[4], v[5]);
     break;
   case SWARF_GC_CALL_ARC:
     snprintf(buf, sizeof buf, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, %.4f, %.4f)", v[0],
@@ -227,9 +231,10 @@ static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n)
   swarf_gc_block b;
   swarf_gc_fault f;
   swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
-  swarf_gc_exec ex = {&p->params, &p->out, p->tools, SWARF_GC_NTOOLS};
+  swarf_gc_exec ex = {&p->params, &p->out, p->tools, SWARF_GC_NTOOLS, &p->notes, p->ext};
   int status;
   *next = *p->state;
+  p->notes.n = 0;
   out_start(p);
   status = swarf_gc_block_read(text, n, &p->params, &b, &f);
   if (status == SWARF_OK) status = swarf_gc_block_check(&b, p->state, &f);
@@ -239,6 +244,8 @@ static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n)
   p->params.state = next;
   apply_assigns(p, &b);
   p->ended = next->ended;
+  for (int i = 0; i < p->notes.n && p->note_fn != NULL; i++)
+    p->note_fn(p->cur_line, p->notes.column[i], p->notes.text[i], p->note_user);
   status = emit(p, text, n);
   out_keep(p);
   if (p->ended && p->canon != NULL) {
@@ -248,14 +255,62 @@ static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n)
   return status;
 }
 
-/* The flow's callback for an ordinary line (streamed or stored). */
-static int run_line(void *ctx, const char *text, size_t n, long line) {
+/* The flow's callback for an ordinary line (streamed or stored). A line
+ * that starts with `/` is skipped when the block delete switch is on and
+ * runs without its `/` when it is off, as rs274 does (Fanuc's `/1`..`/9`
+ * name switches of one panel: all are this switch here). */
+int swarf_gc_parser_run_line(void *ctx, const char *text, size_t n, long line) {
   swarf_gcode_parser *p = ctx;
   size_t first = skip_blanks(text, n, 0);
   if (p->ended || p->status != SWARF_OK) return p->status;
   p->cur_line = line;
-  if (first == n || text[first] == '/') return SWARF_OK;
+  if (first == n) return SWARF_OK;
+  if (text[first] == '/') {
+    char *copy;
+    if (p->block_delete) return SWARF_OK;
+    if (text == p->scratch) {
+      p->scratch[first] = ' ';
+      copy = p->scratch;
+    } else if ((copy = swarf_gc_scratch(p, text, n)) == NULL)
+      return fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
+    copy[first] = ' ';
+    if (swarf_gc_fanuc_like(p->state) && first + 1 < n && copy[first + 1] >= '1' &&
+        copy[first + 1] <= '9')
+      copy[first + 1] = ' ';
+    return run_block(p, copy, n);
+  }
   return run_block(p, text, n);
+}
+
+static int run_line(void *ctx, const char *text, size_t n, long line) {
+  return swarf_gc_parser_run_line(ctx, text, n, line);
+}
+
+int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t len, long line) {
+  swarf_gc_fault f;
+  long err_line = line;
+  int status = swarf_gc_flow_line(p->flow, text, len, line, &err_line, &f);
+  if (status != SWARF_OK && p->status == SWARF_OK) {
+    p->cur_line = err_line;
+    return err_line == line ? fail(p, &f, text, len) : fail(p, &f, NULL, 0);
+  }
+  return p->status;
+}
+
+/* Runs a Fanuc or Haas program kept whole (at its closing `%` or the end). */
+static swarf_status run_fanuc(swarf_gcode_parser *p) {
+  swarf_gc_fault f;
+  long err_line = 0;
+  int status;
+  swarf_gc_fanuc *fa = p->fanuc;
+  p->fanuc = NULL; /* runs once */
+  status = swarf_gc_fanuc_run(fa, &err_line, &f);
+  swarf_gc_fanuc_free(fa);
+  if (status != SWARF_OK && p->status == SWARF_OK) {
+    p->cur_line = err_line;
+    return fail(p, &f, NULL, 0);
+  }
+  return p->status;
 }
 
 /* A line made of `%` alone: opens the program first, closes it later. */
@@ -267,6 +322,7 @@ static swarf_status percent_line(swarf_gcode_parser *p, const char *text, size_t
     return SWARF_OK;
   }
   if (p->percent_open) {
+    if (p->fanuc != NULL && run_fanuc(p) != SWARF_OK) return p->status;
     release_held(p);
     p->ended = 1;
     if (p->canon != NULL) {
@@ -278,6 +334,34 @@ static swarf_status percent_line(swarf_gcode_parser *p, const char *text, size_t
   }
   swarf_gc_fail_code(&f, SWARF_GCODE_E_PERCENT_NOT_OPEN, (int)at + 1);
   return fail(p, &f, text, n);
+}
+
+/* grbl reads lines one by one: `$` lines are settings and commands for the
+ * controller (ignored here, with a note), `%` lines are stripped by the
+ * senders (ignored), and there are no parameters, expressions or O words
+ * (outside comments). */
+static swarf_status grbl_line(swarf_gcode_parser *p, const char *text, size_t n, size_t first,
+                              size_t rest) {
+  int depth = 0;
+  swarf_gc_fault f;
+  if (text[first] == '$' || (text[first] == '%' && rest == n)) {
+    swarf_gc_parser_note(p, (int)first + 1, "%s line ignored (grbl %s)",
+                         text[first] == '$' ? "$" : "%",
+                         text[first] == '$' ? "setting or system command" : "program marker");
+    return SWARF_OK;
+  }
+  p->seen_code = 1;
+  for (size_t i = first; i < n; i++) {
+    char c = text[i];
+    if (c == ';' && depth == 0) break;
+    if (c == '(') depth = 1;
+    if (c == ')') depth = 0;
+    if (depth == 0 && (c == '#' || c == '[' || c == 'O' || c == 'o')) {
+      SWARF_GC_FAIL(&f, SWARF_GCODE_E_DIALECT_PARAMETERS, (int)i + 1, c);
+      return fail(p, &f, text, n);
+    }
+  }
+  return swarf_gc_parser_run_line(p, text, n, p->lines);
 }
 
 static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t n) {
@@ -292,9 +376,24 @@ static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t
   first = skip_blanks(text, n, 0);
   if (first == n) return SWARF_OK;
   rest = skip_blanks(text, n, first + 1);
+  if (p->state->dialect == SWARF_GCODE_DIALECT_GRBL) return grbl_line(p, text, n, first, rest);
+  /* A LinuxCNC program kept for M98: rs274 seeks the O<n> past a `%`. */
+  if (text[first] == '%' && rest == n && p->fanuc != NULL && !p->percent_open &&
+      p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC)
+    return SWARF_OK;
   if (text[first] == '%' && rest == n) return percent_line(p, text, n, first);
   p->seen_code = 1;
-  if (text[first] == '/') return SWARF_OK;
+  /* LinuxCNC 2.9 reads M98 P<n> too: from the first M98 on, the program is
+   * kept whole like a Fanuc one (its O<n> ... M99 may come after M2). */
+  if (p->fanuc == NULL && p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC &&
+      swarf_gc_flow_open_line(p->flow) == 0 && swarf_gc_has_m98(text, n) &&
+      (p->fanuc = swarf_gc_fanuc_new(p)) == NULL)
+    return fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
+  if (p->fanuc != NULL) {
+    status = swarf_gc_fanuc_store(p->fanuc, text, n, p->lines, &f);
+    return status == SWARF_OK ? SWARF_OK : fail(p, &f, text, n);
+  }
+  if (text[first] == '/' && p->block_delete) return SWARF_OK;
   status = swarf_gc_flow_line(p->flow, text, n, p->lines, &err_line, &f);
   if (status != SWARF_OK && p->status == SWARF_OK) {
     p->cur_line = err_line;
@@ -389,6 +488,7 @@ swarf_status swarf_gcode_parser_finish(swarf_gcode_parser *p) {
     process_line(p, p->partial, p->partial_len);
     p->partial_len = 0;
   }
+  if (p->status == SWARF_OK && !p->ended && !p->finished && p->fanuc != NULL) run_fanuc(p);
   if (p->status == SWARF_OK && !p->ended && !p->finished && swarf_gc_flow_open_line(p->flow) > 0) {
     p->cur_line = swarf_gc_flow_open_line(p->flow);
     fail_code(p, SWARF_GCODE_E_O_OPEN_AT_END, 1);
@@ -409,43 +509,11 @@ swarf_status swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_can
   return SWARF_OK;
 }
 
-/* One tool table line: T<n> then words like Z0.5 D0.25; ';' comments. */
-static void tool_line(swarf_gcode_parser *p, const char *line) {
-  int t = -1;
-  double z = 0, d = 0;
-  for (const char *s = line; *s && *s != ';'; s++) {
-    char c = (char)(*s & ~0x20);
-    if (c == 'T') t = atoi(s + 1);
-    if (c == 'Z') z = atof(s + 1);
-    if (c == 'D') d = atof(s + 1);
-  }
-  if (t > 0 && t < SWARF_GC_NTOOLS) {
-    p->tools[t][0] = z * SWARF_GC_MM_PER_INCH;
-    p->tools[t][1] = d * SWARF_GC_MM_PER_INCH;
-  }
-}
-
 /* *err (may be NULL), cleared, names a file of the caller's, no line. */
 static swarf_error *file_at(swarf_error *err, const char *path) {
   swarf_error_init(err);
   swarf_error_at(err, path, 0, 0, NULL);
   return err;
-}
-
-swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                           swarf_error *err) {
-  char line[512];
-  FILE *in;
-  if (p == NULL || path == NULL) return SWARF_ERR_ARG;
-  in = fopen(path, "r");
-  if (in == NULL)
-    return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_OPEN, file_at(err, path), strerror(errno));
-  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
-    p->tools[t][0] = NAN, p->tools[t][1] = 0;
-  while (fgets(line, sizeof line, in) != NULL)
-    tool_line(p, line);
-  fclose(in);
-  return SWARF_OK;
 }
 
 swarf_status swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
@@ -481,6 +549,9 @@ int swarf_gcode_parser_ended(const swarf_gcode_parser *p) {
 void swarf_gcode_parser_free(swarf_gcode_parser *p) {
   if (p == NULL) return;
   swarf_gc_flow_free(p->flow);
+  swarf_gc_fanuc_free(p->fanuc);
+  free(p->subpath);
+  free(p->scratch);
   swarf_gc_params_clear(&p->params);
   swarf_gc_out_clear(&p->out);
   swarf_gc_out_clear(&p->held);
@@ -505,12 +576,12 @@ static swarf_status stream_file(FILE *in, swarf_gcode_parser *p, const char *pat
 swarf_status swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
                                     swarf_error *err) {
   swarf_gcode_parser *p;
+  swarf_error why;
   FILE *in;
   swarf_status status;
   if (path == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_NO_FILE_NAME, file_at(err, ""));
-  in = fopen(path, "rb");
-  if (in == NULL)
-    return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), strerror(errno));
+  in = swarf_file_open_input(path, "program", 0, &why); /* regular files only */
+  if (in == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), why.message);
   if (swarf_gcode_parser_new(path, fn, user, &p) != SWARF_OK) {
     fclose(in);
     return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, file_at(err, path));

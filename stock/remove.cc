@@ -18,7 +18,12 @@
 ///     are skipped; the others are classified from their cuts' centre values.
 ///  3. serial topology: cleared blocks become outside tiles, tiles to visit
 ///     become leaves (densified from the tile value).
-///  4. visit (parallel, one leaf per task, no topology change).
+///  4. visit (parallel, one leaf per task, no topology change), each cut top
+///     down: its sdf at the block centre, then at the 4^3 octants' and 2^3
+///     cubes' centres where the voxels below them may change, and at a voxel
+///     only where the bound from its cube's centre cannot decide (1.4x fewer
+///     sdf calls on the impeller; a cut whose cube centre lies deeper than
+///     the band plus a margin clears the cube's voxels without evaluation).
 ///  5. serial: visited leaves left without any band collapse back into tiles.
 ///
 /// Voxel values stay in [-w, w]; a voxel is active iff |value| < w, inactive
@@ -32,6 +37,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -54,12 +60,12 @@ enum Action : uint8_t { kSkip, kClear, kVisitLeaf, kVisitTile, kCollapse };
 struct Pass {
   swarf_stock &s;
   const swarf_stock_cut *cuts;
-  double voxel;   ///< mm
-  float bgf;      ///< band half-width (the background), mm
-  double reach;   ///< half diagonal of a block plus the band, mm
-  double eps;     ///< margin (mm) of the per-voxel Lipschitz test
-  float radius[Leaf::SIZE];  ///< distance (mm) from each voxel centre to the block centre
-  const Measure *measure = nullptr;  ///< measured removal (per-cut volumes, gouges)
+  double voxel;                     ///< mm
+  float bgf;                        ///< band half-width (the background), mm
+  double reach;                     ///< half diagonal of a block plus the band, mm
+  double eps;                       ///< margin (mm) of the per-voxel Lipschitz test
+  float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
+  const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -74,8 +80,8 @@ void init_pass(Pass &p) {
   for (int x = 0; x < 8; x++)
     for (int y = 0; y < 8; y++)
       for (int z = 0; z < 8; z++)
-        p.radius[(x << 6) | (y << 3) | z] =
-            float(v * std::sqrt((x - 3.5) * (x - 3.5) + (y - 3.5) * (y - 3.5) + (z - 3.5) * (z - 3.5)));
+        p.radius[(x << 6) | (y << 3) | z] = float(
+            v * std::sqrt((x - 3.5) * (x - 3.5) + (y - 3.5) * (y - 3.5) + (z - 3.5) * (z - 3.5)));
 }
 
 /// Index box (block origins, both ends inclusive) of the blocks a cut may
@@ -83,7 +89,7 @@ void init_pass(Pass &p) {
 /// box. False if it misses the content box.
 bool cut_blocks(const Pass &p, const swarf_stock_cut &c, Coord &bmin, Coord &bmax) {
   const openvdb::CoordBBox &box = p.s.content;
-  const double pad = p.bgf / p.voxel + 1.0;  // voxels
+  const double pad = p.bgf / p.voxel + 1.0; // voxels
   int lo[3], hi[3];
   for (int k = 0; k < 3; k++) {
     double a = std::floor((c.lo[k] - p.s.origin[k]) / p.voxel - pad);
@@ -93,6 +99,11 @@ bool cut_blocks(const Pass &p, const swarf_stock_cut &c, Coord &bmin, Coord &bma
     if (!(a <= b)) return false;
     lo[k] = int(a) & ~7;
     hi[k] = int(b) & ~7;
+    if (p.s.has_region) { // only the blocks of this part (swarf_stock_set_region)
+      lo[k] = std::max(lo[k], p.s.region_lo[k]);
+      hi[k] = std::min(hi[k], p.s.region_hi[k]);
+      if (lo[k] > hi[k]) return false;
+    }
   }
   bmin = Coord(lo[0], lo[1], lo[2]);
   bmax = Coord(hi[0], hi[1], hi[2]);
@@ -116,7 +127,8 @@ void list_pairs(Pass &p, size_t ncuts) {
     if (!cut_blocks(p, p.cuts[i], a, b)) continue;
     for (int x = a.x(); x <= b.x(); x += 8)
       for (int y = a.y(); y <= b.y(); y += 8)
-        for (int z = a.z(); z <= b.z(); z += 8) w.pairs.push_back({x, y, z, uint32_t(i)});
+        for (int z = a.z(); z <= b.z(); z += 8)
+          w.pairs.push_back({x, y, z, uint32_t(i)});
   }
   if (ncuts > 1) tbb::parallel_sort(w.pairs.begin(), w.pairs.end(), pair_less);
   w.centre_sdf.resize(w.pairs.size());
@@ -149,7 +161,8 @@ double block_material(const Pass &p, ConstAcc &acc, const Coord &o, const Leaf *
   if (leaf == nullptr) return Leaf::SIZE * inside_fraction(acc.getValue(o), p.voxel);
   double sum = 0.0;
   const float *v = leaf->buffer().data();
-  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) sum += inside_fraction(v[n], p.voxel);
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
+    sum += inside_fraction(v[n], p.voxel);
   return sum;
 }
 
@@ -194,7 +207,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
     const double d = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-    if (d > p.reach) continue;  // untouched (a NaN is kept: its voxels decide)
+    if (d > p.reach) continue; // untouched (a NaN is kept: its voxels decide)
     if (-d > p.reach && p.measure == nullptr) {
       b.action = kClear;
       return;
@@ -210,10 +223,16 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
     w.pairs[b.begin + kept] = w.pairs[i];
     w.centre_sdf[b.begin + kept] = d;
     kept++;
-    if (-d > p.reach) break;  // measured: it clears every voxel; later cuts find nothing
+    if (-d > p.reach) break; // measured: it clears every voxel; later cuts find nothing
   }
   b.count = kept;
   if (kept > 0) b.action = leaf ? kVisitLeaf : kVisitTile;
+}
+
+/// Count a visited block in its slab (swarf_stock_set_tally).
+inline void tally_block(swarf_stock &s, const Coord &o) {
+  const long i = (long(o[s.tally_axis]) - s.tally_first) / 8;
+  if (i >= 0 && size_t(i) < s.ntally) s.tally[i]++;
 }
 
 /// Pass 3: topology changes, serial. Collects the blocks to visit.
@@ -225,46 +244,127 @@ void change_topology(Pass &p) {
     Block &b = w.blocks[i];
     if (b.action == kClear) tree.addTile(1, b.origin, p.bgf, false);
     if (b.action == kVisitTile) tree.touchLeaf(b.origin);
-    if (b.action == kVisitLeaf || b.action == kVisitTile) w.visit.push_back(uint32_t(i));
-  }
-}
-
-/// New value of voxel n (centre q) from its old value and the block's cuts.
-inline double voxel_max(const Pass &p, const Block &b, openvdb::Index n, const Vec3d &q,
-                        double m) {
-  const RemoveScratch &w = p.s.scratch;
-  const double bg = p.bgf;
-  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-    // sdf(q) >= centre - radius (1-Lipschitz): skip cuts that cannot raise m.
-    if (w.centre_sdf[i] - p.radius[n] + m >= p.eps) continue;
-    const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-    if (d > m) {
-      m = d;
-      if (m >= bg) break;
+    if (b.action == kVisitLeaf || b.action == kVisitTile) {
+      w.visit.push_back(uint32_t(i));
+      if (p.s.tally) tally_block(p.s, b.origin);
     }
   }
-  return m;
 }
 
-/// Pass 4 for one leaf: max over the cuts, clamp, band state. Marks the block
+/// Margin (mm) of the hierarchical tests below: above the certified error of
+/// any cut's sdf (1e-6 mm for rotary sweeps), so that a voxel they pass over
+/// or clear ends exactly as if its sdf had been evaluated.
+constexpr double kMargin = 1e-5;
+
+/// Voxel values of a block while its cuts are applied one after another.
+struct BlockValues {
+  double m[Leaf::SIZE]; ///< max(old, -sdf) over the cuts applied so far
+};
+
+/// Whether voxel n (value m, at distance r from a point where the cut's sdf is
+/// d) may be raised by the cut: not already outside, and the Lipschitz bound
+/// d - r does not keep -sdf at or below m.
+inline bool may_raise(double m, double bg, double d, double r) {
+  return m < bg && !(d - r + m >= kMargin); // a NaN sdf: the voxels decide
+}
+
+/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and cut i, whose sdf
+/// at the block centre is dc and at the enclosing 4^3 octant's centre is doct
+/// (NaN: not evaluated yet; evaluated on demand into *doct). The cut's sdf is
+/// evaluated at the 2^3 cube's centre first: if it clears every voxel (deeper
+/// than the band) or keeps them all below their values, no voxel is evaluated.
+void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
+                BlockValues &bv) {
+  const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
+  const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
+  const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
+  const bool clear = dcube + rv <= -bg - kMargin;
+  for (int x = x0; x < x0 + 2; x++)
+    for (int y = y0; y < y0 + 2; y++)
+      for (int z = z0; z < z0 + 2; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        double &m = bv.m[n];
+        if (!may_raise(m, bg, dcube, rv)) continue;
+        if (clear) {
+          m = bg;
+          continue;
+        }
+        const Vec3d q = block_point(p, b.origin, x, y, z);
+        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        if (d > m) m = d;
+      }
+}
+
+/// Pass 4 for the 4^3 octant at (x0, y0, z0) and one cut (its sdf at the block
+/// centre: dc): the sdf at the octant's centre decides for its 2^3 cubes
+/// (none of their voxels can be raised: passed over; all cleared: cleared);
+/// the others are visited cube by cube.
+void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc, int x0,
+                  int y0, int z0, BlockValues &bv) {
+  const double bg = p.bgf, v = p.voxel, rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
+  bool any = false;
+  for (int x = x0; x < x0 + 4 && !any; x++)
+    for (int y = y0; y < y0 + 4 && !any; y++)
+      for (int z = z0; z < z0 + 4 && !any; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        any = may_raise(bv.m[n], bg, dc, p.radius[n]);
+      }
+  if (!any) return;
+  const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
+  const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
+  const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
+  for (int sx = x0; sx < x0 + 4; sx += 2)
+    for (int sy = y0; sy < y0 + 4; sy += 2)
+      for (int sz = z0; sz < z0 + 4; sz += 2) {
+        const bool clear = doct + rcube + rv <= -bg - kMargin;
+        bool need = false;
+        for (int x = sx; x < sx + 2; x++)
+          for (int y = sy; y < sy + 2; y++)
+            for (int z = sz; z < sz + 2; z++) {
+              const openvdb::Index n = (x << 6) | (y << 3) | z;
+              const double dx = x - (x0 + 1.5), dy = y - (y0 + 1.5), dz = z - (z0 + 1.5);
+              const double r = v * std::sqrt(dx * dx + dy * dy + dz * dz);
+              if (!may_raise(bv.m[n], bg, doct, r)) continue;
+              if (clear)
+                bv.m[n] = bg;
+              else
+                need = true;
+            }
+        if (need) visit_cube(p, b, cut, sx, sy, sz, bv);
+      }
+}
+
+/// Pass 4 for one leaf: max over the cuts, clamp, band state. Each cut is
+/// applied to the block top down (8^3 block centre, 4^3 octants, 2^3 cubes,
+/// voxels; the sdf is 1-Lipschitz): a voxel's sdf is evaluated only where the
+/// bound from the nearest centre above it cannot decide. Marks the block
 /// kCollapse (with its tile value) if no voxel is left in the band.
 void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
+  const RemoveScratch &w = p.s.scratch;
   const float bgf = p.bgf;
   const float *data = leaf.buffer().data();
-  for (int x = 0; x < 8; x++)
-    for (int y = 0; y < 8; y++)
-      for (int z = 0; z < 8; z++) {
-        const openvdb::Index n = (x << 6) | (y << 3) | z;
-        const float old = data[n];
-        if (!(old < bgf)) continue;  // outside stays outside
-        const double m = voxel_max(p, b, n, block_point(p, b.origin, x, y, z), old);
-        if (!(m > old)) continue;
-        const float v = float(m);
-        if (v >= bgf) leaf.setValueOff(n, bgf);
-        else if (v <= -bgf) leaf.setValueOff(n, -bgf);
-        else leaf.setValueOn(n, v);
-      }
+  BlockValues bv;
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
+    bv.m[n] = data[n];
+  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
+    const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+    for (int x = 0; x < 8; x += 4)
+      for (int y = 0; y < 8; y += 4)
+        for (int z = 0; z < 8; z += 4)
+          visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
+  }
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+    const float old = data[n];
+    const double m = bv.m[n];
+    if (!(old < bgf) || !(m > old)) continue;
+    const float v = float(m);
+    if (v >= bgf)
+      leaf.setValueOff(n, bgf);
+    else if (v <= -bgf)
+      leaf.setValueOff(n, -bgf);
+    else
+      leaf.setValueOn(n, v);
+  }
   if (!leaf.isInactive()) return;
   for (openvdb::Index n = 1; n < Leaf::SIZE; n++)
     if (data[n] != data[0]) return;
@@ -291,13 +391,13 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design)
       for (int z = 0; z < 8; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         const float old = data[n];
-        if (!(old < bgf)) continue;  // outside stays outside
+        if (!(old < bgf)) continue; // outside stays outside
         const Vec3d q = block_point(p, b.origin, x, y, z);
         float v = old;
         double dq = 0.0;
         bool have_dq = false;
         for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-          if (w.centre_sdf[i] - p.radius[n] + v >= p.eps) continue;  // cannot raise v
+          if (w.centre_sdf[i] - p.radius[n] + v >= p.eps) continue; // cannot raise v
           const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
           const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
           const float nv = stored(d, bgf);
@@ -317,9 +417,12 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design)
           if (v >= bgf) break;
         }
         if (!(v > old)) continue;
-        if (v >= bgf) leaf.setValueOff(n, bgf);
-        else if (v <= -bgf) leaf.setValueOff(n, -bgf);
-        else leaf.setValueOn(n, v);
+        if (v >= bgf)
+          leaf.setValueOff(n, bgf);
+        else if (v <= -bgf)
+          leaf.setValueOff(n, -bgf);
+        else
+          leaf.setValueOn(n, v);
       }
   if (!leaf.isInactive()) return;
   for (openvdb::Index n = 1; n < Leaf::SIZE; n++)
@@ -334,19 +437,65 @@ void report_effects(const Pass &p, size_t ncuts) {
   swarf_stock_cut_effect *e = p.measure->effects;
   const double nan = std::numeric_limits<double>::quiet_NaN(), v3 = p.voxel * p.voxel * p.voxel;
   std::vector<double> removed(ncuts, 0.0);
-  for (size_t i = 0; i < ncuts; i++) e[i].removed = 0.0, e[i].gouge_depth = 0.0, e[i].gouge_at[0] = e[i].gouge_at[1] = e[i].gouge_at[2] = nan;
+  for (size_t i = 0; i < ncuts; i++)
+    e[i].removed = e[i].removed_voxels = 0.0, e[i].gouge_depth = 0.0,
+    e[i].gouge_at[0] = e[i].gouge_at[1] = e[i].gouge_at[2] = nan;
   for (const Block &b : w.blocks)
     for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
       if (b.action == kSkip) break;
       swarf_stock_cut_effect &c = e[w.pairs[i].cut];
-      removed[w.pairs[i].cut] += w.removed[i];
+      // whole multiples of 2^-16 voxel: sums exact in any order or grouping
+      // (up to 2^37 voxels a cut), so parts of a stock add up to the same bits
+      removed[w.pairs[i].cut] += std::ldexp(std::round(std::ldexp(w.removed[i], 16)), -16);
       if (w.gouge[i] > c.gouge_depth) {
         c.gouge_depth = w.gouge[i];
-        for (int k = 0; k < 3; k++) c.gouge_at[k] = w.gouge_at[i][k];
+        for (int k = 0; k < 3; k++)
+          c.gouge_at[k] = w.gouge_at[i][k];
       }
     }
-  for (size_t i = 0; i < ncuts; i++) e[i].removed = removed[i] * v3;
+  for (size_t i = 0; i < ncuts; i++)
+    e[i].removed_voxels = removed[i], e[i].removed = removed[i] * v3;
 }
+
+/// Runs a parallel pass in chunks when the stock has a tick
+/// (swarf_stock_set_tick): between chunks, on the calling thread with no
+/// worker running (the stock is a valid narrow band then), the tick is told
+/// the fraction done once `every` seconds have passed since the last call;
+/// chunks aim at a fifth of that. A non-zero answer stops the pass (ABORTED):
+/// the stock stays valid, partly cut.
+struct Ticker {
+  swarf_stock &s;
+  size_t total;
+  double last;
+  Ticker(swarf_stock &st, size_t n) : s(st), total(n), last(now()) {}
+  static double now() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  /// Items [first, first + n) of the pass's total (as numbered by body).
+  template <class Body> void run(size_t first, size_t n, size_t grain, const Body &body) {
+    if (s.tick == nullptr) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(first, first + n, grain), body);
+      return;
+    }
+    const double aim = s.tick_every > 0 ? 0.2 * s.tick_every : 0.0;
+    size_t chunk = 64;
+    for (size_t at = first; at < first + n;) {
+      const size_t end = std::min(first + n, at + chunk);
+      const double t0 = now();
+      tbb::parallel_for(tbb::blocked_range<size_t>(at, end, grain), body);
+      const double t1 = now(), took = t1 - t0;
+      at = end;
+      if (aim > 0 && took > 0) // next chunk: about `aim` seconds, within 16x of this one
+        chunk = std::max<size_t>(
+            grain, size_t(double(chunk) * std::min(16.0, std::max(1.0 / 16, aim / took))));
+      if (t1 - last < s.tick_every) continue;
+      last = t1;
+      if (s.tick(s.tick_user, total ? double(at) / double(total) : 1.0) != 0)
+        throw Error(SWARF_ERR_ABORTED, "removal stopped by the caller");
+    }
+  }
+};
 
 /// Pass 5: leaves without band become tiles, serial.
 void collapse(Pass &p) {
@@ -365,9 +514,9 @@ bool block_overlap(const Pass &p, ConstAcc &acc, const Coord &o, double depth, V
   const swarf_stock_cut &cut = p.cuts[0];
   const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
   const double dc = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-  if (dc - (p.reach - p.bgf) >= -depth) return false;  // no voxel of it is that deep in the cut
+  if (dc - (p.reach - p.bgf) >= -depth) return false; // no voxel of it is that deep in the cut
   const Leaf *leaf = acc.probeConstLeaf(o);
-  if (leaf == nullptr) {  // a tile: all material (-w) or all outside (+w)
+  if (leaf == nullptr) { // a tile: all material (-w) or all outside (+w)
     if (!(acc.getValue(o) < -depth)) return false;
     for (int x = 0; x < 8; x++)
       for (int y = 0; y < 8; y++)
@@ -427,7 +576,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
   if (p.bgf + r - dc <= depth) return false;
   const Leaf *leaf = acc.probeConstLeaf(o);
   const float tile = leaf == nullptr ? acc.getValue(o) : 0.0f;
-  if (leaf == nullptr && !(tile < 0.0f)) return false;  // an outside tile
+  if (leaf == nullptr && !(tile < 0.0f)) return false; // an outside tile
   const float *v = leaf != nullptr ? leaf->buffer().data() : nullptr;
   const double out = 0.5 * p.voxel;
   for (int x = 0; x < 8; x++)
@@ -446,7 +595,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
   return false;
 }
 
-}  // namespace
+} // namespace
 
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
@@ -493,7 +642,8 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
       for (int z = a.z(); z <= b.z(); z += 8) {
         const Coord o(x, y, z);
         const Vec3d c = block_point(p, o, 3.5, 3.5, 3.5);
-        if (cut.sdf(cut.ctx, c.x(), c.y(), c.z()) - half_diagonal >= 0.0) continue;  // no centre in the cut
+        if (cut.sdf(cut.ctx, c.x(), c.y(), c.z()) - half_diagonal >= 0.0)
+          continue; // no centre in the cut
         const Leaf *leaf = acc.probeConstLeaf(o);
         const float tile = leaf ? 0.0f : acc.getValue(o);
         if (!leaf && !(tile < 0.0f)) continue;
@@ -513,7 +663,8 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
   return best;
 }
 
-void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, const Measure *measure) {
+void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
+                 const Measure *measure) {
   Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, measure};
   init_pass(p);
   RemoveScratch &w = s.scratch;
@@ -523,32 +674,36 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, cons
     return;
   }
   const Tree &ctree = s.grid->constTree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, w.blocks.size(), 16),
-                    [&](const tbb::blocked_range<size_t> &r) {
-                      ConstAcc acc(ctree);
-                      std::unique_ptr<ConstAcc> dacc;
-                      if (measure && measure->design && GridProbe::lattices_coincide(*measure->design, s))
-                        dacc.reset(new ConstAcc(measure->design->grid->constTree()));
-                      for (size_t i = r.begin(); i != r.end(); ++i) classify(p, acc, w.blocks[i], dacc.get());
-                    });
+  Ticker ticker(s, w.blocks.size() + w.blocks.size());
+  ticker.run(0, w.blocks.size(), 16, [&](const tbb::blocked_range<size_t> &r) {
+    ConstAcc acc(ctree);
+    std::unique_ptr<ConstAcc> dacc;
+    if (measure && measure->design && GridProbe::lattices_coincide(*measure->design, s))
+      dacc.reset(new ConstAcc(measure->design->grid->constTree()));
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      classify(p, acc, w.blocks[i], dacc.get());
+  });
   change_topology(p);
   Tree &tree = s.grid->tree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, w.visit.size(), 1),
-                    [&](const tbb::blocked_range<size_t> &r) {
-                      Acc acc(tree);
-                      std::unique_ptr<GridProbe> design;
-                      if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
-                      for (size_t i = r.begin(); i != r.end(); ++i) {
-                        Block &b = w.blocks[w.visit[i]];
-                        if (measure) visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
-                        else visit_leaf(p, *acc.probeLeaf(b.origin), b);
-                      }
-                    });
+  ticker.total = w.blocks.size() + w.visit.size();
+  ticker.run(w.blocks.size(), w.visit.size(), 1, [&](const tbb::blocked_range<size_t> &r0) {
+    const tbb::blocked_range<size_t> r(r0.begin() - w.blocks.size(), r0.end() - w.blocks.size());
+    Acc acc(tree);
+    std::unique_ptr<GridProbe> design;
+    if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      Block &b = w.blocks[w.visit[i]];
+      if (measure)
+        visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
+      else
+        visit_leaf(p, *acc.probeLeaf(b.origin), b);
+    }
+  });
   collapse(p);
   if (measure) report_effects(p, ncuts);
 }
 
-}  // namespace swarf
+} // namespace swarf
 
 namespace {
 
@@ -563,7 +718,7 @@ void check_cut(const swarf_stock_cut &c, size_t i) {
   }
 }
 
-}  // namespace
+} // namespace
 
 extern "C" swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], const double hi[3],
                                            swarf_stock_sdf_fn sdf, const void *ctx,
@@ -577,7 +732,7 @@ extern "C" swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], c
     cut.sdf = sdf;
     cut.ctx = ctx;
     check_cut(cut, 0);
-    swarf::remove_cuts(*s, &cut, 1);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, &cut, 1); });
   });
 }
 
@@ -612,10 +767,12 @@ extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf
       throw swarf::Error(SWARF_ERR_ARG, "depth must be finite and >= 0");
     openvdb::Vec3d q;
     if (nclear > 0 && clear == nullptr) throw swarf::Error(SWARF_ERR_ARG, "clear is NULL");
-    for (size_t i = 0; i < nclear; i++) check_cut(clear[i], i);
+    for (size_t i = 0; i < nclear; i++)
+      check_cut(clear[i], i);
     *hit = swarf::cut_penetrates(*s, *cut, clear, nclear, depth, q) ? 1 : 0;
     if (*hit && where != nullptr)
-      for (int k = 0; k < 3; k++) where[k] = q[k];
+      for (int k = 0; k < 3; k++)
+        where[k] = q[k];
   });
 }
 
@@ -628,7 +785,7 @@ extern "C" swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_sto
     if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
     for (size_t i = 0; i < ncuts; i++)
       check_cut(cuts[i], i);
-    swarf::remove_cuts(*s, cuts, ncuts);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts); });
   });
 }
 
@@ -646,25 +803,26 @@ extern "C" swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stoc
     openvdb::Vec3d q;
     *depth = swarf::cut_gouge(*s, *design, *cut, tolerance, q);
     if (*depth > 0.0 && where != nullptr)
-      for (int k = 0; k < 3; k++) where[k] = q[k];
+      for (int k = 0; k < 3; k++)
+        where[k] = q[k];
   });
 }
 
-extern "C" swarf_status swarf_stock_remove_batch_measured(swarf_stock *s,
-                                                          const swarf_stock_cut *cuts, size_t ncuts,
-                                                          const swarf_stock *design,
-                                                          double tolerance,
-                                                          swarf_stock_cut_effect *effects,
-                                                          swarf_error *err) {
+extern "C" swarf_status
+swarf_stock_remove_batch_measured(swarf_stock *s, const swarf_stock_cut *cuts, size_t ncuts,
+                                  const swarf_stock *design, double tolerance,
+                                  swarf_stock_cut_effect *effects, swarf_error *err) {
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     if (ncuts == 0) return;
-    if (cuts == nullptr || effects == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts or effects is NULL");
+    if (cuts == nullptr || effects == nullptr)
+      throw swarf::Error(SWARF_ERR_ARG, "cuts or effects is NULL");
     if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
     if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
       throw swarf::Error(SWARF_ERR_ARG, "tolerance must be finite and >= 0");
-    for (size_t i = 0; i < ncuts; i++) check_cut(cuts[i], i);
+    for (size_t i = 0; i < ncuts; i++)
+      check_cut(cuts[i], i);
     const swarf::Measure m{design, tolerance, effects};
-    swarf::remove_cuts(*s, cuts, ncuts, &m);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, &m); });
   });
 }

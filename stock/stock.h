@@ -115,6 +115,21 @@ SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_
                                              double depth, int *hit, double where[3],
                                              swarf_error *err);
 
+/* Threads the stock's passes (removal, the checks of cuts) may use: n >= 1,
+ * or 0 for all cores (the default). Per handle; not while a pass runs on it. */
+SWARF_API swarf_status swarf_stock_set_threads(swarf_stock *s, int n, swarf_error *err);
+SWARF_API int swarf_stock_threads(const swarf_stock *s); /* 0: all cores */
+
+/* A long removal pass tells `tick` how far it is (done: 0..1 of its blocks)
+ * at least every `every` seconds (0: after every chunk of blocks; chunks
+ * aim at every / 5 s), from the calling thread, between chunks (no worker
+ * runs then: the stock is a valid level set, partly cut, and may be read).
+ * A non-zero answer stops the pass: the call returns SWARF_ERR_ABORTED and
+ * the stock stays valid. fn NULL: no ticks (one parallel pass). */
+typedef int (*swarf_stock_tick_fn)(void *user, double done);
+SWARF_API swarf_status swarf_stock_set_tick(swarf_stock *s, swarf_stock_tick_fn fn, void *user,
+                                            double every, swarf_error *err);
+
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);
 SWARF_API int swarf_stock_half_width(const swarf_stock *s);
@@ -157,6 +172,49 @@ SWARF_API swarf_status swarf_stock_write_stl(const swarf_stock *s, const char *p
  * angle, ray traced with OpenVDB's LevelSetRayTracer. */
 SWARF_API swarf_status swarf_stock_write_png(const swarf_stock *s, const char *path, int width,
                                              int height, swarf_error *err);
+
+/* ==== Parts of the stock (several processes on one stock) ===================
+ * Removal is pointwise and works per leaf-aligned block of 8^3 voxels, so
+ * copies of one stock, each removing the same volumes in its own region of
+ * the index space, hold between them the grid one stock would: load the
+ * other copies' parts into one of them and it is that grid, voxel for voxel
+ * (same values, active states and tree nodes). Index space: voxel ijk has
+ * its centre at origin + voxel * ijk (mm). */
+
+/* The index box (voxels, both ends inclusive) holding all the material and
+ * band, as built or read; lo > hi when empty. It never grows. */
+SWARF_API void swarf_stock_index_box(const swarf_stock *s, int lo[3], int hi[3]);
+/* The index of the voxel whose centre is nearest to world point p (mm). */
+SWARF_API void swarf_stock_index_of(const swarf_stock *s, const double p[3], int ijk[3]);
+
+/* Restrict removal (all kinds) and the queries swarf_stock_overlaps,
+ * swarf_stock_penetrates and swarf_stock_gouge to the blocks whose origin
+ * (a multiple of 8 on each axis) lies in the index box [lo, hi]: the other
+ * blocks keep their values and are not looked at (a query then answers for
+ * the region only; a measured removal's volumes and gouges are the
+ * region's). lo and hi NULL: the whole stock again. SWARF_ERR_ARG if lo > hi. */
+SWARF_API swarf_status swarf_stock_set_region(swarf_stock *s, const int lo[3], const int hi[3],
+                                              swarf_error *err);
+
+/* Count the blocks whose voxels removal visits (evaluates the volumes at),
+ * per slab of 8 voxels along `axis`: counts[i] += 1 for a visited block whose
+ * origin on that axis is first + 8 i (first rounded down to a multiple of
+ * 8; blocks outside [0, n) are not counted). The array is the caller's and
+ * must outlive the removals; counts NULL (or axis not 0..2): off. */
+SWARF_API void swarf_stock_set_tally(swarf_stock *s, int axis, int first,
+                                     unsigned long long *counts, size_t n);
+
+/* The part of the stock in its region (the whole stock without one): its
+ * blocks below the tree's level-1 nodes, which are the only ones removal
+ * changes, into a new buffer *buf (free() it) of *len bytes, for a stock of
+ * the same voxel and band on a machine of the same byte order. */
+SWARF_API swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, size_t *len,
+                                             swarf_error *err);
+/* Put a saved part into s: its blocks replace s's (SWARF_ERR_ARG for another
+ * voxel or band, SWARF_ERR_FORMAT for a damaged buffer; s may then hold some
+ * of its blocks). */
+SWARF_API swarf_status swarf_stock_part_load(swarf_stock *s, const void *buf, size_t len,
+                                             swarf_error *err);
 
 /* ==== Stock from files, placement for a setup (issue 11) ====================
  * The functions below return a swarf_status and fill `err` (may be NULL):
@@ -289,7 +347,10 @@ SWARF_API swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stock
 
 /* What one cut of a batch did (swarf_stock_remove_batch_measured). */
 typedef struct {
-  double removed;      /* mm^3 it removed from the stock as it stood */
+  double removed;      /* mm^3 it removed from the stock as it stood: removed_voxels * voxel^3 */
+  double removed_voxels; /* the same in voxel volumes, summed per block in whole multiples
+                        * of 2^-16 (each block's rounded), so that the sums of parts
+                        * of a stock (swarf_stock_set_region) add up to the same bits */
   double gouge_depth;  /* mm, as swarf_stock_gouge against the stock as it stood
                         * (0: none deeper than the tolerance, or no design) */
   double gouge_at[3];  /* mm, where (NaN when gouge_depth is 0) */
@@ -299,7 +360,7 @@ typedef struct {
  * stock left by cuts 0..i-1, and each voxel's change of inside fraction
  * (swarf_stock_volume's estimate) is attributed to the cuts that made it,
  * so the `removed` of all cuts add up to the volume before minus the volume
- * after (to rounding, ~1e-12 relative). design (may be NULL) and tolerance
+ * after (to rounding: 2^-17 voxel a block and cut at most). design (may be NULL) and tolerance
  * as in swarf_stock_gouge. effects[ncuts] is filled. The grid ends
  * bit-identical to swarf_stock_remove_batch's. */
 SWARF_API swarf_status swarf_stock_remove_batch_measured(swarf_stock *s,

@@ -1,9 +1,10 @@
 /* move_motion.c -- canonical moves become rigid motions (move_motion.h).
  *
  * The xyz machine: t(alpha) follows the programmed straight line or helix
- * exactly (no chords), U = I. Table machines (machine.c describes them):
- * a move that turns a rotary axis becomes a RIGID motion whose angles are
- * the move's, interpolated linearly as LinuxCNC does.
+ * exactly (no chords), U = I. Rotary machines (machine.c describes them,
+ * toolpath.h gives their directions): a move that turns a rotary axis
+ * becomes a RIGID motion whose angles are the move's, interpolated linearly
+ * as LinuxCNC does; machine_geometry says which axes turn what.
  */
 #include <math.h>
 #include <string.h>
@@ -27,7 +28,8 @@ static swarf_status no_axis(const swarf_move *mv, swarf_error *err) {
   swarf_error_at(err, NULL, mv->line, mv->column, NULL);
   return swarf_error_set(err, SWARF_ERR_MACHINE,
                          "this move turns a rotary axis the machine does not have; choose "
-                         "one with --machine xyza, xyzac-trt or xyzbc-trt");
+                         "one with --machine (xyza, xyzac-trt, xyzbc-trt, xyzab-tdr, "
+                         "xyzbc-hh, xyzbc-ht)");
 }
 
 static void fill_common(const swarf_move *mv, swarf_motion *m) {
@@ -85,10 +87,35 @@ swarf_status swarf_motion_from_move(const swarf_move *mv, swarf_motion *m, swarf
   return SWARF_OK;
 }
 
-/* The machine's rotary axes: indices into a move's axes (-1: none). */
-static void machine_axes(swarf_machine_kind kind, int ax[2]) {
-  ax[0] = kind == SWARF_MACHINE_XYZBC_TRT ? SWARF_AXIS_B : SWARF_AXIS_A;
-  ax[1] = kind == SWARF_MACHINE_XYZA ? -1 : SWARF_AXIS_C;
+/* The machine's rotary axes in the order of e1, e2 (indices into a move's
+ * axes, -1: none), their directions (a negative sign: the angle turns the
+ * other way, toolpath.h) and how many of them, from e1, are in the head. */
+typedef struct {
+  int ax[2];
+  int dir1, sign1, dir2, sign2; /* e1 = sign1 * unit(dir1), e2 likewise */
+  int nhead;
+} geometry;
+
+static geometry machine_geometry(swarf_machine_kind kind) {
+  switch (kind) {
+  case SWARF_MACHINE_XYZA:
+    return (geometry){{SWARF_AXIS_A, -1}, 0, 1, 0, 0, 0};
+  case SWARF_MACHINE_XYZAC_TRT:
+    return (geometry){{SWARF_AXIS_A, SWARF_AXIS_C}, 0, 1, 2, 1, 0};
+  case SWARF_MACHINE_XYZBC_TRT:
+    return (geometry){{SWARF_AXIS_B, SWARF_AXIS_C}, 1, 1, 2, 1, 0};
+  /* R = Ry(-B) Rx(-A) */
+  case SWARF_MACHINE_XYZAB_TDR:
+    return (geometry){{SWARF_AXIS_B, SWARF_AXIS_A}, 1, -1, 0, -1, 0};
+  /* R = H = Ry(B) Rz(-C): the cutter's orientation Rz(C) Ry(-B) */
+  case SWARF_MACHINE_XYZBC_HH:
+    return (geometry){{SWARF_AXIS_B, SWARF_AXIS_C}, 1, 1, 2, -1, 2};
+  /* H = Ry(B) (head), T = Rz(-C) (table) */
+  case SWARF_MACHINE_XYZBC_HT:
+    return (geometry){{SWARF_AXIS_B, SWARF_AXIS_C}, 1, 1, 2, -1, 1};
+  default:
+    return (geometry){{-1, -1}, 0, 0, 0, 0, 0};
+  }
 }
 
 /* Whether the move turns an axis the machine does not have. */
@@ -99,14 +126,17 @@ static int lacks_axis(const swarf_machine *mc, const swarf_move *mv, const int a
   return 0;
 }
 
-static void fill_rigid(const swarf_machine *mc, const swarf_move *mv, const int ax[2],
+static void fill_rigid(const swarf_machine *mc, const swarf_move *mv, const geometry *g,
                        swarf_motion *m) {
   double programmed = m->length, turn_deg = 0.0;
+  const int *ax = g->ax;
   m->kind = SWARF_MOTION_RIGID;
   m->tcp = mc->kind != SWARF_MACHINE_XYZA && mc->tcp;
   memcpy(m->pivot, mc->pivot, sizeof m->pivot);
-  m->e1[mc->kind == SWARF_MACHINE_XYZBC_TRT ? 1 : 0] = 1.0;
-  if (ax[1] >= 0) m->e2[2] = 1.0;
+  m->e1[g->dir1] = g->sign1;
+  if (ax[1] >= 0) m->e2[g->dir2] = g->sign2;
+  m->nhead = g->nhead;
+  if (g->nhead > 0) m->head[2] = mc->head;
   for (int i = 0; i < 2; i++) {
     if (ax[i] < 0) continue;
     m->th0[i] = mv->start[ax[i]] * deg;
@@ -127,17 +157,18 @@ swarf_status swarf_machine_motion(const swarf_machine *mc, const swarf_move *mv,
                                   swarf_error *err) {
   swarf_move flat;
   swarf_status rc;
-  int ax[2], zero = 1;
+  geometry g;
+  int zero = 1;
   if (mc == NULL || mv == NULL || out == NULL || !is_motion(mv)) return SWARF_ERR_ARG;
-  machine_axes(mc->kind, ax);
-  if (lacks_axis(mc, mv, ax)) return no_axis(mv, err);
+  g = machine_geometry(mc->kind);
+  if (lacks_axis(mc, mv, g.ax)) return no_axis(mv, err);
   flat = *mv; /* the X Y Z part of the move */
   for (int k = SWARF_AXIS_A; k <= SWARF_AXIS_C; k++)
     flat.start[k] = flat.end[k] = mv->start[k];
   if ((rc = swarf_motion_from_move(&flat, out, err)) != SWARF_OK) return rc;
   if (mc->kind == SWARF_MACHINE_XYZ) return SWARF_OK;
   for (int i = 0; i < 2; i++)
-    if (ax[i] >= 0 && (mv->start[ax[i]] != 0.0 || mv->end[ax[i]] != 0.0)) zero = 0;
-  if (!zero) fill_rigid(mc, mv, ax, out);
+    if (g.ax[i] >= 0 && (mv->start[g.ax[i]] != 0.0 || mv->end[g.ax[i]] != 0.0)) zero = 0;
+  if (!zero) fill_rigid(mc, mv, &g, out);
   return SWARF_OK;
 }

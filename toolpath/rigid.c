@@ -1,10 +1,12 @@
 /* rigid.c -- rigid motions with rotation (RIGID kind, toolpath.h): pose,
- * velocities and tip bounds for machines with rotary table axes.
+ * velocities and tip bounds for machines with rotary axes.
  *
- * R(a) = Rot(e1, th1(a)) Rot(e2, th2(a)) takes the workpiece to the machine,
- * the cutter keeps its machine orientation, so U = R^T and, with d = th1 - th0,
+ * R(a) = Rot(e1, th1(a)) Rot(e2, th2(a)) = H T (head factors first, then
+ * table factors), U = R^T and, with d = th1 - th0,
  *   U^T dU/da = [omega]_x,  omega = -(d1 e1 + d2 Rot(e1, th1) e2)
- * (in the cutter frame, which is parallel to the machine frame). Values only.
+ * (in the cutter frame). The tip: t = P in TCP mode; in joint mode
+ * t = pivot + T^T (P - pivot + h - H^T h), h the head's pivot above the tip
+ * (table machines: H = I, T = R). Values only.
  */
 #include <math.h>
 #include <string.h>
@@ -59,6 +61,64 @@ static void machine_arm(const swarf_motion *m, double alpha, double d[3], double
     d[k] -= m->pivot[k];
 }
 
+/* y = A x and y = A^T x (3x3 row-major). */
+static void mat_vec(const double A[9], const double x[3], double y[3]) {
+  for (int i = 0; i < 3; i++)
+    y[i] = A[3 * i] * x[0] + A[3 * i + 1] * x[1] + A[3 * i + 2] * x[2];
+}
+static void mat_tvec(const double A[9], const double x[3], double y[3]) {
+  for (int i = 0; i < 3; i++)
+    y[i] = A[i] * x[0] + A[3 + i] * x[1] + A[6 + i] * x[2];
+}
+
+/* Rotation factor k (Rot(e_k, th_k(alpha))) and its alpha-derivative
+ * d_k [e_k]_x Rot(e_k, th_k). */
+static void factor(const swarf_motion *m, int k, double alpha, double F[9], double dF[9]) {
+  const double *e = k == 0 ? m->e1 : m->e2;
+  double d = m->th1[k] - m->th0[k], th = m->th0[k] + alpha * d;
+  double S[9] = {0, -e[2], e[1], e[2], 0, -e[0], -e[1], e[0], 0};
+  rot_matrix(e, th, F);
+  mat_mul(S, F, dF);
+  for (int i = 0; i < 9; i++)
+    dF[i] *= d;
+}
+
+/* Joint mode with head axes: t = pivot + T^T g, g = P - pivot + h - H^T h,
+ * and tdot = dT^T g + T^T (dP - dH^T h). */
+static void head_tip(const swarf_motion *m, double alpha, double t[3], double td[3]) {
+  static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, Z[9] = {0};
+  double F1[9], dF1[9], F2[9], dF2[9], H[9], dH[9], T[9], dT[9], A[9], B[9];
+  double g[3], dg[3], Hh[3], dHh[3], P[3], dP[3], a[3], b[3];
+  factor(m, 0, alpha, F1, dF1);
+  factor(m, 1, alpha, F2, dF2);
+  if (m->nhead >= 2) { /* H = F1 F2, T = I */
+    mat_mul(F1, F2, H);
+    mat_mul(dF1, F2, A);
+    mat_mul(F1, dF2, B);
+    for (int i = 0; i < 9; i++)
+      dH[i] = A[i] + B[i];
+    memcpy(T, I, sizeof T);
+    memcpy(dT, Z, sizeof dT);
+  } else { /* H = F1, T = F2 */
+    memcpy(H, F1, sizeof H), memcpy(dH, dF1, sizeof dH);
+    memcpy(T, F2, sizeof T), memcpy(dT, dF2, sizeof dT);
+  }
+  machine_arm(m, alpha, P, dP);
+  mat_tvec(H, m->head, Hh);
+  mat_tvec(dH, m->head, dHh);
+  for (int k = 0; k < 3; k++) {
+    g[k] = P[k] + m->head[k] - Hh[k];
+    dg[k] = dP[k] - dHh[k];
+  }
+  mat_tvec(T, g, a);
+  mat_tvec(dT, g, b);
+  mat_tvec(T, dg, td);
+  for (int k = 0; k < 3; k++) {
+    t[k] = m->pivot[k] + a[k];
+    td[k] += b[k];
+  }
+}
+
 /* Pose (t, U) and velocities (tdot, v, omega) at alpha from one table
  * rotation (sin and cos once per axis); any output may be NULL. */
 void swarf_rigid_pose(const swarf_motion *m, double alpha, double t[3], double U[9], double tdot[3],
@@ -76,8 +136,11 @@ void swarf_rigid_pose(const swarf_motion *m, double alpha, double t[3], double U
   if (m->tcp) { /* t = P, v = U^T tdot = R tdot */
     swarf_path_point(m, alpha, d, td);
     if (t != NULL) memcpy(t, d, sizeof d);
-    for (int k = 0; k < 3; k++)
-      vv[k] = R[3 * k] * td[0] + R[3 * k + 1] * td[1] + R[3 * k + 2] * td[2];
+    mat_vec(R, td, vv);
+  } else if (m->nhead > 0) { /* head axes: head_tip, v = R tdot */
+    head_tip(m, alpha, d, td);
+    if (t != NULL) memcpy(t, d, sizeof d);
+    mat_vec(R, td, vv);
   } else { /* t = pivot + R^T d, v = omega x (P - pivot) + dP/da */
     machine_arm(m, alpha, d, dP);
     if (t != NULL)
@@ -86,8 +149,7 @@ void swarf_rigid_pose(const swarf_motion *m, double alpha, double t[3], double U
     vv[0] = w[1] * d[2] - w[2] * d[1] + dP[0];
     vv[1] = w[2] * d[0] - w[0] * d[2] + dP[1];
     vv[2] = w[0] * d[1] - w[1] * d[0] + dP[2];
-    for (int k = 0; k < 3; k++)
-      td[k] = R[k] * vv[0] + R[3 + k] * vv[1] + R[6 + k] * vv[2];
+    mat_tvec(R, vv, td);
   }
   if (tdot != NULL) memcpy(tdot, td, sizeof td);
   if (v != NULL) memcpy(v, vv, sizeof vv);

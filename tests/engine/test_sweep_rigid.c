@@ -6,7 +6,9 @@
  *   - rotary only: a ball held still while A turns 90 degrees (a torus
  *     section; checked against the torus in closed form too);
  *   - 4th-axis helix: X and A together (joint kinematics, xyza);
- *   - 5-axis: A and C change together (xyzac-trt, TCP and joint mode);
+ *   - 5-axis: A and C change together (xyzac-trt, TCP and joint mode), B and
+ *     C (xyzbc-trt; the head machines xyzbc-hh and xyzbc-ht in joint mode),
+ *     A and B (xyzab-tdr);
  *   - the nearest points lie on the characteristic curves of their time.
  */
 #include <math.h>
@@ -176,6 +178,16 @@ static void test_five_axis(void) {
   m = make("xyzbc-trt", b0, b1);
   swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 16.0, NULL);
   compare("5-axis B+C, TCP, ball", &c, &m, 6);
+  /* the machines whose head tilts (the cutter turns about the head's pivot in
+   * joint mode) and the dual table */
+  m = make("xyzbc-hh,mode=joint,head=25", b0, b1);
+  compare("head-head B+C, joint, ball", &c, &m, 7);
+  m = make("xyzbc-ht,mode=joint,pivot=2,-3,head=25", b0, b1);
+  swarf_cutter_init(&c, SWARF_CUTTER_BULL, 6.0, 1.0, 20.0, NULL);
+  compare("head-table B+C, joint, bull", &c, &m, 8);
+  const double a0[6] = {1, 2, 3, 10, 20, 0}, a1[6] = {4, 0, 2, 55, -25, 0};
+  m = make("xyzab-tdr", a0, a1);
+  compare("dual table A+B, TCP, bull", &c, &m, 9);
 }
 
 /* Outside points whose nearest instance is inside the move: the nearest

@@ -1,6 +1,7 @@
 /* canon_compare.h -- helpers of the gcode tests (header only): collect the
  * canonical calls swarf prints (its canon listener) and compare the motion
- * calls (STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, DWELL) or the MESSAGE
+ * calls (STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, DWELL, STRAIGHT_PROBE,
+ * NURBS_FEED) or the MESSAGE
  * numbers of two canon texts in rs274's format, numerically, in order.
  * The texts are owned by the caller; canon_calls owns its array.
  */
@@ -54,7 +55,10 @@ static inline const char *canon_find(const char *s, size_t n, const char *needle
 
 /* The calls of `text` (motions, or only MESSAGE numbers when `messages`). */
 static inline void canon_extract(const char *text, int messages, canon_calls *out) {
-  static const char *names[] = {"STRAIGHT_TRAVERSE(", "STRAIGHT_FEED(", "ARC_FEED(", "DWELL("};
+  /* kinds 0-3 and 5-6 (4 is MESSAGE): G38.x prints STRAIGHT_PROBE, G5 and
+   * G5.1 NURBS_FEED(4, ...) / (3, ...) (only the order is compared). */
+  static const char *names[] = {"STRAIGHT_TRAVERSE(", "STRAIGHT_FEED(", "ARC_FEED(", "DWELL(", NULL,
+                                "STRAIGHT_PROBE(",    "NURBS_FEED("};
   long line = 0;
   memset(out, 0, sizeof *out);
   for (const char *s = text; s && *s; s = strchr(s, '\n'), s = s ? s + 1 : NULL) {
@@ -74,7 +78,8 @@ static inline void canon_extract(const char *text, int messages, canon_calls *ou
         p = end - 1;
       }
     } else {
-      for (int k = 0; k < 4 && open == NULL; k++) {
+      for (int k = 0; k < 7 && open == NULL; k++) {
+        if (names[k] == NULL) continue;
         p = canon_find(s, n, names[k]);
         if (p != NULL) c.kind = k, open = p + strlen(names[k]);
       }

@@ -4,7 +4,9 @@
  * in pieces whose sizes come from the input's first byte. Both runs must
  * agree exactly (same moves, same status, same error place), and every move
  * must be sane: finite numbers, a unit normal and a sweep in (0, 2 pi 10^4]
- * for arcs, lines in order, columns from 1. Any breach aborts.
+ * for arcs, a feed above 0 on every arc and feed line, lines within the
+ * input (loops and calls run lines again, so lines need not grow), columns
+ * from 1. Any breach aborts.
  * Built with libFuzzer under clang, and linked into fuzz_smoke (a plain
  * driver) everywhere.
  */
@@ -19,7 +21,7 @@
 typedef struct {
   uint64_t hash;
   long moves;
-  long last_line;
+  long lines; /* lines in the input: a move's line is 1..lines */
 } fuzz_run;
 
 static void fail(const char *why) {
@@ -45,7 +47,8 @@ static void check_move(const swarf_move *mv, fuzz_run *r) {
   check_finite(mv->center, 3);
   check_finite(&mv->angle, 1);
   check_finite(&mv->rise, 1);
-  if (mv->line < r->last_line || mv->line < 1 || mv->column < 1) fail("bad line or column");
+  if (mv->line > r->lines || mv->line < 1 || mv->column < 1) fail("bad line or column");
+  if (mv->kind == SWARF_MOVE_LINE && !(mv->feed > 0)) fail("feed line without feed");
   if (mv->feed < 0 || !isfinite(mv->feed) || !isfinite(mv->spindle)) fail("bad feed or spindle");
   if (mv->kind == SWARF_MOVE_ARC) {
     double n2 = mv->normal[0] * mv->normal[0] + mv->normal[1] * mv->normal[1] +
@@ -59,7 +62,6 @@ static void check_move(const swarf_move *mv, fuzz_run *r) {
 static int on_move(const swarf_move *mv, void *user) {
   fuzz_run *r = user;
   check_move(mv, r);
-  r->last_line = mv->line;
   r->moves++;
   r->hash = mix(r->hash, &mv->kind, sizeof mv->kind);
   r->hash = mix(r->hash, mv->end, sizeof mv->end);
@@ -68,6 +70,17 @@ static int on_move(const swarf_move *mv, void *user) {
   r->hash = mix(r->hash, &mv->line, sizeof mv->line);
   r->hash = mix(r->hash, &mv->column, sizeof mv->column);
   return 0;
+}
+
+/* The dialect an input asks for on its first line: ";fanuc", ";haas" or
+ * ";grbl" (a comment in every dialect), else LinuxCNC. */
+static swarf_gcode_dialect dialect_of(const uint8_t *data, size_t size) {
+  static const char *names[] = {";fanuc", ";haas", ";grbl"};
+  for (int i = 0; i < 3; i++) {
+    size_t n = strlen(names[i]);
+    if (size >= n && memcmp(data, names[i], n) == 0) return (swarf_gcode_dialect)(i + 1);
+  }
+  return SWARF_GCODE_DIALECT_LINUXCNC;
 }
 
 /* Runs `data` in pieces of 1..max_piece bytes (0: whole); returns the status
@@ -80,7 +93,11 @@ static int run(const uint8_t *data, size_t size, unsigned max_piece, uint32_t se
   size_t at = 0;
   memset(r, 0, sizeof *r);
   r->hash = 14695981039346656037ull;
+  r->lines = 1;
+  for (size_t i = 0; i < size; i++)
+    r->lines += data[i] == '\n';
   if (p == NULL) fail("out of memory");
+  status = swarf_gcode_parser_set_dialect(p, dialect_of(data, size), NULL);
   while (at < size && status == SWARF_OK) {
     size_t piece = size - at;
     if (max_piece) {

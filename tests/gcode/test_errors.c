@@ -30,7 +30,7 @@ static const bad_case cases[] = {
     {"G0 X1\nG12.5 X2\n", 2, 1, SEM, SWARF_GCODE_E_UNKNOWN_G_CODE},
     {"M1.5\n", 1, 1, SEM, SWARF_GCODE_E_UNKNOWN_M_CODE},
     {"G0 M528\n", 1, 4, SEM, SWARF_GCODE_E_M_CODE_RANGE},
-    {"G38.2 Z1 F1\n", 1, 1, SEM, SWARF_GCODE_E_CODE_NOT_SUPPORTED},
+    {"G33 Z1 K1\n", 1, 1, SEM, SWARF_GCODE_E_CODE_NOT_SUPPORTED},
     {"G0 X1 U2\n", 1, 7, SEM, SWARF_GCODE_E_LETTER_NOT_SUPPORTED},
     {"G0 X1e5\n", 1, 6, SEM, SWARF_GCODE_E_LETTER_NOT_SUPPORTED},
     /* Cutter radius compensation (messages as rs274 gives them). */
@@ -102,7 +102,7 @@ static const bad_case cases[] = {
     {"G0 X1\no100 sub\nG0 X2\n", 2, 1, SEM, SWARF_GCODE_E_O_OPEN_AT_END},
     {"o100 endwhile\n", 1, 1, SEM, SWARF_GCODE_E_O_NOT_OPEN},
     {"o<nope> call\n", 1, 1, SEM, SWARF_GCODE_E_O_UNKNOWN_SUB},
-    {"o1 while [1]\no1 endwhile\n", 2, 1, LIM, SWARF_GCODE_E_O_LOOP_LIMIT},
+    {"o1 while [1]\no1 endwhile\n", 1, 1, LIM, SWARF_GCODE_E_O_WORK_LIMIT},
     {"G81 X1 Y1 Z-1 F10\n", 1, 1, SEM, SWARF_GCODE_E_CYCLE_R_MISSING},
     {"G0 Z0\nG81 X1 Z1 R0 F10\n", 2, 1, SEM, SWARF_GCODE_E_CYCLE_R_BELOW_DEPTH},
     {"G43 H7\n", 1, 1, SEM, SWARF_GCODE_E_TOOL_NOT_FOUND},

@@ -91,9 +91,13 @@ static void test_percent_and_end(void) {
 }
 
 static void test_line_numbers_and_block_delete(void) {
+  /* The block delete switch is off: `/` blocks run, as rs274 runs them
+   * (test_dialects.c turns it on). */
   run_text("N10 G0 X1\nn20.5 G0 X2\n/G0 X7\n  / G0 X8\nN30\nG0 X3\n", &c);
-  CHECK(c.status == 0 && c.n == 3, "N and /: %d moves (%s)", c.n, c.error.message);
-  if (c.n == 3) CHECK(c.moves[2].end[0] == 3 && c.moves[2].line == 6, "deleted blocks skipped");
+  CHECK(c.status == 0 && c.n == 5, "N and /: %d moves (%s)", c.n, c.error.message);
+  if (c.n == 5)
+    CHECK(c.moves[2].end[0] == 7 && c.moves[3].end[0] == 8 && c.moves[4].line == 6,
+          "`/` blocks run with the switch off");
 }
 
 static void test_tools_spindle_dwell(void) {

@@ -9,12 +9,14 @@
 #include <string.h>
 
 #include "cli.h"
+#include "swarf_file.h"
 #include "cli_stock.h"
 #include "gcode.h"
 #include "stock.h"
 
 static const char parse_help[] =
-    "usage: swarf parse PROGRAM [--quiet | --canon] [--tools TABLE]\n"
+    "usage: swarf parse PROGRAM [--quiet | --canon] [--tools TABLE] [--dialect NAME]\n"
+    "                   [--block-delete] [--subroutine-path DIRS]\n"
     "\n"
     "Checks PROGRAM and lists its canonical moves, one per line:\n"
     "  LINE KIND X Y Z [centre CX CY CZ normal NX NY NZ angle DEG rise MM] F feed T tool\n"
@@ -22,6 +24,14 @@ static const char parse_help[] =
     "converted). --quiet prints only the count. --canon prints the canonical calls as\n"
     "`rs274 -g` does instead (program coordinates, active unit), to compare line by\n"
     "line. --tools reads a LinuxCNC tool table (inches, as rs274 without an INI).\n"
+    "  --dialect NAME   linuxcnc (default), fanuc, haas or grbl (README: G-code\n"
+    "                   dialects)\n"
+    "  --block-delete   the block delete switch is on: `/` blocks are skipped (off:\n"
+    "                   they run, as rs274 runs them)\n"
+    "  --subroutine-path DIRS  where `o<name> call` finds <name>.ngc (':' between\n"
+    "                   directories)\n"
+    "What was accepted without effect (a vendor M code, a grbl $ line, a probe move\n"
+    "that found nothing) is told as FILE:LINE:COL: note: ... on stderr.\n"
     "Exit status 2 with FILE:LINE:COL: message on the first error.\n";
 
 static const char info_help[] =
@@ -70,27 +80,55 @@ static int count_move(const swarf_move *m, void *user) {
   return 0;
 }
 
-/* Streams the program through a parser with the canon listener set. */
-static int parse_canon(const char *program, const char *tools, long *count,
-                       swarf_error *err) {
+typedef struct {
+  const char *program, *tools, *dialect, *subpath;
+  int canon, quiet, block_delete;
+} parse_options;
+
+static void print_note(long line, int column, const char *note, void *user) {
+  fprintf(stderr, "%s:%ld:%d: note: %s\n", (const char *)user, line, column, note);
+}
+
+/* The reading options on a new parser. */
+static int parse_setup(swarf_gcode_parser *p, const parse_options *o, swarf_error *err) {
+  swarf_gcode_dialect d = SWARF_GCODE_DIALECT_LINUXCNC;
+  int rc = SWARF_OK;
+  if (o->canon) swarf_gcode_parser_set_canon(p, print_canon, NULL);
+  swarf_gcode_parser_set_notes(p, print_note, (void *)o->program);
+  if (o->dialect != NULL) swarf_gcode_dialect_from_name(o->dialect, &d);
+  rc = swarf_gcode_parser_set_dialect(p, d, err);
+  if (rc == SWARF_OK) rc = swarf_gcode_parser_set_block_delete(p, o->block_delete, err);
+  if (rc == SWARF_OK && o->subpath != NULL)
+    rc = swarf_gcode_parser_set_subroutine_path(p, o->subpath, err);
+  if (rc == SWARF_OK && o->tools != NULL) rc = swarf_gcode_parser_load_tools(p, o->tools, err);
+  return rc;
+}
+
+/* Streams the program through a parser set up as the options say. */
+static int parse_stream(const parse_options *o, long *count, swarf_error *err) {
   char chunk[65536];
   size_t got;
   int rc = SWARF_OK;
-  FILE *in = fopen(program, "rb");
   swarf_gcode_parser *p;
+  FILE *in;
   memset(err, 0, sizeof *err);
-  snprintf(err->file, sizeof err->file, "%s", program);
+  in = swarf_file_open_input(o->program, "program", 0, err); /* regular files only */
   if (in == NULL) {
-    snprintf(err->message, sizeof err->message, "cannot open file: %s", strerror(errno));
-    return SWARF_ERR_OPEN;
+    char why[sizeof err->message];
+    snprintf(why, sizeof why, "%s", err->message);
+    snprintf(err->message, sizeof err->message, "cannot open file: %.480s", why);
+    return err->status;
   }
-  if (swarf_gcode_parser_new(program, count_move, count, &p) != SWARF_OK)
+  if (swarf_gcode_parser_new(o->program, o->canon ? count_move : print_move, count, &p) != SWARF_OK)
     return fclose(in), SWARF_ERR_MEMORY;
-  swarf_gcode_parser_set_canon(p, print_canon, NULL);
-  if (tools != NULL) rc = swarf_gcode_parser_load_tools(p, tools, err);
+  rc = parse_setup(p, o, err);
   while (rc == SWARF_OK && !swarf_gcode_parser_ended(p) &&
          (got = fread(chunk, 1, sizeof chunk, in)) > 0)
     rc = swarf_gcode_parser_feed(p, chunk, got);
+  if (rc == SWARF_OK && ferror(in)) {
+    snprintf(err->message, sizeof err->message, "cannot read file");
+    rc = SWARF_ERR_OPEN;
+  }
   if (rc == SWARF_OK) rc = swarf_gcode_parser_finish(p);
   if (rc != SWARF_OK && swarf_gcode_parser_error(p) != NULL) *err = *swarf_gcode_parser_error(p);
   swarf_gcode_parser_free(p);
@@ -100,32 +138,49 @@ static int parse_canon(const char *program, const char *tools, long *count,
 
 int swarf_cli_parse(int argc, char **argv) {
   long count[2] = {0, 0};
-  const char *program = NULL, *tools = NULL;
+  parse_options o = {0};
   swarf_error err;
-  int rc, canon = 0;
+  int rc;
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(parse_help, stdout), 0;
-    if (!strcmp(argv[i], "--quiet")) count[1] = 1;
-    else if (!strcmp(argv[i], "--canon")) canon = 1;
-    else if (!strcmp(argv[i], "--tools") && i + 1 < argc) tools = argv[++i];
-    else if (argv[i][0] == '-' || program) {
-      fprintf(stderr, "swarf parse: unexpected \"%s\"\n%s", argv[i], parse_help);
+    const char *a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return fputs(parse_help, stdout), 0;
+    if (!strcmp(a, "--quiet"))
+      count[1] = 1;
+    else if (!strcmp(a, "--canon"))
+      o.canon = 1;
+    else if (!strcmp(a, "--block-delete"))
+      o.block_delete = 1;
+    else if (!strcmp(a, "--tools") && i + 1 < argc)
+      o.tools = argv[++i];
+    else if (!strcmp(a, "--subroutine-path") && i + 1 < argc)
+      o.subpath = argv[++i];
+    else if (!strcmp(a, "--dialect") && i + 1 < argc) {
+      o.dialect = argv[++i];
+      if (swarf_gcode_dialect_from_name(o.dialect, NULL) != 0) {
+        fprintf(stderr, "swarf parse: --dialect: give linuxcnc, fanuc, haas or grbl (got \"%s\")\n",
+                o.dialect);
+        return 2;
+      }
+    } else if (a[0] == '-' || o.program) {
+      fprintf(stderr, "swarf parse: unexpected \"%s\"\n%s", a, parse_help);
       return 2;
-    } else program = argv[i];
+    } else
+      o.program = a;
   }
-  if (program == NULL) return fputs(parse_help, stderr), 2;
-  if (canon || tools != NULL) {
-    fflush(stdout);
-    rc = canon ? parse_canon(program, tools, count, &err) : SWARF_ERR_ARG;
-    if (!canon) snprintf(err.message, sizeof err.message, "--tools needs --canon"), err.line = 0;
-  } else
-    rc = swarf_gcode_parse_file(program, print_move, count, &err);
+  if (o.program == NULL) return fputs(parse_help, stderr), 2;
+  if (o.tools != NULL && !o.canon) {
+    fprintf(stderr, "swarf parse: --tools needs --canon\n");
+    return 2;
+  }
+  fflush(stdout);
+  rc = parse_stream(&o, count, &err);
   if (rc != SWARF_OK) {
-    if (err.line > 0) fprintf(stderr, "%s:%ld:%d: %s\n", err.file, err.line, err.column, err.message);
-    else fprintf(stderr, "%s: %s\n", err.file, err.message);
+    char msg[1024];
+    swarf_error_format(&err, msg, sizeof msg); /* FILE:LINE:COL, or TABLE:LINE for tables */
+    fprintf(stderr, "%s\n", msg);
     return swarf_status_classify(rc) == SWARF_CLASS_INPUT ? 2 : 1;
   }
-  fprintf(count[1] ? stdout : stderr, "%s: %ld moves\n", program, count[0]);
+  fprintf(count[1] ? stdout : stderr, "%s: %ld moves\n", o.program, count[0]);
   return 0;
 }
 
@@ -179,12 +234,16 @@ static int render_args(render_options *o, int argc, char **argv) {
       o->in = f;
       continue;
     }
-    if (v == NULL || f[0] != '-') return fprintf(stderr, "swarf render: unexpected \"%s\"\n%s", f, render_help), 2;
+    if (v == NULL || f[0] != '-')
+      return fprintf(stderr, "swarf render: unexpected \"%s\"\n%s", f, render_help), 2;
     i++;
-    if (!strcmp(f, "--image")) o->out = v;
-    else if (!strcmp(f, "--design")) o->design = v;
+    if (!strcmp(f, "--image"))
+      o->out = v;
+    else if (!strcmp(f, "--design"))
+      o->design = v;
     else if (!strcmp(f, "--size")) {
-      if (sscanf(v, "%dx%d", &o->w, &o->h) != 2 || o->w < 16 || o->h < 16 || o->w > 8192 || o->h > 8192)
+      if (sscanf(v, "%dx%d", &o->w, &o->h) != 2 || o->w < 16 || o->h < 16 || o->w > 8192 ||
+          o->h > 8192)
         return fprintf(stderr, "swarf render: --size WIDTHxHEIGHT, 16 to 8192\n"), 2;
     } else if (!strcmp(f, "--view")) {
       if (swarf_stock_view_parse(v, &o->view, &err) != SWARF_OK)
@@ -198,7 +257,8 @@ static int render_args(render_options *o, int argc, char **argv) {
       return fprintf(stderr, "swarf render: unexpected \"%s\"\n%s", f, render_help), 2;
   }
   if (!o->in || !o->out) return fputs(render_help, stderr), 2;
-  if (o->tolerance > 0 && !o->design) return fprintf(stderr, "swarf render: --tolerance needs --design\n"), 2;
+  if (o->tolerance > 0 && !o->design)
+    return fprintf(stderr, "swarf render: --tolerance needs --design\n"), 2;
   return 0;
 }
 
@@ -211,14 +271,16 @@ int swarf_cli_render(int argc, char **argv) {
   int rc = render_args(&o, argc, argv);
   if (rc) return rc == 1 ? 0 : rc;
   if ((s = open_grid("render", o.in)) == NULL) return 2;
-  if (o.design && swarf_stock_read_design(o.design, swarf_stock_voxel(s), &design, &err) != SWARF_OK) {
+  if (o.design &&
+      swarf_stock_read_design(o.design, swarf_stock_voxel(s), &design, &err) != SWARF_OK) {
     swarf_error_format(&err, msg, sizeof msg);
     fprintf(stderr, "swarf render: --design: %s\n", msg);
     swarf_stock_free(s);
     return (int)swarf_status_classify(err.status);
   }
   memset(&opt, 0, sizeof opt);
-  opt.width = o.w, opt.height = o.h, opt.view = o.view, opt.design = design, opt.tolerance = o.tolerance;
+  opt.width = o.w, opt.height = o.h, opt.view = o.view, opt.design = design,
+  opt.tolerance = o.tolerance;
   rc = 0;
   if (swarf_stock_write_image(s, o.out, &opt, &err) != SWARF_OK) {
     swarf_error_format(&err, msg, sizeof msg);

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_mpi.h"
 #include "cli_stock.h"
 #include "modbus_service.h"
 #include "swarf_sim.h"
@@ -35,7 +36,13 @@ static const char help[] =
     "                   views: below)\n"
     "  --machine NAME   xyz (default); xyza[,pivot=Y,Z] (rotary table about X);\n"
     "                   xyzac-trt or xyzbc-trt[,mode=tcp|joint][,pivot=X,Y,Z] (5-axis\n"
-    "                   table-rotary-tilting, tool-centre-point mode by default)\n"
+    "                   table-rotary-tilting, tool-centre-point mode by default);\n"
+    "                   xyzab-tdr[,mode=tcp|joint][,pivot=X,Y,Z] (B cradle carrying\n"
+    "                   an A table); xyzbc-hh[,mode=tcp|joint][,head=L] (spindle head:\n"
+    "                   C carrying B); xyzbc-ht[,mode=tcp|joint][,pivot=X,Y][,head=L]\n"
+    "                   (head B, table C about Z through X,Y). head=L: the head's\n"
+    "                   pivot, mm above the gauge line (the tool's length is added);\n"
+    "                   needed in joint mode. Directions: README, rotary machines\n"
     "  --tool T1=ball,D3.175,L25   a cutter: T number = family, fields (mm, angles in\n"
     "                   degrees; L is the cutting length above the tip, default 4*D):\n"
     "     flat|ball|bull,D<d>[,R<corner>][,L]   end mills (bull needs R; flutes may be\n"
@@ -83,8 +90,16 @@ static const char help[] =
     "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer;\n"
     "                   with --design, coloured by the deviation, with a legend)\n"
     "  --quiet          no progress bar and no summary\n"
+    "  --threads N      threads for the stock passes (default 0: all cores)\n"
     "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
+    "  --balance N      after the run, how evenly 2 to N processes would share the\n"
+    "                   removal (busiest rank's voxels over the mean; one process)\n"
+    "\n"
+    "Several processes (README: scale): under mpirun or srun every rank plays the\n"
+    "whole program on its slab of the stock; rank 0 prints and writes the same\n"
+    "outputs, voxel for voxel, as one process. Every rank needs the program and\n"
+    "the input files; only rank 0 writes.\n"
     "\n"
     "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ..., or\n"
     "FILE:LINE: for tool tables and libraries), 1 on an internal failure, 3 aborted\n"
@@ -96,6 +111,7 @@ static const char help[] =
 typedef struct {
   const char *program, *out, *mesh, *image;
   int quiet, fail_on_collision;
+  int balance; /* --balance N */
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
   swarf_verify verify;
@@ -171,6 +187,15 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
     if (read_double(flag, val, 1, &d)) return 2;
     return o->cfg.batch = (int)d, 0;
   }
+  if (!strcmp(flag, "--threads")) {
+    if (read_double(flag, val, 0, &d)) return 2;
+    if (d > 4096 || d != floor(d)) return usage_error("--threads: give 0 (all cores) to 4096");
+    return o->cfg.threads = (int)d, 0;
+  }
+  if (!strcmp(flag, "--balance")) {
+    if (read_double(flag, val, 2, &d) || d > 1024) return usage_error("--balance: give 2 to 1024");
+    return o->balance = (int)d, o->cfg.tally = 1, 0;
+  }
   if (!strcmp(flag, "--stamp")) {
     if (read_double(flag, val, 1e-3, &o->cfg.stamp_step)) return 2;
     return 0;
@@ -182,7 +207,8 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   }
   if (!strcmp(flag, "--machine")) {
     swarf_error err;
-    if (swarf_machine_parse(&o->cfg.machine, val, &err) != SWARF_OK) return usage_error(err.message);
+    if (swarf_machine_parse(&o->cfg.machine, val, &err) != SWARF_OK)
+      return usage_error(err.message);
     return 0;
   }
   if (!strcmp(flag, "--tool") || !strcmp(flag, "--holder")) {
@@ -255,10 +281,14 @@ static int build_tools(sim_options *o) {
   return 0;
 }
 
-/* Refuse an output whose folder does not exist or is not writable. */
+/* 0 on the rank that writes (rank 0, or the one process). */
+static int writer_rank = 0;
+
+/* Refuse an output whose folder does not exist or is not writable (where
+ * it is written: on rank 0). */
 static int check_output(const char *flag, const char *path) {
   char copy[4096], what[4200];
-  if (path == NULL) return 0;
+  if (path == NULL || writer_rank != 0) return 0;
   snprintf(copy, sizeof copy, "%s", path);
   if (access(dirname(copy), W_OK) == 0) return 0;
   snprintf(what, sizeof what, "%s: cannot write \"%s\": %s", flag, path, strerror(errno));
@@ -272,7 +302,10 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   o->table_mm_per_unit = 1.0;
   o->cfg.collision_depths = 100; /* the warnings printed; the rest are counted */
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return fputs(help, stdout), fputs("\nStock from files, placement and outputs:\n", stdout), fputs(swarf_cli_stock_help, stdout), fputs(swarf_verify_help, stdout), fputs(swarf_modbus_help, stdout), 1;
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
+      return fputs(help, stdout), fputs("\nStock from files, placement and outputs:\n", stdout),
+             fputs(swarf_cli_stock_help, stdout), fputs(swarf_verify_help, stdout),
+             fputs(swarf_modbus_help, stdout), 1;
     if (argv[i][0] != '-' || argv[i][1] == '\0') {
       if (o->program) return usage_error("give one PROGRAM only");
       o->program = argv[i];
@@ -300,7 +333,8 @@ static int parse_args(sim_options *o, int argc, char **argv) {
 static int check_size(const swarf_sim_config *cfg) {
   double d[3], area, voxels;
   char what[256];
-  for (int k = 0; k < 3; k++) d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
+  for (int k = 0; k < 3; k++)
+    d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
   area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
   voxels = area / (cfg->voxel * cfg->voxel) * 2.0 * cfg->half_width;
   if (voxels < 2e9) return 0;
@@ -316,8 +350,8 @@ static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t 
     fprintf(stderr, "swarf simulate: %s\n", err.message);
     return 1;
   }
-  return swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design, o->verify.tolerance,
-                               o->stock.view, ntri);
+  return swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
+                               o->verify.tolerance, o->stock.view, ntri);
 }
 
 static void print_alarm(const sim_options *o, const swarf_alarm *a) {
@@ -351,29 +385,26 @@ static void print_alarms(const sim_options *o, const alarm_list *l, const swarf_
   long told[5] = {0};
   for (long i = 0; i < l->n; i++) {
     const swarf_alarm *a = &l->a[i];
-    if ((unsigned)a->kind >= 5 || a->kind == SWARF_ALARM_GOUGE || told[a->kind]++ >= 100)
-      continue;
+    if ((unsigned)a->kind >= 5 || a->kind == SWARF_ALARM_GOUGE || told[a->kind]++ >= 100) continue;
     print_alarm(o, a);
   }
   for (int k = 0; k < SWARF_ALARM_GOUGE; k++) {
     long shown = told[k] < 100 ? told[k] : 100;
     if (r->alarm_count[k] > shown)
-      fprintf(stderr, "%s: warning: %ld more %s\n", o->program, r->alarm_count[k] - shown,
-              what[k]);
+      fprintf(stderr, "%s: warning: %ld more %s\n", o->program, r->alarm_count[k] - shown, what[k]);
   }
 }
 
-static void print_summary(const sim_options *o, const swarf_stock *stock,
-                          const swarf_sim_report *r, double total_s, size_t ntri) {
+static void print_summary(const sim_options *o, const swarf_stock *stock, const swarf_sim_report *r,
+                          double total_s, size_t ntri) {
   double removed = r->volume_before - r->volume_after;
   printf("swarf: %s\n", o->program);
   printf("  lines %ld, moves %ld (%ld rapid, %ld arcs), %ld cutting the stock, %ld tool changes\n",
          r->lines, r->moves, r->rapids, r->arcs, r->cutting_moves, r->tool_changes);
   printf("  path %.1f mm, machining time %.1f min at programmed feeds\n", r->path_mm,
          r->machining_s / 60.0);
-  printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n",
-         r->volume_before, removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0,
-         r->volume_after);
+  printf("  stock %.1f mm^3, removed %.1f mm^3 (%.1f%%), remaining %.1f mm^3\n", r->volume_before,
+         removed, r->volume_before > 0 ? 100.0 * removed / r->volume_before : 0.0, r->volume_after);
   printf("  alarms %ld (%ld rapid moves cutting into material, %ld moves gouging the design, %ld "
          "collisions: %ld shank, %ld holder, %ld fixture)\n",
          r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE],
@@ -417,6 +448,10 @@ static void on_line(void *user, const swarf_line_result *l) {
   swarf_verify_line(((sim_clients *)user)->verify, l);
 }
 
+static void on_note(void *user, long line, int column, const char *text) {
+  swarf_verify_note(((sim_clients *)user)->verify, line, column, text);
+}
+
 /* The run's failure on stderr; returns the exit status. */
 static int report_failure(const swarf_error *e, const swarf_modbus_service *mb) {
   char msg[1024];
@@ -429,7 +464,36 @@ static int report_failure(const swarf_error *e, const swarf_modbus_service *mb) 
   return (int)swarf_status_classify(e->status);
 }
 
-int swarf_cli_simulate(int argc, char **argv) {
+/* Several processes: every rank must read the program (the driver opens it
+ * inside the run, where a rank failing alone would leave the others
+ * waiting): the driver's own message when it cannot. */
+static int check_program(const char *path) {
+  FILE *f = fopen(path, "rb");
+  swarf_error e;
+  char msg[1024];
+  if (f != NULL) return fclose(f), 0;
+  swarf_error_init(&e);
+  swarf_error_at(&e, path, 0, 0, NULL);
+  swarf_error_set(&e, SWARF_ERR_OPEN, "cannot open the program: %s", strerror(errno));
+  swarf_error_format(&e, msg, sizeof msg);
+  fprintf(stderr, "%s\n", msg);
+  return (int)swarf_status_classify(SWARF_ERR_OPEN);
+}
+
+/* The run failed: bad input and a stop are every rank's (the same program
+ * everywhere), reported once by rank 0; anything else may be this rank's
+ * alone: all ranks end (MPI_Abort, status 1). Returns the exit status. */
+static int run_failed(swarf_cli_mpi *mpi, const swarf_error *e, const swarf_modbus_service *mb) {
+  const swarf_status_class c = swarf_status_classify(e->status);
+  if (c != SWARF_CLASS_INPUT && e->status != SWARF_ERR_ABORTED) {
+    char msg[1024];
+    swarf_error_format(e, msg, sizeof msg);
+    swarf_cli_mpi_abort(mpi, msg, 1);
+  }
+  return report_failure(e, mb);
+}
+
+static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   sim_options o;
   swarf_sim_report rep;
   swarf_stock *stock = NULL;
@@ -438,30 +502,46 @@ int swarf_cli_simulate(int argc, char **argv) {
   swarf_error err;
   size_t ntri = 0;
   swarf_stock *initial = NULL;
+  const int parts = mpi->comm.size > 1, rank = mpi->comm.rank;
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
-  if (rc || (o.stock.file == NULL && (rc = check_size(&o.cfg)))) return rc;
-  if ((rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial))) return rc;
-  if ((rc = swarf_verify_prepare(&o.verify, &o.cfg)))
+  if (rc == 0 && o.stock.file == NULL) rc = check_size(&o.cfg);
+  if (rc == 0 && parts && o.balance) rc = usage_error("--balance: run it on one process");
+  if (rc == 0 && parts) rc = check_program(o.program);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
+  rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return swarf_stock_free(initial), rc;
+  rc = swarf_verify_prepare(&o.verify, &o.cfg);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc)))
     return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
-  if ((rc = swarf_modbus_start(&o.modbus, o.program, &mb)))
-    return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
+  if (rank == 0) rc = swarf_modbus_start(&o.modbus, o.program, &mb); /* rank 0's only */
+  if ((rc = swarf_cli_mpi_agree(mpi, rc)))
+    return swarf_stock_free(initial), swarf_verify_free(&o.verify), swarf_modbus_finish(mb, rc, NULL), rc;
+  if (rank != 0) o.quiet = 1;
+  if (parts) o.cfg.comm = &mpi->comm;
   swarf_progress_init(&pb);
   sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}};
   o.cfg.cb.progress = on_progress;
   o.cfg.cb.alarm = on_alarm;
+  o.cfg.cb.note = on_note;
   if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
   o.cfg.cb.user = &clients;
   swarf_error_init(&err);
-  if (swarf_cli_run(&o.cfg, o.program, initial, &stock, &rep, &err) != SWARF_OK) {
+  if (swarf_cli_run(&o.cfg, o.program, initial, o.balance, &stock, &rep, &err) != SWARF_OK) {
     swarf_progress_finish(&pb);
-    rc = report_failure(&err, mb);
+    rc = run_failed(mpi, &err, mb);
     swarf_modbus_finish(mb, rc, &rep);
     swarf_verify_free(&o.verify);
     free(clients.alarms.a);
     return rc;
   }
   swarf_progress_finish(&pb);
+  if (rank != 0) { /* rank 0 prints and writes; this rank's stock is its slab */
+    free(clients.alarms.a);
+    swarf_stock_free(stock);
+    swarf_verify_free(&o.verify);
+    return 0;
+  }
   print_alarms(&o, &clients.alarms, &rep);
   free(clients.alarms.a);
   swarf_verify_warn(&o.verify, o.program, &rep);
@@ -480,4 +560,12 @@ int swarf_cli_simulate(int argc, char **argv) {
   swarf_stock_free(stock);
   swarf_verify_free(&o.verify);
   return rc;
+}
+
+int swarf_cli_simulate(int argc, char **argv) {
+  swarf_cli_mpi mpi;
+  int rc = swarf_cli_mpi_start(&mpi);
+  if (rc != 0) return rc;
+  writer_rank = mpi.comm.rank;
+  return swarf_cli_mpi_end(&mpi, simulate(argc, argv, &mpi));
 }

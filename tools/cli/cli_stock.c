@@ -107,17 +107,30 @@ int swarf_cli_stock_make(const swarf_cli_stock *c, swarf_sim_config *cfg, swarf_
   return 0;
 }
 
+/* The work balance of 2..upto processes, from the run's tally. */
+static void print_balance(const swarf_sim *sim, int upto) {
+  static const int ranks[] = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 256, 512, 1024};
+  double ratio, visited;
+  for (size_t i = 0; i < sizeof ranks / sizeof ranks[0] && ranks[i] <= upto; i++)
+    if (swarf_sim_balance(sim, ranks[i], &ratio, &visited) == SWARF_OK)
+      printf("balance: %4d ranks: busiest/mean %.3f (%.4g voxels visited in all)\n", ranks[i],
+             ratio, visited);
+}
+
 swarf_status swarf_cli_run(const swarf_sim_config *cfg, const char *program, swarf_stock *stock,
-                           swarf_stock **out, swarf_sim_report *rep, swarf_error *err) {
+                           int balance, swarf_stock **out, swarf_sim_report *rep,
+                           swarf_error *err) {
   swarf_sim *sim = NULL;
   swarf_status st;
-  if (stock == NULL) return swarf_sim_run(cfg, program, out, rep, err);
   *out = NULL;
   memset(rep, 0, sizeof *rep);
-  if ((st = swarf_sim_new_with_stock(cfg, program, stock, &sim, err)) != SWARF_OK) return st;
+  st = stock != NULL ? swarf_sim_new_with_stock(cfg, program, stock, &sim, err)
+                     : swarf_sim_new(cfg, program, &sim, err);
+  if (st != SWARF_OK) return st;
   st = swarf_sim_feed_file(sim, program);
   if (st == SWARF_OK) st = swarf_sim_finish(sim);
   *rep = *swarf_sim_get_report(sim);
+  if (st == SWARF_OK && balance >= 2) print_balance(sim, balance);
   if (st == SWARF_OK) *out = swarf_sim_take_stock(sim);
   else if (err != NULL) *err = *swarf_sim_error(sim);
   swarf_sim_free(sim);

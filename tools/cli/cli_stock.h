@@ -43,9 +43,12 @@ int swarf_cli_mesh_name(const char *flag, const char *path);
  * from cfg->stock; cfg->voxel becomes the stock's. Returns the exit status. */
 int swarf_cli_stock_make(const swarf_cli_stock *c, swarf_sim_config *cfg, swarf_stock **out);
 
-/* swarf_sim_run on `stock` (owned; NULL: the driver's own from cfg). */
+/* swarf_sim_run on `stock` (owned; NULL: the driver's own from cfg). With
+ * balance >= 2 (and cfg->tally) it prints after the run how evenly 2 to
+ * `balance` processes would have shared the removal (swarf_sim_balance). */
 swarf_status swarf_cli_run(const swarf_sim_config *cfg, const char *program, swarf_stock *stock,
-                           swarf_stock **out, swarf_sim_report *rep, swarf_error *err);
+                           int balance, swarf_stock **out, swarf_sim_report *rep,
+                           swarf_error *err);
 
 /* The mesh (format by extension) and picture (may be NULL) of `s`, coloured
  * by `design` (may be NULL) with `tolerance` (<= 0: half a voxel). *ntri gets

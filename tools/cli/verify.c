@@ -29,6 +29,12 @@ const char swarf_verify_help[] =
     "                   in the machine's unit (--units)\n"
     "  --units mm|in    the machine's length unit: programs without G20/G21 are read\n"
     "                   in it (default mm; without it such a program gets a warning)\n"
+    "How the program is read (README: G-code dialects):\n"
+    "  --dialect NAME   linuxcnc (default), fanuc, haas or grbl\n"
+    "  --block-delete   the block delete switch is on: `/` blocks are skipped (off:\n"
+    "                   they run, as in LinuxCNC)\n"
+    "  --subroutine-path DIRS  where `o<name> call` finds <name>.ngc (':' between\n"
+    "                   directories)\n"
     "Verification against the part:\n"
     "  --design FILE.stl  the part as designed (a closed mesh, mm): each move that cuts\n"
     "                   into it is told as FILE:LINE:COL: warning: gouge D mm into the\n"
@@ -64,6 +70,12 @@ static int value_option(swarf_verify *v, const char *flag, const char *val) {
   if (!strcmp(flag, "--report")) return v->report_path = val, 0;
   if (!strcmp(flag, "--design")) return v->design_path = val, 0;
   if (!strcmp(flag, "--offsets")) return v->offsets = val, 0;
+  if (!strcmp(flag, "--subroutine-path")) return v->subroutine_path = val, 0;
+  if (!strcmp(flag, "--dialect")) {
+    if (swarf_gcode_dialect_from_name(val, NULL) != 0)
+      return option_error(flag, "give linuxcnc, fanuc, haas or grbl", val);
+    return v->dialect = val, 0;
+  }
   if (!strcmp(flag, "--start")) return v->start_set = 1, read_triple(flag, val, v->start);
   if (!strcmp(flag, "--g54")) return v->g54_set = 1, read_triple(flag, val, v->g54);
   if (!strcmp(flag, "--units")) {
@@ -82,9 +94,11 @@ static int value_option(swarf_verify *v, const char *flag, const char *val) {
 }
 
 int swarf_verify_option(swarf_verify *v, const char *flag, const char *val, int *i) {
-  static const char *mine[] = {"--report", "--design",  "--offsets",   "--start", "--g54",
-                               "--units",  "--fail-on", "--tolerance", NULL};
+  static const char *mine[] = {"--report",  "--design",          "--offsets", "--start",
+                               "--g54",     "--units",           "--fail-on", "--tolerance",
+                               "--dialect", "--subroutine-path", NULL};
   int k = 0;
+  if (!strcmp(flag, "--block-delete")) return v->block_delete = 1, 0;
   if (val != NULL && !strcmp(flag, "--stock")) v->stock_spec = val;
   if (val != NULL && !strcmp(flag, "--machine")) v->machine_spec = val;
   if (val != NULL && !strcmp(flag, "--tool") && v->ntools < SWARF_SIM_MAX_TOOLS)
@@ -95,6 +109,16 @@ int swarf_verify_option(swarf_verify *v, const char *flag, const char *val, int 
   if (val == NULL) return option_error(flag, "needs a value", NULL);
   (*i)++;
   return value_option(v, flag, val);
+}
+
+void swarf_verify_note(swarf_verify *v, long line, int column, const char *text) {
+  char buf[400];
+  if (v->notes < SWARF_VERIFY_NOTES) {
+    snprintf(buf, sizeof buf, "%ld:%d: note: %s", line, column, text);
+    v->note_text[v->notes] = malloc(strlen(buf) + 1);
+    if (v->note_text[v->notes] != NULL) strcpy(v->note_text[v->notes], buf);
+  }
+  v->notes++;
 }
 
 static int check_folder(const char *flag, const char *path) {
@@ -126,6 +150,10 @@ int swarf_verify_prepare(swarf_verify *v, swarf_sim_config *cfg) {
                : !strcmp(v->units, "in") ? SWARF_GCODE_UNITS_INCH
                                          : SWARF_GCODE_UNITS_MM;
   cfg->offsets_file = v->offsets;
+  if (v->dialect != NULL)
+    swarf_gcode_dialect_from_name(v->dialect, (swarf_gcode_dialect *)&cfg->dialect);
+  cfg->block_delete = v->block_delete;
+  cfg->subroutine_path = v->subroutine_path;
   cfg->g54_set = v->g54_set;
   memcpy(cfg->g54, v->g54, sizeof cfg->g54);
   cfg->start_set = v->start_set;
@@ -149,6 +177,10 @@ void swarf_verify_line(swarf_verify *v, const swarf_line_result *l) {
 void swarf_verify_warn(swarf_verify *v, const char *program, const swarf_sim_report *r) {
   size_t n = 0;
   const swarf_alarm *g = v->report ? swarf_report_gouges(v->report, &n) : NULL;
+  for (long i = 0; i < v->notes && i < SWARF_VERIFY_NOTES; i++)
+    if (v->note_text[i] != NULL) fprintf(stderr, "%s:%s\n", program, v->note_text[i]);
+  if (v->notes > SWARF_VERIFY_NOTES)
+    fprintf(stderr, "%s: %ld more notes\n", program, v->notes - SWARF_VERIFY_NOTES);
   if (r->units_missing_line > 0 && v->units == NULL)
     fprintf(stderr,
             "%s:%ld:%d: warning: this move comes before any G20/G21: the program is read in "
@@ -235,6 +267,9 @@ int swarf_verify_finish(swarf_verify *v, const char *program, const swarf_sim_co
 }
 
 void swarf_verify_free(swarf_verify *v) {
+  for (long i = 0; i < v->notes && i < SWARF_VERIFY_NOTES; i++)
+    free(v->note_text[i]);
+  v->notes = 0;
   swarf_stock_free(v->design);
   swarf_report_free(v->report);
   v->design = NULL;

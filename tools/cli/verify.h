@@ -19,6 +19,8 @@
 extern "C" {
 #endif
 
+#define SWARF_VERIFY_NOTES 20 /* notes printed after the run; more are counted */
+
 typedef struct {
   /* the options */
   const char *report_path, *design_path, *offsets, *units;
@@ -26,6 +28,10 @@ typedef struct {
   int fail_on_gouge;
   int start_set, g54_set;
   double start[3], g54[3];
+  const char *dialect, *subroutine_path; /* --dialect, --subroutine-path */
+  int block_delete;                      /* --block-delete */
+  long notes;                            /* the program's notes (the first ones are kept) */
+  char *note_text[SWARF_VERIFY_NOTES];
   /* the inputs as given, for the report */
   const char *stock_spec, *machine_spec;
   const char *tool_specs[SWARF_SIM_MAX_TOOLS];
@@ -51,6 +57,7 @@ int swarf_verify_prepare(swarf_verify *v, swarf_sim_config *cfg);
 /* The driver's callbacks call these. */
 void swarf_verify_alarm(swarf_verify *v, const swarf_alarm *a);
 void swarf_verify_line(swarf_verify *v, const swarf_line_result *l);
+void swarf_verify_note(swarf_verify *v, long line, int column, const char *text);
 
 /* After a successful run: the warnings on stderr (a move before any units
  * word unless --units was given; one gouge a program line, deepest first of

@@ -83,9 +83,27 @@ static int spindle_tool(const swarf_sim *s, int move_tool) {
   return move_tool;
 }
 
+static int tell_pass(swarf_sim *s, long line, int tool, double pass);
+
 static int tell_progress(swarf_sim *s, long line, int tool) {
-  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, s->stock};
+  return tell_pass(s, line, tool, -1.0);
+}
+
+/* Within a removal pass (the stock's tick): progress with the last queued
+ * move's line and the fraction of the pass done. */
+static int on_tick(void *user, double done) {
+  swarf_sim *s = user;
+  const swarf_motion *m = s->n > 0 ? &s->motions[s->n - 1] : NULL;
+  return tell_pass(s, m ? m->line : 0, spindle_tool(s, m ? m->tool : 0), done);
+}
+
+/* Several processes: the stock is this one's slab only (not shown), and a
+ * stop is obeyed at the next batch, on all of them (part.c). */
+static int tell_pass(swarf_sim *s, long line, int tool, double pass) {
+  const int parts = swarf_sim_parts(s);
+  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, parts ? NULL : s->stock, pass};
   if (s->cfg.cb.progress == NULL || s->cfg.cb.progress(s->cfg.cb.user, &p) == 0) return 0;
+  if (parts) return s->abort_pending = 1, 0;
   swarf_sim_fail(s, SWARF_ERR_ABORTED, line, 0, "aborted by the caller");
   return 1;
 }
@@ -130,16 +148,27 @@ static const swarf_move *tip_move(swarf_sim *s, const swarf_move *mv, swarf_move
   return buf;
 }
 
+/* The machine for the tool in the spindle: a spindle head's pivot lies
+ * --machine's head=L above the gauge line, so the tool's length further
+ * above its tip (swarf_machine.head is measured from the tip). */
+static swarf_machine machine_for_tool(const swarf_sim *s) {
+  swarf_machine mc = s->cfg.machine;
+  if (s->tool != NULL) mc.head += s->tool->length;
+  return mc;
+}
+
 static int on_move(const swarf_move *machine_mv, void *user) {
   swarf_sim *s = user;
   swarf_motion m;
+  swarf_machine mc;
   swarf_move w, tip, *mv = &w;
   if (machine_mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, machine_mv);
   if (machine_mv->kind == SWARF_MOVE_DWELL) return 0;
   swarf_sim_to_workpiece(s, tip_move(s, machine_mv, &tip), &w);
   swarf_sim_check_units(s, mv);
   swarf_error e;
-  swarf_status rc = swarf_machine_motion(&s->cfg.machine, mv, &m, &e);
+  mc = machine_for_tool(s);
+  swarf_status rc = swarf_machine_motion(&mc, mv, &m, &e);
   if (rc == SWARF_ERR_MACHINE) {
     swarf_sim_fail(s, SWARF_ERR_MACHINE, mv->line, mv->column, "%s", e.message);
     return 1;
@@ -192,13 +221,30 @@ static void set_pad(swarf_sim *s, const swarf_sim_stock_spec *spec) {
   }
 }
 
+static void on_note(long line, int column, const char *text, void *user) {
+  swarf_sim *s = user;
+  if (s->cfg.cb.note != NULL) s->cfg.cb.note(s->cfg.cb.user, line, column, text);
+}
+
+/* The dialect, the block delete switch, the subroutine path, the notes. */
+static swarf_status set_reading(swarf_sim *s, swarf_error *err) {
+  swarf_status st = swarf_gcode_parser_set_dialect(s->parser, s->cfg.dialect, err);
+  if (st == SWARF_OK) st = swarf_gcode_parser_set_block_delete(s->parser, s->cfg.block_delete, err);
+  if (st == SWARF_OK && s->cfg.subroutine_path != NULL)
+    st = swarf_gcode_parser_set_subroutine_path(s->parser, s->cfg.subroutine_path, err);
+  if (st == SWARF_OK) swarf_gcode_parser_set_notes(s->parser, on_note, s);
+  return st;
+}
+
 static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
   swarf_status st;
   if (swarf_gcode_parser_new(s->name, on_move, s, &s->parser) != SWARF_OK ||
       swarf_sim_batch_init(s) != 0)
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   set_tool_table(s);
-  if ((st = swarf_sim_setup(s, err)) != SWARF_OK || (st = swarf_sim_design_init(s, err)) != SWARF_OK)
+  if ((st = set_reading(s, err)) != SWARF_OK) return st;
+  if ((st = swarf_sim_setup(s, err)) != SWARF_OK ||
+      (st = swarf_sim_design_init(s, err)) != SWARF_OK)
     return st;
   if (s->cfg.ntools == 1) s->tool = &s->cfg.tools[0];
   if (swarf_sim_collide_init(s) != 0) {
@@ -225,9 +271,22 @@ static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf
       swarf_stock_free(stock);
       return st;
     }
+  if (swarf_stock_set_threads(stock, cfg->threads, err) != SWARF_OK) {
+    swarf_stock_free(stock);
+    return SWARF_ERR_ARG;
+  }
   if ((s = calloc(1, sizeof *s)) == NULL) {
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
+  }
+  if (cfg->cb.progress != NULL && swarf_stock_set_tick(stock, on_tick, s,
+                                                       cfg->tick > 0   ? cfg->tick
+                                                       : cfg->tick < 0 ? 0.0
+                                                                       : 0.25,
+                                                       err) != SWARF_OK) {
+    free(s);
+    swarf_stock_free(stock);
+    return SWARF_ERR_ARG;
   }
   s->t0 = now_seconds();
   s->cfg = *cfg;
@@ -284,6 +343,7 @@ swarf_status swarf_sim_feed(swarf_sim *s, const char *text, size_t len) {
   swarf_status st = check_open(s);
   if (st != SWARF_OK) return st;
   if (text == NULL && len > 0) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no text");
+  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
   return parser_outcome(s, swarf_gcode_parser_feed(s->parser, text, len));
 }
 
@@ -296,6 +356,7 @@ swarf_status swarf_sim_feed_file(swarf_sim *s, const char *path) {
   size_t n;
   if (st != SWARF_OK) return st;
   if (path == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no program path");
+  if (swarf_sim_part_plan(s, path) != 0) return s->err.status;
   if ((f = fopen(path, "rb")) == NULL)
     return swarf_sim_fail(s, SWARF_ERR_OPEN, 0, 0, "cannot open the program: %s", strerror(errno));
   double total = fstat(fileno(f), &sb) == 0 && sb.st_size > 0 ? (double)sb.st_size : 0.0, done = 0;
@@ -320,6 +381,7 @@ swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
   swarf_motion copy;
   if (st != SWARF_OK) return st;
   if (m == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no motion");
+  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
   copy = *m;
   if (m->tool != 0 && (s->tool == NULL || s->tool->number != m->tool)) {
     const swarf_sim_tool *t = find_tool(s, m->tool);
@@ -334,15 +396,18 @@ swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
 swarf_status swarf_sim_finish(swarf_sim *s) {
   swarf_status st = check_open(s);
   if (st != SWARF_OK) return st;
+  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
   st = parser_outcome(s, swarf_gcode_parser_finish(s->parser));
   s->rep.lines = swarf_gcode_parser_lines(s->parser);
   s->rep.units_line = swarf_gcode_parser_units_line(s->parser);
   if (st == SWARF_OK && swarf_sim_batch_flush(s) != 0) st = s->err.status;
   if (st == SWARF_OK && swarf_sim_lines_flush(s, 1) != 0) st = s->err.status;
-  if (st == SWARF_OK) st = swarf_sim_design_compare(s);
+  if (st == SWARF_OK && swarf_sim_part_merge(s) != 0) st = s->err.status;
+  const int whole = !swarf_sim_parts(s) || s->cfg.comm->rank == 0; /* the whole stock here */
+  if (st == SWARF_OK && whole) st = swarf_sim_design_compare(s);
   s->rep.seconds = now_seconds() - s->t0;
   if (st != SWARF_OK) return st;
-  s->rep.volume_after = swarf_stock_volume(s->stock);
+  if (whole) s->rep.volume_after = swarf_stock_volume(s->stock);
   s->state = SIM_FINISHED;
   return SWARF_OK;
 }
@@ -364,6 +429,7 @@ swarf_stock *swarf_sim_take_stock(swarf_sim *s) {
   if (s == NULL) return NULL;
   st = s->stock;
   s->stock = NULL;
+  swarf_stock_set_tick(st, NULL, NULL, 0.0, NULL); /* the ticks went to this handle */
   if (s->state == SIM_OPEN) s->state = SIM_TAKEN;
   return st;
 }
@@ -375,6 +441,7 @@ void swarf_sim_free(swarf_sim *s) {
   swarf_sim_batch_clear(s);
   swarf_stock_free(s->stock);
   swarf_stock_free(s->initial);
+  swarf_sim_part_clear(s);
   free(s);
 }
 

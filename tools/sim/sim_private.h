@@ -53,7 +53,32 @@ struct swarf_sim {
   /* the workpiece frame: machine = Rz(frame_rot) workpiece + frame_origin */
   double frame_origin[3], frame_cos, frame_sin;
   int units_checked; /* the first move was checked for a units word */
+  /* parts (part.c): slabs of 8 voxels along part_axis, the first at index
+   * part_first; ncol of them */
+  int planned;        /* the slabs are planned (several processes or a tally) */
+  int part_axis, part_first, ncol;
+  int index_lo[3], index_hi[3]; /* the stock's index box */
+  double *work;                  /* estimated work per slab (the survey's) */
+  unsigned long long *tally;     /* blocks visited per slab (cfg.tally) */
+  swarf_sim *surveyor;           /* non-NULL: this is a survey handle feeding it */
+  int abort_pending;             /* a progress callback asked to stop (several processes) */
 };
+
+/* part.c. Return 0, or 1 after swarf_sim_fail. */
+int swarf_sim_parts(const swarf_sim *s); /* 1 with several processes */
+int swarf_sim_part_plan(swarf_sim *s, const char *path); /* path NULL: even slabs */
+void swarf_sim_part_clear(swarf_sim *s);
+/* A survey handle's cut: its estimated work added to the surveyor's slabs. */
+void swarf_sim_part_survey(swarf_sim *s, const swarf_stock_cut *c);
+/* A query's hit on this process's slab made global: the first in the
+ * stock's scan order among all processes'. */
+int swarf_sim_part_hit(swarf_sim *s, int *hit, double where[3]);
+/* The batch's measured effects summed (volumes) and maxed (gouges). */
+int swarf_sim_part_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n);
+/* At each batch: a stop asked on any process stops all. */
+int swarf_sim_part_sync(swarf_sim *s);
+/* At finish: the slabs gathered into rank 0's stock. */
+int swarf_sim_part_merge(swarf_sim *s);
 
 /* Record the first failure (status, place, message) and return its status. */
 swarf_status swarf_sim_fail(swarf_sim *s, swarf_status st, long line, int column, const char *fmt,

@@ -49,7 +49,7 @@ extern "C" {
 
 /* ---- Configuration -------------------------------------------------------- */
 
-#define SWARF_SIM_MAX_HOLDER 8   /* cylinders and cones of a holder */
+#define SWARF_SIM_MAX_HOLDER 8 /* cylinders and cones of a holder */
 #define SWARF_SIM_MAX_FIXTURES 16
 
 /* One piece of a holder: a cylinder (d0 == d1) or a cone frustum from
@@ -121,13 +121,17 @@ typedef struct {
                  * SHANK 1, HOLDER 2; 0 otherwise */
 } swarf_alarm;
 
-/* Progress, after every motion move (and after each chunk of a file). */
+/* Progress, after every motion move (and after each chunk of a file), and
+ * within a long removal pass (pass >= 0). */
 typedef struct {
   double fraction;                /* of the program read, 0..1; < 0 while unknown */
   long line;                      /* source line of the move */
   int tool;                       /* T number in the spindle, 0 none */
   const swarf_sim_report *report; /* counts so far */
   const swarf_stock *stock;       /* the stock as of the last removal pass (read only) */
+  double pass; /* during a removal pass (at least every cfg.tick s, so a long move
+                * does not hold progress still): the fraction of it done, 0..1,
+                * line: its last move's; -1 after a move */
 } swarf_sim_progress;
 
 /* Per source line that moved the tool, in program order, once its moves have
@@ -149,7 +153,37 @@ typedef struct {
   void (*alarm)(void *user, const swarf_alarm *a);
   void (*line)(void *user, const swarf_line_result *r);
   void *user;
+  /* What the G-code front end accepted without acting on it (a vendor M
+   * code, a grbl `$` line, a probe move that found nothing): gcode.h's
+   * notes, with the program line and column. NULL: none. */
+  void (*note)(void *user, long line, int column, const char *text);
 } swarf_sim_callbacks;
+
+/* Several processes on one stock (MPI ranks: the CLI's cli_mpi.c; any
+ * transport will do). Every process runs the same handle on the same
+ * program and input; the stock's index space is cut into slabs, one a
+ * process, balanced by the work each will do (a first pass over the
+ * program estimates it, feed_file only; text fed directly gets slabs of
+ * equal size). Each removes in its slab only; the queries that read the
+ * stock (rapid and collision alarms) and the measured removals (line
+ * volumes, gouges) are combined at once, so every process raises the same
+ * alarms in program order; finish gathers the slabs into rank 0's stock,
+ * which is then the one-process grid voxel for voxel, with the same report.
+ * The other ranks' stocks hold their slab only: write rank 0's. A progress
+ * callback asking to stop is obeyed at the next batch, on every rank.
+ * A transport failure ends the run (SWARF_ERR_INTERNAL). */
+typedef struct {
+  int rank, size; /* this process, 0..size-1; size 1: one process (no calls) */
+  /* Every process calls it with its n bytes; recv (size * n bytes) gets all
+   * of them in rank order. 0 on success. */
+  int (*allgather)(void *user, const void *send, size_t n, void *recv);
+  /* Every process calls it with its n bytes (n may differ); on rank 0, take
+   * gets each other rank's bytes in rank order (a non-zero return stops).
+   * 0 on success, on every rank. */
+  int (*gather)(void *user, const void *send, size_t n,
+                int (*take)(void *ctx, int rank, const void *buf, size_t n), void *ctx);
+  void *user;
+} swarf_sim_comm;
 
 typedef struct {
   swarf_machine machine;      /* kinematics (toolpath.h); zero: xyz */
@@ -161,7 +195,7 @@ typedef struct {
   int ntools;       /* one tool: loaded at the start; more: T<n> M6 selects */
   int line_volumes; /* 1: measure each line's removed volume (swarf_line_result) */
   swarf_sim_fixture fixtures[SWARF_SIM_MAX_FIXTURES];
-  int nfixtures;    /* fixtures (FIXTURE alarms, index 1-based in this order) */
+  int nfixtures; /* fixtures (FIXTURE alarms, index 1-based in this order) */
   /* Measure the depth (a bisection: ~8 passes over the part's blocks) of the
    * first N collisions of each kind only, the later ones get NaN; 0: all. */
   long collision_depths;
@@ -183,6 +217,13 @@ typedef struct {
                              * SWARF_SIM_CLEARANCE above the stock (a rotary machine:
                              * above the stock's sphere about the pivot) */
   double start[3];          /* mm, workpiece frame */
+  /* How the program is read (gcode.h): its dialect (swarf_gcode_dialect,
+   * 0: LinuxCNC), the block delete switch (1: `/` blocks are skipped), the
+   * directories where `o<name> call` finds <name>.ngc (':'-separated,
+   * borrowed until new returns; NULL: none). */
+  int dialect;
+  int block_delete;
+  const char *subroutine_path;
   /* The part as designed (a level set, stock.h): each move that removes
    * material deeper than `tolerance` inside it raises SWARF_ALARM_GOUGE
    * (depth: that move's deepest, as measured against the stock as it stood,
@@ -191,6 +232,15 @@ typedef struct {
    * outlive the handle. NULL: none. */
   const swarf_stock *design;
   double tolerance; /* mm; <= 0: half the stock's voxel */
+  /* Threads the stock passes run on (swarf_stock_set_threads): 0 all cores. */
+  int threads;
+  /* Seconds between progress calls during a removal pass (0: 0.25; < 0: after
+   * every chunk of blocks). */
+  double tick;
+  const swarf_sim_comm *comm; /* several processes (borrowed; must outlive the handle);
+                               * NULL: one */
+  int tally; /* 1: plan slabs and count the blocks removal visits in each, for
+              * swarf_sim_balance (one process) */
 } swarf_sim_config;
 
 /* How far above the stock the tool starts by default, mm. */
@@ -256,12 +306,12 @@ struct swarf_sim_report {
   long collisions;                         /* among them: SHANK, HOLDER and FIXTURE alarms */
   double collision_s;                      /* CPU time checking for collisions, s */
   swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */
-  double start[3];         /* where the tool tip started, workpiece frame, mm */
-  int start_default;       /* 1: the default start (not cfg.start) */
-  long units_line;         /* the program's first G20/G21 (0: none) */
-  long units_missing_line; /* the first move run before any G20/G21 (0: none): it ran */
-  int units_missing_column; /* in the machine's unit */
-  int has_deviation;       /* 1: deviation holds the comparison with cfg.design */
+  double start[3];                         /* where the tool tip started, workpiece frame, mm */
+  int start_default;                       /* 1: the default start (not cfg.start) */
+  long units_line;                         /* the program's first G20/G21 (0: none) */
+  long units_missing_line;         /* the first move run before any G20/G21 (0: none): it ran */
+  int units_missing_column;        /* in the machine's unit */
+  int has_deviation;               /* 1: deviation holds the comparison with cfg.design */
   swarf_stock_deviation deviation; /* after finish (stock.h) */
 };
 SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);
@@ -273,6 +323,14 @@ SWARF_API const swarf_stock *swarf_sim_stock(const swarf_sim *sim);
 SWARF_API swarf_stock *swarf_sim_take_stock(swarf_sim *sim);
 
 SWARF_API void swarf_sim_free(swarf_sim *sim);
+
+/* After a finished run with cfg.tally: how evenly `nranks` processes (>= 1)
+ * would have shared the work, from the blocks each slab's removal visited
+ * (*visited, may be NULL: 512 voxels a block) and the slabs the plan would
+ * have given them: *max_over_mean = the busiest rank's voxels over the
+ * mean (1: perfect). SWARF_ERR_STATE without a tally. */
+SWARF_API swarf_status swarf_sim_balance(const swarf_sim *sim, int nranks, double *max_over_mean,
+                                         double *visited);
 
 /* ---- One-shot conveniences ------------------------------------------------ */
 
@@ -317,8 +375,8 @@ SWARF_API swarf_status swarf_sim_config_load_tool_table(swarf_sim_config *cfg, c
  * full assemblies that replace the description of tools already in cfg
  * (their G43 length stays unless the library gives one) or add new ones.
  * Errors: FILE:LINE: what is wrong (SWARF_ERR_TOOL, SWARF_ERR_FORMAT). */
-SWARF_API swarf_status swarf_sim_config_load_tool_library(swarf_sim_config *cfg,
-                                                          const char *path, swarf_error *err);
+SWARF_API swarf_status swarf_sim_config_load_tool_library(swarf_sim_config *cfg, const char *path,
+                                                          swarf_error *err);
 
 /* Puts a --tool description into cfg: the cutter and the assembly fields the
  * spec gave (S, N) replace those of a tool already there (from a table or a
@@ -330,8 +388,8 @@ SWARF_API swarf_status swarf_sim_config_put_tool(swarf_sim_config *cfg, const sw
  * checks every tool of the config. */
 SWARF_API swarf_status swarf_sim_check_tool(const swarf_sim_tool *t, swarf_error *err);
 /* Puts a --holder into cfg: tool t->number must be there already. */
-SWARF_API swarf_status swarf_sim_config_put_holder(swarf_sim_config *cfg,
-                                                   const swarf_sim_tool *t, swarf_error *err);
+SWARF_API swarf_status swarf_sim_config_put_holder(swarf_sim_config *cfg, const swarf_sim_tool *t,
+                                                   swarf_error *err);
 
 #ifdef __cplusplus
 }

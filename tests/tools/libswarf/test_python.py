@@ -80,6 +80,34 @@ def test_slot():
     check(r.alarms == [], "slot: no alarms")
 
 
+# SLOT's cut as a Haas program: the plunge and the pass in a local
+# subprogram (M97 P100 calls block N100 of the same program, M99 returns).
+HAAS_SLOT = ("%\nO01000\nG21 G90 G17\nG0 X5 Y5 Z2\nM97 P100\nG0 Z2\nM30\n"
+             "N100 G1 Z-1 F100\nG1 X15\nM99\n%\n")
+
+
+def test_dialect():
+    kw = dict(stock="box:0,0,-5,20,10,0", tools=["T1=flat,D4,L12"], voxel=0.1)
+    a = swarf.simulate(text=SLOT, **kw)
+    b = swarf.simulate(text=HAAS_SLOT, dialect="haas", **kw)
+    check(b.report.moves == a.report.moves and b.removed == a.removed,
+          "haas slot: %d moves, %g mm3 removed (linuxcnc: %d, %g)"
+          % (b.report.moves, b.removed, a.report.moves, a.removed))
+    # the same cut through a subroutine file on the path
+    os.makedirs(path("subs"), exist_ok=True)
+    with open(path("subs/slot_pass.ngc"), "w") as f:
+        f.write("o<slot_pass> sub\nG1 Z-1 F100\nG1 X15\no<slot_pass> endsub\n")
+    c = swarf.simulate(text="G21 G90 G17\nG0 X5 Y5 Z2\no<slot_pass> call\nG0 Z2\nM2\n",
+                       subroutine_path=path("nowhere") + ":" + path("subs"), **kw)
+    check(c.report.moves == a.report.moves and c.removed == a.removed,
+          "subroutine file: %d moves, %g mm3" % (c.report.moves, c.removed))
+    try:
+        swarf.simulate(text=HAAS_SLOT, **kw)
+        check(False, "the Haas program raises under the LinuxCNC dialect (M97)")
+    except swarf.InputError as e:
+        check(e.line == 5, "linuxcnc refuses M97 at line 5: %s" % (e,))
+
+
 TRENCH = "G21 G90\nG0 X5 Y6 Z2\nG1 Z-3 F100\nG1 X15\nG0 Z5\nM2\n"
 
 
@@ -97,13 +125,7 @@ def test_trench_lines():
     near(lines[4].path_mm, 10, 1e-9, "trench: line 4 path")
     near(lines[4].time_s, 10 / 100 * 60, 1e-9, "trench: line 4 time at F100")
     near(sum(x.path_mm for x in r.lines), r.report.path_mm, 1e-12, "trench: line paths add up")
-    try:
-        r = swarf.simulate(line_volumes=True, **opts)
-    except swarf.InternalError as e:
-        if "not implemented yet" not in str(e):
-            raise
-        print("SKIP per-line volumes: the library does not measure them yet (%s)" % e)
-        return
+    r = swarf.simulate(line_volumes=True, **opts)
     lines = {x.line: x for x in r.lines}
     near(lines[3].removed, 2 / 3 * math.pi * rr ** 3, 0.02, "trench: plunge removes a half ball")
     near(lines[4].removed, math.pi * rr * rr * 10 / 2, 0.02,
@@ -311,7 +333,8 @@ def main():
     os.makedirs(WORK, exist_ok=True)
     for t in (test_version, test_slot, test_trench_lines, test_against_cli,
               test_rotary_against_cli, test_outputs,
-              test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort):
+              test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort,
+              test_dialect):
         print("--", t.__name__)
         try:
             t()

@@ -330,6 +330,7 @@ class Result:
         self.stock.write_png(path, width, height)
 
 
+_DIALECTS = {"linuxcnc": 0, "fanuc": 1, "haas": 2, "grbl": 3}  # swarf_gcode_dialect
 _UNITS = {"mm": "SWARF_GCODE_UNITS_MM", "in": "SWARF_GCODE_UNITS_INCH",
           "inch": "SWARF_GCODE_UNITS_INCH"}
 
@@ -392,17 +393,22 @@ class Simulation:
     .vdb read back), which the simulation then owns. tools: spec strings
     "T<n>=<shape>,D<diameter>[,R<corner>][,L<length>]" (ball, flat, bull).
     voxel (mm, default 0.2), machine ("xyz", "xyza[,pivot=Y,Z]",
-    "xyzac-trt[,mode=tcp|joint][,pivot=X,Y,Z]", ...), band (voxels, >= 3),
+    "xyzac-trt[,mode=tcp|joint][,pivot=X,Y,Z]", "xyzab-tdr", "xyzbc-hh,mode=joint,head=L",
+    "xyzbc-ht[,pivot=X,Y][,head=L]", ...), band (voxels, >= 3),
     line_volumes (measure each line's removed volume) as `swarf simulate`.
     The machine's setup, as `swarf simulate` --start, --g54, --units,
     --offsets: start (X, Y, Z: the tool tip when the program starts, mm,
     workpiece frame; default X0 Y0 10 mm above the stock), g54 (G54's origin
     in machine coordinates, mm), units ("mm" or "in": the machine's unit),
-    offsets (LinuxCNC's parameter file). name is the program's name in
-    messages."""
+    offsets (LinuxCNC's parameter file). How the program is read, as
+    --dialect and --block-delete: dialect ("linuxcnc", the default, "fanuc",
+    "haas" or "grbl"), block_delete (True: `/` blocks are skipped),
+    subroutine_path (where `o<name> call` finds <name>.ngc: directories
+    joined by ':'). name is the program's name in messages."""
 
     def __init__(self, stock, tools=(), *, voxel=None, machine=None, band=None, batch=None,
                  line_volumes=False, start=None, g54=None, units=None, offsets=None,
+                 dialect=None, block_delete=False, subroutine_path=None,
                  name="program", progress=None, alarm=None, line=None):
         self._h = c_void_p()
         self._exc = None
@@ -412,6 +418,16 @@ class Simulation:
         self.name = os.fsdecode(name)
         cfg, borrowed = _config(tools, voxel, machine, band, batch, line_volumes, start, g54,
                                 units, offsets)
+        if dialect is not None:
+            if dialect not in _DIALECTS:
+                _raise_msg("SWARF_ERR_ARG", "dialect: linuxcnc, fanuc, haas or grbl, not %r"
+                           % (dialect,), "dialect")
+            cfg.dialect = _DIALECTS[dialect]
+        cfg.block_delete = 1 if block_delete else 0
+        subpath = None
+        if subroutine_path is not None:
+            subpath = _path(subroutine_path)  # borrowed by new (it copies it)
+            cfg.subroutine_path = subpath
         # The C callbacks; kept alive as long as the handle.
         self._cbs = (types["PROGRESS_FN"](self._on_progress), types["ALARM_FN"](self._on_alarm),
                      types["LINE_FN"](self._on_line))
@@ -425,7 +441,7 @@ class Simulation:
                                          byref(err)) != _OK:
                 _raise(err)
             rc = lib.swarf_sim_new(byref(cfg), self.name.encode(), byref(self._h), byref(err))
-        del borrowed  # the offsets file's name: read by new
+        del borrowed, subpath  # the offsets file's name, the path: read by new
         if rc != _OK:
             self._h = c_void_p()
             _raise(err)
@@ -514,6 +530,7 @@ class Simulation:
 
 def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=None, band=None,
              batch=None, line_volumes=False, start=None, g54=None, units=None, offsets=None,
+             dialect=None, block_delete=False, subroutine_path=None,
              name=None, progress=None, alarm=None, line=None) -> Result:
     """Runs a program: the G-code file at `program`, or the string `text`.
     Options as Simulation (and `swarf simulate`). Returns the Result; raises
@@ -524,7 +541,9 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
         name = os.fspath(program) if program is not None else "<text>"
     with Simulation(stock, tools, voxel=voxel, machine=machine, band=band, batch=batch,
                     line_volumes=line_volumes, start=start, g54=g54, units=units,
-                    offsets=offsets, name=name, progress=progress, alarm=alarm,
+                    offsets=offsets, dialect=dialect, block_delete=block_delete,
+                    subroutine_path=subroutine_path,
+                    name=name, progress=progress, alarm=alarm,
                     line=line) as sim:
         if text is not None:
             sim.feed(text)

@@ -1,0 +1,162 @@
+/* cli_mpi.c -- OpenMPI behind swarf_sim_comm (cli_mpi.h). Compiled with
+ * SWARF_MPI (CMake's FindMPI found OpenMPI); without it, one process.
+ */
+#include "cli_mpi.h"
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#ifdef SWARF_MPI
+#include <mpi.h>
+
+/* Messages of at most 1 GiB (MPI counts are ints). */
+#define CHUNK ((size_t)1 << 30)
+
+static int mpi_allgather(void *user, const void *send, size_t n, void *recv) {
+  (void)user;
+  if (n > (size_t)0x7fffffff) return 1;
+  return MPI_Allgather(send, (int)n, MPI_BYTE, recv, (int)n, MPI_BYTE, MPI_COMM_WORLD) !=
+         MPI_SUCCESS;
+}
+
+static int send_all(const void *buf, size_t n) {
+  for (size_t at = 0; at < n; at += CHUNK) {
+    size_t k = n - at < CHUNK ? n - at : CHUNK;
+    if (MPI_Send((const char *)buf + at, (int)k, MPI_BYTE, 0, 7, MPI_COMM_WORLD) != MPI_SUCCESS)
+      return 1;
+  }
+  return 0;
+}
+
+static int recv_all(void *buf, size_t n, int from) {
+  for (size_t at = 0; at < n; at += CHUNK) {
+    size_t k = n - at < CHUNK ? n - at : CHUNK;
+    if (MPI_Recv((char *)buf + at, (int)k, MPI_BYTE, from, 7, MPI_COMM_WORLD, MPI_STATUS_IGNORE) !=
+        MPI_SUCCESS)
+      return 1;
+  }
+  return 0;
+}
+
+/* Sizes first (a gather), then each rank's bytes in turn: rank 0 holds one
+ * other rank's part at a time. */
+static int mpi_gather(void *user, const void *send, size_t n,
+                      int (*take)(void *ctx, int rank, const void *buf, size_t n), void *ctx) {
+  swarf_cli_mpi *m = user;
+  unsigned long long mine = n, *sizes = NULL;
+  int rc = 0;
+  if (m->comm.rank == 0 && (sizes = calloc((size_t)m->comm.size, sizeof *sizes)) == NULL)
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  MPI_Gather(&mine, 1, MPI_UNSIGNED_LONG_LONG, sizes, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  if (m->comm.rank != 0) return n > 0 ? send_all(send, n) : 0;
+  for (int r = 1; r < m->comm.size; r++) {
+    void *buf = malloc(sizes[r] > 0 ? (size_t)sizes[r] : 1);
+    if (buf == NULL) MPI_Abort(MPI_COMM_WORLD, 1);
+    if (sizes[r] > 0 && recv_all(buf, (size_t)sizes[r], r) != 0) rc = 1;
+    if (rc == 0 && take(ctx, r, buf, (size_t)sizes[r]) != 0) rc = 1;
+    free(buf);
+  }
+  free(sizes);
+  return rc;
+}
+
+static int launched(void) {
+  return getenv("OMPI_COMM_WORLD_SIZE") != NULL || getenv("PMIX_RANK") != NULL ||
+         getenv("PMI_RANK") != NULL;
+}
+
+int swarf_cli_mpi_start(swarf_cli_mpi *m) {
+  memset(m, 0, sizeof *m);
+  m->comm.size = 1;
+  m->saved_stderr = -1;
+  if (!launched()) return 0;
+  if (MPI_Init(NULL, NULL) != MPI_SUCCESS) {
+    fprintf(stderr, "swarf simulate: MPI could not start\n");
+    return 1;
+  }
+  m->active = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &m->comm.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &m->comm.size);
+  m->comm.allgather = mpi_allgather;
+  m->comm.gather = mpi_gather;
+  m->comm.user = m;
+  if (m->comm.rank != 0) { /* rank 0 speaks */
+    fflush(NULL);
+    m->saved_stderr = dup(2);
+    int null = open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+      dup2(null, 1);
+      dup2(null, 2);
+      close(null);
+    }
+  }
+  return 0;
+}
+
+int swarf_cli_mpi_agree(swarf_cli_mpi *m, int rc) {
+  int *all, worst = rc, who = -1;
+  if (!m->active || m->comm.size == 1) return rc;
+  if ((all = malloc(sizeof *all * (size_t)m->comm.size)) == NULL) MPI_Abort(MPI_COMM_WORLD, 1);
+  MPI_Allgather(&rc, 1, MPI_INT, all, 1, MPI_INT, MPI_COMM_WORLD);
+  for (int r = 0; r < m->comm.size; r++)
+    if (all[r] > worst) worst = all[r], who = r;
+  if (m->comm.rank == 0 && rc == 0 && worst != 0)
+    fprintf(stderr,
+            "swarf simulate: rank %d of %d could not start (exit status %d): does it "
+            "see the same program and inputs?\n",
+            who, m->comm.size, worst);
+  free(all);
+  return worst;
+}
+
+void swarf_cli_mpi_abort(swarf_cli_mpi *m, const char *msg, int status) {
+  if (!m->active || m->comm.size == 1) return;
+  if (m->saved_stderr >= 0) {
+    char line[1200];
+    int n = snprintf(line, sizeof line, "swarf simulate: rank %d: %s\n", m->comm.rank, msg);
+    if (n > 0 && write(m->saved_stderr, line, (size_t)n) < 0) n = 0;
+  } else {
+    fprintf(stderr, "%s\n", msg);
+  }
+  fflush(NULL);
+  MPI_Abort(MPI_COMM_WORLD, status);
+}
+
+int swarf_cli_mpi_end(swarf_cli_mpi *m, int rc) {
+  if (m->active) MPI_Finalize();
+  m->active = 0;
+  return rc;
+}
+
+#else /* one process */
+
+int swarf_cli_mpi_start(swarf_cli_mpi *m) {
+  memset(m, 0, sizeof *m);
+  m->comm.size = 1;
+  m->saved_stderr = -1;
+  if (getenv("OMPI_COMM_WORLD_SIZE") != NULL && atoi(getenv("OMPI_COMM_WORLD_SIZE")) > 1) {
+    fprintf(stderr, "swarf simulate: this swarf was built without MPI (SWARF_MPI off): run it "
+                    "without mpirun, or rebuild with libopenmpi-dev\n");
+    return 2;
+  }
+  return 0;
+}
+
+int swarf_cli_mpi_agree(swarf_cli_mpi *m, int rc) {
+  (void)m;
+  return rc;
+}
+
+void swarf_cli_mpi_abort(swarf_cli_mpi *m, const char *msg, int status) {
+  (void)m, (void)msg, (void)status;
+}
+
+int swarf_cli_mpi_end(swarf_cli_mpi *m, int rc) {
+  (void)m;
+  return rc;
+}
+
+#endif

@@ -1,0 +1,335 @@
+/* part.c -- the simulation on several processes (swarf_sim_comm in
+ * swarf_sim.h): slabs planned from the work a survey of the program
+ * estimates, queries and measured effects combined across processes, the
+ * slabs gathered into rank 0's stock at finish.
+ *
+ * The stock's index space is cut along its longest axis into slabs of
+ * whole 8-voxel blocks (the unit of removal, stock/remove.cc). A survey
+ * handle (a second handle on the same config with a token stock) plays the
+ * program without removing anything and adds, for each cut, the blocks its
+ * padded bounds cover to the slabs they fall in: the work estimate. Every
+ * process computes the same plan from the same program, with no message.
+ *
+ * Exactness: removal is per block, so the slabs' blocks are the one-process
+ * run's; a query's first hit is the minimum of the processes' first hits in
+ * the stock's scan order (blocks x, y, z, then voxels x, y, z: remove.cc's
+ * loops), a gouge the deepest with ties to the first in that order, a cut's
+ * volume the sum of the parts' (exact: stock.h's removed_voxels).
+ */
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim_private.h"
+
+int swarf_sim_parts(const swarf_sim *s) {
+  return s->cfg.comm != NULL && s->cfg.comm->size > 1;
+}
+
+void swarf_sim_part_clear(swarf_sim *s) {
+  free(s->work);
+  free(s->tally);
+  s->work = NULL;
+  s->tally = NULL;
+}
+
+/* ---- The plan --------------------------------------------------------------- */
+
+/* Slabs along the index box's longest axis. */
+static int plan_slabs(swarf_sim *s) {
+  int best = 0;
+  swarf_stock_index_box(s->stock, s->index_lo, s->index_hi);
+  for (int k = 1; k < 3; k++)
+    if (s->index_hi[k] - s->index_lo[k] > s->index_hi[best] - s->index_lo[best]) best = k;
+  s->part_axis = best;
+  s->part_first = s->index_lo[best] & ~7;
+  s->ncol = s->index_hi[best] < s->index_lo[best]
+                ? 1
+                : ((s->index_hi[best] & ~7) - s->part_first) / 8 + 1;
+  s->work = calloc((size_t)s->ncol, sizeof *s->work);
+  s->tally = calloc((size_t)s->ncol, sizeof *s->tally);
+  if (s->work == NULL || s->tally == NULL) {
+    swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory");
+    return 1;
+  }
+  return 0;
+}
+
+void swarf_sim_part_survey(swarf_sim *s, const swarf_stock_cut *c) {
+  swarf_sim *p = s->surveyor;
+  const double pad = swarf_stock_half_width(p->stock) + 2.0;
+  int a[3], b[3];
+  double lo[3], hi[3], n = 1;
+  for (int k = 0; k < 3; k++) {
+    lo[k] = c->lo[k] - pad * s->cfg.voxel;
+    hi[k] = c->hi[k] + pad * s->cfg.voxel;
+  }
+  swarf_stock_index_of(p->stock, lo, a);
+  swarf_stock_index_of(p->stock, hi, b);
+  for (int k = 0; k < 3; k++) {
+    a[k] = (a[k] > p->index_lo[k] ? a[k] : p->index_lo[k]) & ~7;
+    b[k] = (b[k] < p->index_hi[k] ? b[k] : p->index_hi[k]) & ~7;
+    if (a[k] > b[k]) return;
+    if (k != p->part_axis) n *= (b[k] - a[k]) / 8 + 1;
+  }
+  for (int x = a[p->part_axis]; x <= b[p->part_axis]; x += 8) {
+    const long i = ((long)x - p->part_first) / 8;
+    if (i >= 0 && i < p->ncol) p->work[i] += n;
+  }
+}
+
+/* A survey of the program at `path`: a handle on the same config that
+ * removes nothing, its token stock at the material's corner. */
+static int survey(swarf_sim *s, const char *path) {
+  swarf_sim_config cfg = s->cfg;
+  swarf_stock *token = NULL;
+  swarf_sim *v = NULL;
+  swarf_error e;
+  double hi[3];
+  for (int k = 0; k < 3; k++)
+    hi[k] = s->mat_lo[k] + 4 * s->cfg.voxel;
+  memset(&cfg.cb, 0, sizeof cfg.cb);
+  cfg.comm = NULL;
+  cfg.tally = 0;
+  cfg.design = NULL;
+  cfg.line_volumes = 0;
+  cfg.nfixtures = 0;
+  cfg.start_set = 1;
+  memcpy(cfg.start, s->rep.start, sizeof cfg.start);
+  swarf_error_init(&e);
+  if (swarf_stock_new_box(s->mat_lo, hi, s->cfg.voxel, 3, &token, &e) != SWARF_OK ||
+      swarf_sim_new_with_stock(&cfg, s->name, token, &v, &e) != SWARF_OK) {
+    swarf_sim_fail(s, e.status, 0, 0, "%s", e.message);
+    return 1;
+  }
+  v->surveyor = s;
+  memcpy(v->pad_lo, s->pad_lo, sizeof v->pad_lo);
+  memcpy(v->pad_hi, s->pad_hi, sizeof v->pad_hi);
+  swarf_status st = swarf_sim_feed_file(v, path);
+  if (st == SWARF_OK) st = swarf_sim_finish(v);
+  if (st != SWARF_OK) { /* the run would fail there too: the same error */
+    s->err = v->err;
+    s->state = SIM_FAILED;
+  }
+  swarf_sim_free(v);
+  return st != SWARF_OK;
+}
+
+/* Rank r's slabs [b[r], b[r+1]): equal shares of the estimated work (plus
+ * a floor a slab, so that slabs nobody cuts still spread). */
+static void shares(const double *work, int ncol, int nranks, int *b) {
+  double total = 0, floor_w, sum = 0;
+  for (int i = 0; i < ncol; i++)
+    total += work[i];
+  floor_w = 1e-3 * total / ncol + 1e-9;
+  total += floor_w * ncol;
+  b[0] = 0;
+  int r = 1;
+  for (int i = 0; i < ncol && r < nranks; i++) {
+    sum += work[i] + floor_w;
+    while (r < nranks && sum >= total * r / nranks)
+      b[r++] = i + 1;
+  }
+  while (r <= nranks)
+    b[r++] = ncol;
+}
+
+static int set_region(swarf_sim *s, const int *b) {
+  const int r = s->cfg.comm->rank, ax = s->part_axis;
+  int lo[3], hi[3];
+  swarf_error e;
+  for (int k = 0; k < 3; k++)
+    lo[k] = -(1 << 30), hi[k] = 1 << 30;
+  if (b[r] == b[r + 1]) /* no slab: a block beyond any stock */
+    lo[ax] = hi[ax] = INT_MAX & ~7;
+  else {
+    if (r > 0) lo[ax] = s->part_first + 8 * b[r];
+    if (r < s->cfg.comm->size - 1) hi[ax] = s->part_first + 8 * b[r + 1] - 1;
+  }
+  if (swarf_stock_set_region(s->stock, lo, hi, &e) != SWARF_OK) {
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
+    return 1;
+  }
+  return 0;
+}
+
+int swarf_sim_part_plan(swarf_sim *s, const char *path) {
+  int rc = 0;
+  if (s->planned || s->surveyor != NULL) return 0;
+  s->planned = 1;
+  if (!swarf_sim_parts(s) && !s->cfg.tally) return 0;
+  if (plan_slabs(s) != 0 || (path != NULL && survey(s, path) != 0)) return 1;
+  if (s->cfg.tally)
+    swarf_stock_set_tally(s->stock, s->part_axis, s->part_first, s->tally, (size_t)s->ncol);
+  if (swarf_sim_parts(s)) {
+    int *b = malloc(sizeof *b * (size_t)(s->cfg.comm->size + 1));
+    if (b == NULL) return swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
+    shares(s->work, s->ncol, s->cfg.comm->size, b);
+    rc = set_region(s, b);
+    free(b);
+  }
+  return rc;
+}
+
+swarf_status swarf_sim_balance(const swarf_sim *s, int nranks, double *max_over_mean,
+                               double *visited) {
+  if (s == NULL || nranks < 1 || max_over_mean == NULL) return SWARF_ERR_ARG;
+  if (s->tally == NULL || s->work == NULL) return SWARF_ERR_STATE;
+  int *b = malloc(sizeof *b * (size_t)(nranks + 1));
+  double most = 0, total = 0;
+  if (b == NULL) return SWARF_ERR_MEMORY;
+  shares(s->work, s->ncol, nranks, b);
+  for (int r = 0; r < nranks; r++) {
+    double w = 0;
+    for (int i = b[r]; i < b[r + 1]; i++)
+      w += 512.0 * (double)s->tally[i];
+    total += w;
+    if (w > most) most = w;
+  }
+  free(b);
+  if (visited != NULL) *visited = total;
+  *max_over_mean = total > 0 ? most / (total / nranks) : 1.0;
+  return SWARF_OK;
+}
+
+/* ---- Combining ------------------------------------------------------------- */
+
+static int comm_failed(swarf_sim *s) {
+  swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "the processes could not exchange their results");
+  return 1;
+}
+
+/* Position in the stock's scan order of the voxel at world point p. */
+static void scan_key(const swarf_sim *s, const double p[3], int key[6]) {
+  int ijk[3];
+  swarf_stock_index_of(s->stock, p, ijk);
+  for (int k = 0; k < 3; k++) {
+    key[k] = ijk[k] >> 3;
+    key[3 + k] = ijk[k] & 7;
+  }
+}
+
+static int key_less(const int a[6], const int b[6]) {
+  for (int k = 0; k < 6; k++)
+    if (a[k] != b[k]) return a[k] < b[k];
+  return 0;
+}
+
+typedef struct {
+  int hit, key[6];
+  double where[3];
+} part_hit;
+
+int swarf_sim_part_hit(swarf_sim *s, int *hit, double where[3]) {
+  const swarf_sim_comm *c = s->cfg.comm;
+  part_hit mine, *all;
+  int best = -1;
+  if (!swarf_sim_parts(s)) return 0;
+  memset(&mine, 0, sizeof mine);
+  mine.hit = *hit;
+  if (*hit) {
+    memcpy(mine.where, where, sizeof mine.where);
+    scan_key(s, where, mine.key);
+  }
+  if ((all = malloc(sizeof *all * (size_t)c->size)) == NULL)
+    return swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
+  if (c->allgather(c->user, &mine, sizeof mine, all) != 0) return free(all), comm_failed(s);
+  for (int r = 0; r < c->size; r++)
+    if (all[r].hit && (best < 0 || key_less(all[r].key, all[best].key))) best = r;
+  *hit = best >= 0;
+  if (best >= 0) memcpy(where, all[best].where, sizeof all[best].where);
+  free(all);
+  return 0;
+}
+
+typedef struct {
+  double voxels, depth, at[3];
+  int key[6];
+} part_effect;
+
+int swarf_sim_part_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n) {
+  const swarf_sim_comm *c = s->cfg.comm;
+  const double v3 = s->cfg.voxel * s->cfg.voxel * s->cfg.voxel;
+  part_effect *mine, *all;
+  if (!swarf_sim_parts(s) || n == 0) return 0;
+  mine = calloc((size_t)n, sizeof *mine);
+  all = calloc((size_t)n * (size_t)c->size, sizeof *all);
+  if (mine == NULL || all == NULL)
+    return free(mine), free(all), swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
+  for (int i = 0; i < n; i++) {
+    mine[i].voxels = e[i].removed_voxels;
+    mine[i].depth = e[i].gouge_depth;
+    memcpy(mine[i].at, e[i].gouge_at, sizeof mine[i].at);
+    if (e[i].gouge_depth > 0) scan_key(s, e[i].gouge_at, mine[i].key);
+  }
+  if (c->allgather(c->user, mine, sizeof *mine * (size_t)n, all) != 0)
+    return free(mine), free(all), comm_failed(s);
+  for (int i = 0; i < n; i++) {
+    const part_effect *best = NULL;
+    double voxels = 0;
+    for (int r = 0; r < c->size; r++) {
+      const part_effect *f = &all[(size_t)r * (size_t)n + (size_t)i];
+      voxels += f->voxels; /* whole multiples of 2^-16: exact */
+      if (f->depth > 0 && (best == NULL || f->depth > best->depth ||
+                           (f->depth == best->depth && key_less(f->key, best->key))))
+        best = f;
+    }
+    e[i].removed_voxels = voxels;
+    e[i].removed = voxels * v3;
+    e[i].gouge_depth = best != NULL ? best->depth : 0.0;
+    for (int k = 0; k < 3; k++)
+      e[i].gouge_at[k] = best != NULL ? best->at[k] : NAN;
+  }
+  free(mine);
+  free(all);
+  return 0;
+}
+
+int swarf_sim_part_sync(swarf_sim *s) {
+  const swarf_sim_comm *c = s->cfg.comm;
+  int *all, stop = 0;
+  if (!swarf_sim_parts(s)) return 0;
+  if ((all = malloc(sizeof *all * (size_t)c->size)) == NULL)
+    return swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
+  if (c->allgather(c->user, &s->abort_pending, sizeof s->abort_pending, all) != 0)
+    return free(all), comm_failed(s);
+  for (int r = 0; r < c->size; r++)
+    stop |= all[r];
+  free(all);
+  if (!stop) return 0;
+  swarf_sim_fail(s, SWARF_ERR_ABORTED, s->cur.line, 0, "aborted by the caller");
+  return 1;
+}
+
+/* ---- The gathering ---------------------------------------------------------- */
+
+static int take_part(void *ctx, int rank, const void *buf, size_t n) {
+  swarf_sim *s = ctx;
+  swarf_error e;
+  (void)rank;
+  if (swarf_stock_part_load(s->stock, buf, n, &e) == SWARF_OK) return 0;
+  swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "gathering the stock: %s", e.message);
+  return 1;
+}
+
+int swarf_sim_part_merge(swarf_sim *s) {
+  const swarf_sim_comm *c = s->cfg.comm;
+  void *buf = NULL;
+  size_t n = 0;
+  swarf_error e;
+  int rc;
+  if (!swarf_sim_parts(s)) return 0;
+  if (c->rank != 0 && swarf_stock_part_save(s->stock, &buf, &n, &e) != SWARF_OK) {
+    /* the others wait in the gathering: stop them all (the caller's transport) */
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "saving the stock's part: %s", e.message);
+    c->gather(c->user, NULL, 0, take_part, s);
+    return 1;
+  }
+  rc = c->gather(c->user, buf, n, take_part, s);
+  free(buf);
+  if (rc != 0 && s->err.status == SWARF_OK) return comm_failed(s);
+  if (s->err.status != SWARF_OK) return 1;
+  if (c->rank == 0) swarf_stock_set_region(s->stock, NULL, NULL, NULL);
+  return 0;
+}

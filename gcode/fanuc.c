@@ -22,6 +22,9 @@
  *                     the main program, M99 P<n> jumps to N<n>; a bare M99
  *                     would run it again from the start: the run stops
  *                     there, with a note.
+ *   A call of O9000-O9999 that the file lacks (the builder's macros in the
+ *                     control: Renishaw's G65 P9810 probing moves ...) is
+ *                     skipped with a note.
  *   G65 P<prog> L<n> args  a macro call: a new set of locals #1-#33, with
  *                     A=#1 B=#2 C=#3 I=#4 J=#5 K=#6 D=#7 E=#8 F=#9 H=#11
  *                     M=#13 Q=#17 R=#18 S=#19 T=#20 U=#21 V=#22 W=#23 X=#24
@@ -559,6 +562,17 @@ static int call(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_gc_fa
       return SWARF_GC_FAIL(f, SWARF_GCODE_E_FANUC_NO_SEQUENCE, w->column, name, target);
   } else {
     to = find_o(fa, target);
+    if (to >= fa->n && target >= 9000 && target <= 9999) {
+      /* O9000-O9999 are the machine builder's macros, kept in the control
+       * (probing cycles: G65 P9810 ...): not in the file, the call makes
+       * no motion here. */
+      swarf_gc_parser_note(fa->p, w->column,
+                           "%s P%ld: O%ld is a macro of the control's memory, not in this file: "
+                           "skipped (no motion)",
+                           name, target, target);
+      ++*pc;
+      return SWARF_OK;
+    }
     if (to >= fa->n)
       return SWARF_GC_FAIL(f, SWARF_GCODE_E_FANUC_NO_PROGRAM, w->column, name, target);
   }
@@ -583,21 +597,6 @@ static int run_text(swarf_gc_fanuc *fa, const char *text, size_t len, long line)
   if (fa->p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC)
     return swarf_gc_parser_flow_line(fa->p, text, len, line);
   return swarf_gc_parser_run_line(fa->p, text, len, line);
-}
-
-int swarf_gc_has_m98(const char *t, size_t n) {
-  for (size_t i = 0; i + 2 < n; i++) {
-    size_t j;
-    if (t[i] == '(' || t[i] == ';') return 0; /* a comment: not a call (simplified) */
-    if (t[i] != 'M' && t[i] != 'm') continue;
-    j = skip(t, n, i + 1);
-    while (j < n && t[j] == '0')
-      j = skip(t, n, j + 1);
-    if (j + 1 < n && t[j] == '9' && t[j + 1] == '8' &&
-        (j + 2 >= n || !isdigit((unsigned char)t[j + 2])))
-      return 1;
-  }
-  return 0;
 }
 
 /* A block: its motion first, then its call or return. */

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "gcode_private.h"
+#include "swarf_file.h"
 
 /* A decimal number as G-code writes one: [+-]digits[.digits][e[+-]digits]
  * (strtod alone would take "nan", "inf" and hexadecimal). */
@@ -132,14 +133,15 @@ static swarf_status load(swarf_gcode_parser *p, FILE *in, const char *path, swar
 swarf_status swarf_gcode_parser_load_params(swarf_gcode_parser *p, const char *path,
                                             swarf_error *err) {
   saved_setup *saved;
+  swarf_error why;
   swarf_status s;
   FILE *in;
   if (p == NULL || path == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_NO_PATH, err);
   if (p->lines > 0 || p->partial_len > 0) return SWARF_GC_ERROR(SWARF_GCODE_E_SETUP_STARTED, err);
-  in = fopen(path, "r");
-  if (in == NULL) {
+  in = swarf_file_open_input(path, "parameter file", (long long)1 << 26, &why);
+  if (in == NULL) { /* missing, not a regular file, or over 64 MiB */
     swarf_error_at(err, path, 0, 0, NULL);
-    return SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_OPEN, err, strerror(errno));
+    return SWARF_GC_ERROR(SWARF_GCODE_E_PARAMS_OPEN, err, why.message);
   }
   saved = malloc(sizeof *saved);
   if (saved == NULL) {

@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "gcode_private.h"
+#include "swarf_file.h"
 
 #define READ_CHUNK (64 * 1024)
 
@@ -225,6 +226,25 @@ static swarf_status release_held(swarf_gcode_parser *p) {
   return emit(p, "", 0);
 }
 
+/* LinuxCNC 2.9 reads M98 P<n> too (the block path does not know it): at
+ * the first M98 of the streamed program (not inside a construct), the
+ * line and the rest of the program are kept whole, as a Fanuc program is,
+ * and run at the end (its O<n> ... M99 may come after M2). 1: switched. */
+static int m98_switch(swarf_gcode_parser *p, const swarf_gc_fault *f, const char *text, size_t n) {
+  char word[SWARF_GC_WORD_TEXT];
+  swarf_gc_fault g;
+  if (f->code != SWARF_GCODE_E_UNKNOWN_M_CODE || p->fanuc != NULL ||
+      p->state->dialect != SWARF_GCODE_DIALECT_LINUXCNC || p->cur_line != p->lines ||
+      swarf_gc_flow_open_line(p->flow) != 0)
+    return 0;
+  word_at(text, n, f->column, word, sizeof word);
+  if (strtod(word + 1, NULL) != 98.0) return 0;
+  if ((p->fanuc = swarf_gc_fanuc_new(p)) == NULL)
+    return fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1), 1;
+  if (swarf_gc_fanuc_store(p->fanuc, text, n, p->lines, &g) != SWARF_OK) fail(p, &g, text, n);
+  return 1;
+}
+
 /* Read, check, execute on a copy; commit only if all of it succeeded. */
 static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   swarf_gc_block b;
@@ -238,6 +258,7 @@ static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n)
   status = swarf_gc_block_read(text, n, &p->params, &b, &f);
   if (status == SWARF_OK) status = swarf_gc_block_check(&b, p->state, &f);
   if (status == SWARF_OK) status = swarf_gc_execute(&b, next, &ex, &f);
+  if (status != SWARF_OK && m98_switch(p, &f, text, n)) return p->status;
   if (status != SWARF_OK) return fail(p, &f, text, n);
   p->state = next; /* commit: the copy becomes the state */
   p->params.state = next;
@@ -376,14 +397,12 @@ static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t
   if (first == n) return SWARF_OK;
   rest = skip_blanks(text, n, first + 1);
   if (p->state->dialect == SWARF_GCODE_DIALECT_GRBL) return grbl_line(p, text, n, first, rest);
+  /* A LinuxCNC program kept for M98: rs274 seeks the O<n> past a `%`. */
+  if (text[first] == '%' && rest == n && p->fanuc != NULL && !p->percent_open &&
+      p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC)
+    return SWARF_OK;
   if (text[first] == '%' && rest == n) return percent_line(p, text, n, first);
   p->seen_code = 1;
-  /* LinuxCNC 2.9 reads M98 P<n> too: from the first M98 on, the program is
-   * kept whole like a Fanuc one (its O<n> ... M99 may come after M2). */
-  if (p->fanuc == NULL && p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC &&
-      swarf_gc_flow_open_line(p->flow) == 0 && swarf_gc_has_m98(text, n) &&
-      (p->fanuc = swarf_gc_fanuc_new(p)) == NULL)
-    return fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
   if (p->fanuc != NULL) {
     status = swarf_gc_fanuc_store(p->fanuc, text, n, p->lines, &f);
     return status == SWARF_OK ? SWARF_OK : fail(p, &f, text, n);
@@ -504,43 +523,11 @@ swarf_status swarf_gcode_parser_set_canon(swarf_gcode_parser *p, swarf_gcode_can
   return SWARF_OK;
 }
 
-/* One tool table line: T<n> then words like Z0.5 D0.25; ';' comments. */
-static void tool_line(swarf_gcode_parser *p, const char *line) {
-  int t = -1;
-  double z = 0, d = 0;
-  for (const char *s = line; *s && *s != ';'; s++) {
-    char c = (char)(*s & ~0x20);
-    if (c == 'T') t = atoi(s + 1);
-    if (c == 'Z') z = atof(s + 1);
-    if (c == 'D') d = atof(s + 1);
-  }
-  if (t > 0 && t < SWARF_GC_NTOOLS) {
-    p->tools[t][0] = z * SWARF_GC_MM_PER_INCH;
-    p->tools[t][1] = d * SWARF_GC_MM_PER_INCH;
-  }
-}
-
 /* *err (may be NULL), cleared, names a file of the caller's, no line. */
 static swarf_error *file_at(swarf_error *err, const char *path) {
   swarf_error_init(err);
   swarf_error_at(err, path, 0, 0, NULL);
   return err;
-}
-
-swarf_status swarf_gcode_parser_load_tools(swarf_gcode_parser *p, const char *path,
-                                           swarf_error *err) {
-  char line[512];
-  FILE *in;
-  if (p == NULL || path == NULL) return SWARF_ERR_ARG;
-  in = fopen(path, "r");
-  if (in == NULL)
-    return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_OPEN, file_at(err, path), strerror(errno));
-  for (int t = 0; t < SWARF_GC_NTOOLS; t++)
-    p->tools[t][0] = NAN, p->tools[t][1] = 0;
-  while (fgets(line, sizeof line, in) != NULL)
-    tool_line(p, line);
-  fclose(in);
-  return SWARF_OK;
 }
 
 swarf_status swarf_gcode_parser_clear_tools(swarf_gcode_parser *p) {
@@ -603,12 +590,12 @@ static swarf_status stream_file(FILE *in, swarf_gcode_parser *p, const char *pat
 swarf_status swarf_gcode_parse_file(const char *path, swarf_gcode_move_fn fn, void *user,
                                     swarf_error *err) {
   swarf_gcode_parser *p;
+  swarf_error why;
   FILE *in;
   swarf_status status;
   if (path == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_NO_FILE_NAME, file_at(err, ""));
-  in = fopen(path, "rb");
-  if (in == NULL)
-    return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), strerror(errno));
+  in = swarf_file_open_input(path, "program", 0, &why); /* regular files only */
+  if (in == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_FILE_OPEN, file_at(err, path), why.message);
   if (swarf_gcode_parser_new(path, fn, user, &p) != SWARF_OK) {
     fclose(in);
     return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, file_at(err, path));

@@ -73,7 +73,51 @@ openvdb::FloatGrid::Ptr read_open_file(openvdb::io::File &file, const std::strin
   return grid;
 }
 
+/// Bounds on a grid read as a stock, so that the work done on it (bounds,
+/// volumes, meshing, rendering) follows its content and stays in seconds: a
+/// root table of at most kMaxRootEntries nodes and tiles (each covers 4096^3
+/// voxels: a stock's narrow band needs a few), at most kMaxActiveTiles
+/// active tiles (iterating them costs OpenVDB time quadratic in the root
+/// table: 2^19 of them took 20 s), and material within
+/// kMaxExtentVoxels voxels along each axis (2^20: 210 m at 0.2 mm). A grid
+/// of 2^20 root tiles or two voxels 5e8 mm apart is refused, not walked.
+constexpr size_t kMaxRootEntries = size_t(1) << 16;
+constexpr long long kMaxExtentVoxels = 1LL << 20;
+constexpr openvdb::Index64 kMaxActiveTiles = 4096;  // a level set has none; OpenVDB walks them slowly
+
+void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &path) {
+  const size_t root = grid.tree().root().getTableSize();
+  if (root > kMaxRootEntries)
+    throw Error(SWARF_ERR_LIMIT, path + ": " + std::to_string(root) +
+                                     " root nodes and tiles, more than the " +
+                                     std::to_string(kMaxRootEntries) + " a stock may have");
+  const openvdb::Index64 tiles = grid.tree().activeTileCount();  // linear in the nodes
+  if (tiles > kMaxActiveTiles)
+    throw Error(SWARF_ERR_LIMIT, path + ": " + std::to_string(tiles) +
+                                     " active tiles, more than the " +
+                                     std::to_string(kMaxActiveTiles) +
+                                     " accepted (a level-set stock has none)");
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  if (box.empty()) return;
+  for (int k = 0; k < 3; k++) {
+    const long long span = (long long)box.max()[k] - (long long)box.min()[k] + 1;
+    if (span > kMaxExtentVoxels)
+      throw Error(SWARF_ERR_LIMIT, path + ": the material spans " + std::to_string(span) +
+                                       " voxels along " + "xyz"[k] + ", more than the " +
+                                       std::to_string(kMaxExtentVoxels) +
+                                       " a stock may span (work would follow the extent)");
+  }
+}
+
+openvdb::FloatGrid::Ptr read_grid_checked(const std::string &path);
+
 openvdb::FloatGrid::Ptr read_grid_here(const std::string &path) {
+  openvdb::FloatGrid::Ptr grid = read_grid_checked(path);
+  check_stock_grid(*grid, path);
+  return grid;
+}
+
+openvdb::FloatGrid::Ptr read_grid_checked(const std::string &path) {
   openvdb::io::File file(path);
   try {
     file.open(/*delayLoad=*/false);
@@ -94,7 +138,8 @@ openvdb::FloatGrid::Ptr read_grid_here(const std::string &path) {
 }
 
 /// Address space (bytes) for the reading child: what the process maps now
-/// plus room for the grid; 0 (no limit) under AddressSanitizer, which maps
+/// plus room for the grid (256 MB and 64 times the file: a damaged 20 kB
+/// file that makes OpenVDB allocate gigabytes is stopped at 256 MB); 0 (no limit) under AddressSanitizer, which maps
 /// terabytes of shadow memory.
 size_t reader_address_space(const std::string &path) {
 #if defined(__SANITIZE_ADDRESS__)
@@ -112,7 +157,7 @@ size_t reader_address_space(const std::string &path) {
     std::fclose(f);
   }
   if (pages == 0) return 0;
-  return pages * size_t(::sysconf(_SC_PAGESIZE)) + (size_t(2) << 30) + 64 * file;
+  return pages * size_t(::sysconf(_SC_PAGESIZE)) + (size_t(256) << 20) + 64 * file;
 }
 
 /// Whether reads run in a child: -1 follow SWARF_VDB_ISOLATE (default on),
@@ -142,7 +187,7 @@ void check_readable(const char *path) {
 /// unless the embedding program turned that off.
 openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   if (!isolate_reads()) return read_grid_here(path);
-  const IsolateLimits limits = {120, reader_address_space(path)};
+  const IsolateLimits limits = {60, reader_address_space(path)};
   std::string bytes;
   run_isolated("reading " + path, limits, [&] {
     std::ostringstream os(std::ios::binary);
@@ -154,6 +199,7 @@ openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   openvdb::FloatGrid::Ptr grid;
   if (grids && grids->size() == 1) grid = openvdb::gridPtrCast<openvdb::FloatGrid>(grids->front());
   if (!grid) throw Error(SWARF_ERR_INTERNAL, path + ": the reader's copy did not arrive whole");
+  check_stock_grid(*grid, path);  // the parent trusts nothing it did not check
   return grid;
 }
 

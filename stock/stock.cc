@@ -297,6 +297,16 @@ extern "C" int swarf_stock_threads(const swarf_stock *s) {
   return s ? s->threads : 0;
 }
 
+extern "C" swarf_status swarf_stock_set_tick(swarf_stock *s, swarf_stock_tick_fn fn, void *user,
+                                             double every, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
+    if (!(every >= 0.0 && every <= 3600.0))
+      throw swarf::Error(SWARF_ERR_ARG, "tick interval: give 0 to 3600 seconds");
+    s->tick = fn, s->tick_user = user, s->tick_every = every;
+  });
+}
+
 extern "C" int swarf_stock_half_width(const swarf_stock *s) { return s ? s->half_width : 0; }
 
 extern "C" double swarf_stock_volume(const swarf_stock *s) {

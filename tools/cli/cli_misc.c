@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "swarf_file.h"
 #include "cli_stock.h"
 #include "gcode.h"
 #include "stock.h"
@@ -108,13 +109,15 @@ static int parse_stream(const parse_options *o, long *count, swarf_error *err) {
   char chunk[65536];
   size_t got;
   int rc = SWARF_OK;
-  FILE *in = fopen(o->program, "rb");
   swarf_gcode_parser *p;
+  FILE *in;
   memset(err, 0, sizeof *err);
-  snprintf(err->file, sizeof err->file, "%s", o->program);
+  in = swarf_file_open_input(o->program, "program", 0, err); /* regular files only */
   if (in == NULL) {
-    snprintf(err->message, sizeof err->message, "cannot open file: %s", strerror(errno));
-    return SWARF_ERR_OPEN;
+    char why[sizeof err->message];
+    snprintf(why, sizeof why, "%s", err->message);
+    snprintf(err->message, sizeof err->message, "cannot open file: %.480s", why);
+    return err->status;
   }
   if (swarf_gcode_parser_new(o->program, o->canon ? count_move : print_move, count, &p) != SWARF_OK)
     return fclose(in), SWARF_ERR_MEMORY;
@@ -172,10 +175,9 @@ int swarf_cli_parse(int argc, char **argv) {
   fflush(stdout);
   rc = parse_stream(&o, count, &err);
   if (rc != SWARF_OK) {
-    if (err.line > 0)
-      fprintf(stderr, "%s:%ld:%d: %s\n", err.file, err.line, err.column, err.message);
-    else
-      fprintf(stderr, "%s: %s\n", err.file, err.message);
+    char msg[1024];
+    swarf_error_format(&err, msg, sizeof msg); /* FILE:LINE:COL, or TABLE:LINE for tables */
+    fprintf(stderr, "%s\n", msg);
     return swarf_status_classify(rc) == SWARF_CLASS_INPUT ? 2 : 1;
   }
   fprintf(count[1] ? stdout : stderr, "%s: %ld moves\n", o.program, count[0]);

@@ -24,7 +24,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "swarf_file.h"
 #include "assembly.h"
+
+#define LIBRARY_FILE_MAX ((long long)1 << 26) /* 64 MiB of JSON */
 
 /* ---- Where an entry is in the text ----------------------------------------- */
 
@@ -284,12 +287,13 @@ static swarf_status check_numbers(const library_src *src, json_t *tools) {
 }
 
 static char *read_all(const char *path, size_t *len, swarf_error *err) {
-  FILE *f = fopen(path, "rb");
+  swarf_error why;
+  FILE *f = swarf_file_open_input(path, "tool library", LIBRARY_FILE_MAX, &why);
   char *buf = NULL;
   size_t cap = 0, n = 0, got;
-  if (f == NULL) {
+  if (f == NULL) { /* missing, not a regular file (a device, a FIFO) or too large */
     swarf_error_at(err, path, 0, 0, "--tool-library");
-    swarf_error_set(err, SWARF_ERR_OPEN, "cannot open the tool library: %s", strerror(errno));
+    swarf_error_set(err, why.status, "cannot open the tool library: %.400s", why.message);
     return NULL;
   }
   do {

@@ -10,7 +10,9 @@
  * is required; P pocket, D diameter, Z the G43 length; X Y A B C must be 0
  * (a mill's table: the simulator applies Z only); U V W I J Q (lathe and
  * other-axis fields) are read and ignored. Where LinuxCNC skips a line it
- * cannot read, this reader stops with FILE:LINE: what is wrong.
+ * cannot read, this reader stops with FILE:LINE: what is wrong; lines over
+ * TABLE_LINE_MAX characters and files that are not regular (a device, a
+ * FIFO) or over TABLE_FILE_MAX bytes are refused.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -21,6 +23,10 @@
 #include <string.h>
 
 #include "assembly.h"
+#include "swarf_file.h"
+
+#define TABLE_LINE_MAX 4096                 /* longest line accepted */
+#define TABLE_FILE_MAX ((long long)1 << 24) /* 16 MiB, only a regular file */
 
 /* One entry as read, table units converted to mm. */
 typedef struct {
@@ -157,16 +163,19 @@ swarf_status swarf_sim_config_load_tool_table(swarf_sim_config *cfg, const char 
   swarf_status s = SWARF_OK;
   if (cfg == NULL || path == NULL || !(mm_per_unit > 0))
     return swarf_error_set(err, SWARF_ERR_ARG, "tool table: no config, path or unit");
-  FILE *in = fopen(path, "r");
+  swarf_error why;
+  FILE *in = swarf_file_open_input(path, "tool table", TABLE_FILE_MAX, &why);
   if (in == NULL) {
     swarf_error_at(err, path, 0, 0, "--tool-table");
-    return swarf_error_set(err, SWARF_ERR_OPEN, "cannot open the tool table: %s", strerror(errno));
+    return swarf_error_set(err, why.status, "cannot open the tool table: %.400s", why.message);
   }
   ssize_t n;
   while (s == SWARF_OK && (n = getline(&text, &cap, in)) >= 0) {
     table_entry e;
     at.line++;
-    if ((size_t)n != strlen(text))
+    if (n > TABLE_LINE_MAX)
+      s = bad(&at, "", "line longer than %d characters (not a tool table?)", TABLE_LINE_MAX);
+    else if ((size_t)n != strlen(text))
       s = bad(&at, "", "a NUL byte in the line (not a text file?)");
     else if ((s = table_line(&at, text, mm_per_unit, &e)) == SWARF_OK && e.number > 0 &&
              (s = check_twice(&at, seen, &nseen, e.number)) == SWARF_OK)

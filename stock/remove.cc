@@ -175,9 +175,38 @@ double block_material(const Pass &p, ConstAcc &acc, const Coord &o, const Leaf *
   return sum;
 }
 
+/// True if the design cannot be gouged anywhere in the block at o (stock
+/// index): the design and the stock share a lattice and every design value
+/// over the block's voxels is at least a voxel (outside the design by more
+/// than any depth vouched there). dacc: the design's tree.
+bool design_clear(const Pass &p, ConstAcc *dacc, const Coord &o) {
+  if (dacc == nullptr) return false;
+  const swarf_stock &d = *p.measure->design;
+  const Vec3d off = (p.s.origin - d.origin) / p.voxel;
+  const Coord lo(o.x() + int(std::lround(off[0])), o.y() + int(std::lround(off[1])), o.z() + int(std::lround(off[2])));
+  const Coord hi = lo.offsetBy(7);
+  const float floor_value = float(p.voxel);
+  for (int x = lo.x() & ~7; x <= hi.x(); x += 8)
+    for (int y = lo.y() & ~7; y <= hi.y(); y += 8)
+      for (int z = lo.z() & ~7; z <= hi.z(); z += 8) {
+        const Coord c(x, y, z);
+        const Leaf *leaf = dacc->probeConstLeaf(c);
+        if (leaf == nullptr) {
+          if (!(dacc->getValue(c) >= floor_value)) return false;
+          continue;
+        }
+        const float *v = leaf->buffer().data();
+        for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
+          if (!(v[n] >= floor_value)) return false;
+      }
+  return true;
+}
+
 /// Pass 2 for one block: keep the cuts that reach into it (compacted to the
 /// front of its pair range, with their centre values) and choose its action.
-void classify(const Pass &p, ConstAcc &acc, Block &b) {
+/// dacc: the design's tree when measuring against a design on the stock's
+/// lattice (else null).
+void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   RemoveScratch &w = p.s.scratch;
   const Leaf *leaf;
   b.action = kSkip;
@@ -192,7 +221,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b) {
       b.action = kClear;
       return;
     }
-    if (-d > p.reach && kept == 0 && p.measure->design == nullptr) {
+    if (-d > p.reach && kept == 0 && (p.measure->design == nullptr || design_clear(p, dacc, b.origin))) {
       // Measured: the first cut reaching the block clears it and removes all of it.
       w.pairs[b.begin] = w.pairs[i];
       w.removed[b.begin] = block_material(p, acc, b.origin, leaf);
@@ -401,7 +430,12 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design)
           if (!(nv > v)) continue;
           w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
           if (design && v < 0.0f && d > 0.0) {
-            if (!have_dq) dq = design->at(q), have_dq = true;
+            if (!have_dq) {
+              dq = design->at(q), have_dq = true;
+              // Beyond the band of a design read from a mesh: its exact depth.
+              const swarf_stock &ds = *p.measure->design;
+              if (ds.surface && dq <= -double(ds.background) * (1.0 - 1e-6)) dq = -surface_distance(ds, q);
+            }
             const double depth = -dq + vouched_radius(std::min(d, -double(v)), p.voxel);
             if (depth > tol && depth > w.gouge[i]) w.gouge[i] = depth, w.gouge_at[i] = q;
           }
@@ -646,7 +680,9 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
           const Vec3d q = block_point(p, o, l.x(), l.y(), l.z());
           const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
           if (!(d > 0.0)) continue;
-          const double depth = -probe.at(q) + vouched_radius(std::min(d, -v), p.voxel);
+          double dq = probe.at(q);
+          if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6)) dq = -surface_distance(design, q);
+          const double depth = -dq + vouched_radius(std::min(d, -v), p.voxel);
           if (depth > tolerance && depth > best) best = depth, where = q;
         }
       }
@@ -671,8 +707,11 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
   Ticker ticker(s, w.blocks.size() + w.blocks.size());
   ticker.run(0, w.blocks.size(), 16, [&](const tbb::blocked_range<size_t> &r) {
     ConstAcc acc(ctree);
+    std::unique_ptr<ConstAcc> dacc;
+    if (measure && measure->design && GridProbe::lattices_coincide(*measure->design, s))
+      dacc.reset(new ConstAcc(measure->design->grid->constTree()));
     for (size_t i = r.begin(); i != r.end(); ++i)
-      classify(p, acc, w.blocks[i]);
+      classify(p, acc, w.blocks[i], dacc.get());
   });
   change_topology(p);
   Tree &tree = s.grid->tree();

@@ -66,6 +66,7 @@ struct Pass {
   double reach;                     ///< half diagonal of a block plus the band, mm
   double eps;                       ///< margin (mm) of the per-voxel Lipschitz test
   float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
+  double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
   bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
 };
@@ -84,6 +85,12 @@ void init_pass(Pass &p) {
       for (int z = 0; z < 8; z++)
         p.radius[(x << 6) | (y << 3) | z] = float(
             v * std::sqrt((x - 3.5) * (x - 3.5) + (y - 3.5) * (y - 3.5) + (z - 3.5) * (z - 3.5)));
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const double dx = (x & 3) - 1.5, dy = (y & 3) - 1.5, dz = (z & 3) - 1.5;
+        p.roct[(x << 6) | (y << 3) | z] = v * std::sqrt(dx * dx + dy * dy + dz * dz);
+      }
 }
 
 /// Index box (block origins, both ends inclusive) of the blocks a cut may
@@ -168,9 +175,38 @@ double block_material(const Pass &p, ConstAcc &acc, const Coord &o, const Leaf *
   return sum;
 }
 
+/// True if the design cannot be gouged anywhere in the block at o (stock
+/// index): the design and the stock share a lattice and every design value
+/// over the block's voxels is at least a voxel (outside the design by more
+/// than any depth vouched there). dacc: the design's tree.
+bool design_clear(const Pass &p, ConstAcc *dacc, const Coord &o) {
+  if (dacc == nullptr) return false;
+  const swarf_stock &d = *p.measure->design;
+  const Vec3d off = (p.s.origin - d.origin) / p.voxel;
+  const Coord lo(o.x() + int(std::lround(off[0])), o.y() + int(std::lround(off[1])), o.z() + int(std::lround(off[2])));
+  const Coord hi = lo.offsetBy(7);
+  const float floor_value = float(p.voxel);
+  for (int x = lo.x() & ~7; x <= hi.x(); x += 8)
+    for (int y = lo.y() & ~7; y <= hi.y(); y += 8)
+      for (int z = lo.z() & ~7; z <= hi.z(); z += 8) {
+        const Coord c(x, y, z);
+        const Leaf *leaf = dacc->probeConstLeaf(c);
+        if (leaf == nullptr) {
+          if (!(dacc->getValue(c) >= floor_value)) return false;
+          continue;
+        }
+        const float *v = leaf->buffer().data();
+        for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
+          if (!(v[n] >= floor_value)) return false;
+      }
+  return true;
+}
+
 /// Pass 2 for one block: keep the cuts that reach into it (compacted to the
 /// front of its pair range, with their centre values) and choose its action.
-void classify(const Pass &p, ConstAcc &acc, Block &b) {
+/// dacc: the design's tree when measuring against a design on the stock's
+/// lattice (else null).
+void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   RemoveScratch &w = p.s.scratch;
   const Leaf *leaf;
   b.action = kSkip;
@@ -185,7 +221,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b) {
       b.action = kClear;
       return;
     }
-    if (-d > p.reach && kept == 0 && p.measure->design == nullptr) {
+    if (-d > p.reach && kept == 0 && (p.measure->design == nullptr || design_clear(p, dacc, b.origin))) {
       // Measured: the first cut reaching the block clears it and removes all of it.
       w.pairs[b.begin] = w.pairs[i];
       w.removed[b.begin] = block_material(p, acc, b.origin, leaf);
@@ -295,9 +331,7 @@ void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, dou
           for (int y = sy; y < sy + 2; y++)
             for (int z = sz; z < sz + 2; z++) {
               const openvdb::Index n = (x << 6) | (y << 3) | z;
-              const double dx = x - (x0 + 1.5), dy = y - (y0 + 1.5), dz = z - (z0 + 1.5);
-              const double r = v * std::sqrt(dx * dx + dy * dy + dz * dz);
-              if (!may_raise(bv.m[n], bg, doct, r)) continue;
+              if (!may_raise(bv.m[n], bg, doct, p.roct[n])) continue;
               if (clear)
                 bv.m[n] = bg;
               else
@@ -396,7 +430,12 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design)
           if (!(nv > v)) continue;
           w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
           if (design && v < 0.0f && d > 0.0) {
-            if (!have_dq) dq = design->at(q), have_dq = true;
+            if (!have_dq) {
+              dq = design->at(q), have_dq = true;
+              // Beyond the band of a design read from a mesh: its exact depth.
+              const swarf_stock &ds = *p.measure->design;
+              if (ds.surface && dq <= -double(ds.background) * (1.0 - 1e-6)) dq = -surface_distance(ds, q);
+            }
             const double depth = -dq + vouched_radius(std::min(d, -double(v)), p.voxel);
             if (depth > tol && depth > w.gouge[i]) w.gouge[i] = depth, w.gouge_at[i] = q;
           }
@@ -587,7 +626,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
                     size_t nclear, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -601,7 +640,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -616,7 +655,7 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
 /// Deepest gouge of the cut into the design where the stock has material (see stock.h).
 double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
                  double tolerance, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   double best = 0.0;
@@ -641,7 +680,9 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
           const Vec3d q = block_point(p, o, l.x(), l.y(), l.z());
           const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
           if (!(d > 0.0)) continue;
-          const double depth = -probe.at(q) + vouched_radius(std::min(d, -v), p.voxel);
+          double dq = probe.at(q);
+          if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6)) dq = -surface_distance(design, q);
+          const double depth = -dq + vouched_radius(std::min(d, -v), p.voxel);
           if (depth > tolerance && depth > best) best = depth, where = q;
         }
       }
@@ -654,7 +695,7 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
     const char *e = std::getenv("SWARF_REMOVE_FLAT");
     return e != nullptr && e[0] == '1';
   }();
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, measure, flat};
+  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);
@@ -666,8 +707,11 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
   Ticker ticker(s, w.blocks.size() + w.blocks.size());
   ticker.run(0, w.blocks.size(), 16, [&](const tbb::blocked_range<size_t> &r) {
     ConstAcc acc(ctree);
+    std::unique_ptr<ConstAcc> dacc;
+    if (measure && measure->design && GridProbe::lattices_coincide(*measure->design, s))
+      dacc.reset(new ConstAcc(measure->design->grid->constTree()));
     for (size_t i = r.begin(); i != r.end(); ++i)
-      classify(p, acc, w.blocks[i]);
+      classify(p, acc, w.blocks[i], dacc.get());
   });
   change_topology(p);
   Tree &tree = s.grid->tree();

@@ -25,6 +25,12 @@
 
 namespace swarf {
 
+struct MeshSurface;  // mesh_sdf.h
+
+/// Exact distance (mm, >= 0) from world point w to the surface of design d
+/// (d.surface non-null; mesh_sdf.cc).
+double surface_distance(const swarf_stock &d, const openvdb::Vec3d &w);
+
 /// One (block, cut) pair of a removal: the index origin of a leaf-aligned 8^3
 /// block and the number of a cut whose padded bounds meet it.
 struct BlockCut {
@@ -101,6 +107,9 @@ struct swarf_stock {
   int half_width;               ///< band half-width in voxels (background / voxel, rounded)
   openvdb::CoordBBox content;   ///< index box holding all material and band; never grows
   swarf::RemoveScratch scratch;
+  /// A design read from a mesh: its triangles (index space of this grid),
+  /// for exact distances beyond the band (mesh_sdf.h); null otherwise.
+  std::shared_ptr<const swarf::MeshSurface> surface;
   int threads = 0;                        ///< swarf_stock_set_threads: 0 all cores
   std::shared_ptr<tbb::task_arena> arena; ///< the removal's threads when threads > 0
   swarf_stock_tick_fn tick = nullptr;     ///< swarf_stock_set_tick

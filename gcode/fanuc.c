@@ -599,21 +599,6 @@ static int run_text(swarf_gc_fanuc *fa, const char *text, size_t len, long line)
   return swarf_gc_parser_run_line(fa->p, text, len, line);
 }
 
-int swarf_gc_has_m98(const char *t, size_t n) {
-  for (size_t i = 0; i + 2 < n; i++) {
-    size_t j;
-    if (t[i] == '(' || t[i] == ';') return 0; /* a comment: not a call (simplified) */
-    if (t[i] != 'M' && t[i] != 'm') continue;
-    j = skip(t, n, i + 1);
-    while (j < n && t[j] == '0')
-      j = skip(t, n, j + 1);
-    if (j + 1 < n && t[j] == '9' && t[j + 1] == '8' &&
-        (j + 2 >= n || !isdigit((unsigned char)t[j + 2])))
-      return 1;
-  }
-  return 0;
-}
-
 /* A block: its motion first, then its call or return. */
 static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
   const fline *l = &fa->v[*pc];

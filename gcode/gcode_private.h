@@ -626,10 +626,6 @@ void swarf_gc_fanuc_free(swarf_gc_fanuc *fa);
 /* Keeps one line of the program. */
 int swarf_gc_fanuc_store(swarf_gc_fanuc *fa, const char *text, size_t len, long line,
                          swarf_gc_fault *f);
-/* The line has an M98 word (LinuxCNC 2.9 reads Fanuc-style calls too: the
- * parser then keeps the rest of the program and runs it through fanuc.c,
- * with O-word lines still going to oword.c). */
-int swarf_gc_has_m98(const char *text, size_t n);
 /* Runs the program kept; *err_line says where a fault is. */
 int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_gc_fault *f);
 

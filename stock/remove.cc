@@ -38,6 +38,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -65,7 +66,9 @@ struct Pass {
   double reach;                     ///< half diagonal of a block plus the band, mm
   double eps;                       ///< margin (mm) of the per-voxel Lipschitz test
   float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
+  double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
+  bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -82,6 +85,12 @@ void init_pass(Pass &p) {
       for (int z = 0; z < 8; z++)
         p.radius[(x << 6) | (y << 3) | z] = float(
             v * std::sqrt((x - 3.5) * (x - 3.5) + (y - 3.5) * (y - 3.5) + (z - 3.5) * (z - 3.5)));
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const double dx = (x & 3) - 1.5, dy = (y & 3) - 1.5, dz = (z & 3) - 1.5;
+        p.roct[(x << 6) | (y << 3) | z] = v * std::sqrt(dx * dx + dy * dy + dz * dz);
+      }
 }
 
 /// Index box (block origins, both ends inclusive) of the blocks a cut may
@@ -322,15 +331,29 @@ void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, dou
           for (int y = sy; y < sy + 2; y++)
             for (int z = sz; z < sz + 2; z++) {
               const openvdb::Index n = (x << 6) | (y << 3) | z;
-              const double dx = x - (x0 + 1.5), dy = y - (y0 + 1.5), dz = z - (z0 + 1.5);
-              const double r = v * std::sqrt(dx * dx + dy * dy + dz * dz);
-              if (!may_raise(bv.m[n], bg, doct, r)) continue;
+              if (!may_raise(bv.m[n], bg, doct, p.roct[n])) continue;
               if (clear)
                 bv.m[n] = bg;
               else
                 need = true;
             }
         if (need) visit_cube(p, b, cut, sx, sy, sz, bv);
+      }
+}
+
+/// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the
+/// reference the tests compare with): every voxel the block centre's bound
+/// cannot decide is evaluated.
+void visit_flat(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc,
+                BlockValues &bv) {
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        if (!may_raise(bv.m[n], p.bgf, dc, p.radius[n])) continue;
+        const Vec3d q = block_point(p, b.origin, x, y, z);
+        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        if (d > bv.m[n]) bv.m[n] = d;
       }
 }
 
@@ -348,10 +371,13 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
     bv.m[n] = data[n];
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    for (int x = 0; x < 8; x += 4)
-      for (int y = 0; y < 8; y += 4)
-        for (int z = 0; z < 8; z += 4)
-          visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
+    if (p.flat)
+      visit_flat(p, b, cut, w.centre_sdf[i], bv);
+    else
+      for (int x = 0; x < 8; x += 4)
+        for (int y = 0; y < 8; y += 4)
+          for (int z = 0; z < 8; z += 4)
+            visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];
@@ -600,7 +626,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
                     size_t nclear, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -614,7 +640,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -629,7 +655,7 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
 /// Deepest gouge of the cut into the design where the stock has material (see stock.h).
 double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
                  double tolerance, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   double best = 0.0;
@@ -665,7 +691,11 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
 
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
                  const Measure *measure) {
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, measure};
+  static const bool flat = [] {
+    const char *e = std::getenv("SWARF_REMOVE_FLAT");
+    return e != nullptr && e[0] == '1';
+  }();
+  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);

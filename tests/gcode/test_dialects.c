@@ -331,6 +331,12 @@ static void test_fanuc_jumps(void) {
           SWARF_GCODE_E_FANUC_NO_SEQUENCE);
   refused("a loop that never ends", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nDO1\nEND1\nM30\n"), 3,
           SWARF_GCODE_E_O_WORK_LIMIT);
+  /* "IF [<expression>] THEN <macro statement>" runs the assignment only when
+   * the expression holds. */
+  run(SWARF_GCODE_DIALECT_FANUC,
+      "#5 = 1\nIF [#5 EQ 1] THEN #5 = 3\nIF [#5 EQ 1] THEN #5 = 9\nG0 X#5\n");
+  CHECK(out.status == SWARF_OK && out.n == 1 && out.v[0].end[0] == 3, "IF THEN (%s)",
+        out.err.message);
   /* "#0 is always vacant" (read as 0 here); it cannot be set. rs274:
    * "Parameter number out of range". */
   run(SWARF_GCODE_DIALECT_FANUC, "#1 = 7\n#1 = #0\nG0 X[#1 + 5.]\n");

@@ -39,7 +39,8 @@ static int is_arc(int motion) {
 }
 
 static int is_cycle(int motion) {
-  return motion == 730 || motion == 740 || motion == 870 || (motion >= 810 && motion <= 890);
+  return motion == 730 || motion == 740 || motion == 760 || motion == 870 ||
+         (motion >= 810 && motion <= 890);
 }
 
 /* Group 0 codes that take the axis words for themselves (and G43.1: its
@@ -254,8 +255,9 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
       return unused(w, "G2, G3, G4, G10, G64, canned cycle or M code", f);
     if (arc) return check_arc_p(w, f);
   }
-  if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64 && !cycle && !user_m && !vendor &&
-      b->motion != 50)
+  int m61 = b->m[SWARF_GC_MGROUP_TOOL].code == 610, m19 = b->m[SWARF_GC_MGROUP_SPINDLE].code == 190;
+  if ((w = swarf_gc_block_word(b, 'Q'))->present && !g64 && !cycle && !user_m && !vendor && !m61 &&
+      !m19 && b->motion != 50)
     return unused(w, "G64, G73, G83 or M code", f);
   if (cycle) return check_cycle(b, st, f);
   return SWARF_OK;

@@ -146,6 +146,24 @@ static void back_bore(cycle_run *c) {
   text(c, spindle_on(c->st));
 }
 
+/* Fanuc/Haas G76 fine boring (Fanuc 0i-MF: "the spindle stops at a fixed
+ * rotation position at the bottom of the hole and the tool is moved in the
+ * direction opposite to the tool tip and retracted"; the shift is Q, to +X
+ * in G17 with the parameters as shipped (Haas: Setting 27, X+)): feed to
+ * the bottom, dwell P, orient, shift by Q, rapid out to the clearance,
+ * shift back, start the spindle. */
+static void fine_bore(cycle_run *c) {
+  double x = c->st->pos[c->g.a1], y = c->st->pos[c->g.a2];
+  feed(c, c->g.bottom);
+  if (c->g.p > 0) dwell(c, c->g.p);
+  text(c, "STOP_SPINDLE_TURNING(0)");
+  text(c, "ORIENT_SPINDLE(0, 0.0000, 0)");
+  traverse_at(c, x + c->g.q, y);
+  traverse(c, c->g.clear);
+  traverse_at(c, x, y);
+  text(c, spindle_on(c->st));
+}
+
 /* One hole, from the R plane down and back. */
 static void hole(cycle_run *c, int motion) {
   if (c->st->pos[c->g.a3] != c->g.r) traverse(c, c->g.r);
@@ -159,6 +177,9 @@ static void hole(cycle_run *c, int motion) {
   case 740: /* Fanuc/Haas counter tapping: G84's path (the spindle turns the other way) */
   case 840:
     tap(c);
+    return;
+  case 760:
+    fine_bore(c);
     return;
   case 870:
     back_bore(c);

@@ -134,7 +134,7 @@ static const swarf_gc_code fanuc_g[] = {
     {680, SWARF_GC_GROUP_VENDOR, "coordinate rotation"}, /* G68/G69 */
     {690, SWARF_GC_GROUP_VENDOR, "coordinate rotation"},
     {740, SWARF_GC_GROUP_MOTION, NULL},              /* G74: counter tapping */
-    {760, SWARF_GC_GROUP_MOTION, "fine boring"},     /* G76 */
+    {760, SWARF_GC_GROUP_MOTION, NULL},              /* G76: fine boring */
     {1030, SWARF_GC_GROUP_VENDOR, NULL},             /* Haas G103: block look-ahead */
     {1500, SWARF_GC_GROUP_MOTION, "pocket milling"}, /* Haas G150 */
     {1540, SWARF_GC_GROUP_COORD_SYSTEM, NULL},       /* Haas G154 P: extended offsets */

@@ -78,6 +78,11 @@ static int param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX
   status = value(lx, &v, depth + 1, f);
   if (status != SWARF_OK) return status;
   if (fabs(v - floor(v + 0.5)) > 1e-4) return SWARF_GC_FAIL(f, SWARF_GCODE_E_INDEX_NOT_INTEGER, at);
+  if (fabs(v) < 0.5 && lx->params != NULL && lx->params->state != NULL &&
+      swarf_gc_fanuc_like(lx->params->state)) {
+    *index = -1; /* Fanuc's #0: always vacant, read as 0 here */
+    return SWARF_OK;
+  }
   if (v < 1 || v >= SWARF_GC_NPARAMS) return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_RANGE, at);
   *index = (int)floor(v + 0.5);
   return SWARF_OK;
@@ -85,8 +90,13 @@ static int param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX
 
 int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX],
                             swarf_gc_fault *f) {
+  int at, status;
   lx->pos++; /* '#' */
-  return param_ref(lx, index, name, 0, f);
+  at = col(lx);
+  status = param_ref(lx, index, name, 0, f);
+  if (status == SWARF_OK && *index < 0) /* #0 cannot be set */
+    return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_RANGE, at);
+  return status;
 }
 
 static int parameter(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
@@ -96,8 +106,8 @@ static int parameter(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f
   lx->pos++;
   status = param_ref(lx, &index, name, depth, f);
   if (status != SWARF_OK) return status;
-  if (index > 0) {
-    *v = swarf_gc_param_get(lx->params, index);
+  if (index != 0) {
+    *v = index > 0 ? swarf_gc_param_get(lx->params, index) : 0.0;
     return SWARF_OK;
   }
   if (swarf_gc_param_named(lx->params, name, v) != 0)
@@ -121,12 +131,27 @@ static int exists(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
   return SWARF_OK;
 }
 
-typedef enum { F_ABS, F_ACOS, F_ASIN, F_COS, F_EXP, F_FIX, F_FUP, F_LN, F_ROUND, F_SIN,
-               F_SQRT, F_TAN, F_ATAN, F_EXISTS, F_NONE } func_id;
+typedef enum {
+  F_ABS,
+  F_ACOS,
+  F_ASIN,
+  F_COS,
+  F_EXP,
+  F_FIX,
+  F_FUP,
+  F_LN,
+  F_ROUND,
+  F_SIN,
+  F_SQRT,
+  F_TAN,
+  F_ATAN,
+  F_EXISTS,
+  F_NONE
+} func_id;
 
 static func_id function_name(swarf_gc_lexer *lx) {
-  static const char *names[] = {"ABS", "ACOS", "ASIN", "COS",   "EXP",  "FIX", "FUP", "LN",
-                                "ROUND", "SIN", "SQRT", "TAN", "ATAN", "EXISTS"};
+  static const char *names[] = {"ABS", "ACOS",  "ASIN", "COS",  "EXP", "FIX",  "FUP",
+                                "LN",  "ROUND", "SIN",  "SQRT", "TAN", "ATAN", "EXISTS"};
   /* Longest names first where one is a prefix of another: none are, but
    * ATAN must not be read as A... (axes are not functions). */
   int c = peek(lx);
@@ -138,29 +163,47 @@ static func_id function_name(swarf_gc_lexer *lx) {
 
 static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
   switch (id) {
-  case F_ABS: *v = fabs(x); break;
+  case F_ABS:
+    *v = fabs(x);
+    break;
   case F_ACOS:
   case F_ASIN:
     if (x < -1 || x > 1)
       return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARGUMENT_RANGE, at, id == F_ACOS ? "acos" : "asin");
     *v = (id == F_ACOS ? acos(x) : asin(x)) / DEG;
     break;
-  case F_COS: *v = cos(x * DEG); break;
-  case F_EXP: *v = exp(x); break;
-  case F_FIX: *v = floor(x); break;
-  case F_FUP: *v = ceil(x); break;
+  case F_COS:
+    *v = cos(x * DEG);
+    break;
+  case F_EXP:
+    *v = exp(x);
+    break;
+  case F_FIX:
+    *v = floor(x);
+    break;
+  case F_FUP:
+    *v = ceil(x);
+    break;
   case F_LN:
     if (x <= 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_LN_ARGUMENT, at);
     *v = log(x);
     break;
-  case F_ROUND: *v = floor(x + 0.5); break;
-  case F_SIN: *v = sin(x * DEG); break;
+  case F_ROUND:
+    *v = floor(x + 0.5);
+    break;
+  case F_SIN:
+    *v = sin(x * DEG);
+    break;
   case F_SQRT:
     if (x < 0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_SQRT_ARGUMENT, at);
     *v = sqrt(x);
     break;
-  case F_TAN: *v = tan(x * DEG); break;
-  default: *v = x; break;
+  case F_TAN:
+    *v = tan(x * DEG);
+    break;
+  default:
+    *v = x;
+    break;
   }
   if (!isfinite(*v)) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NOT_A_NUMBER, at);
   return SWARF_OK;
@@ -207,8 +250,24 @@ static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
   return swarf_gc_lexer_number(lx, v, f);
 }
 
-enum { OP_NONE, OP_POW, OP_MUL, OP_DIV, OP_MOD, OP_ADD, OP_SUB, OP_EQ, OP_NE, OP_GT, OP_GE,
-       OP_LT, OP_LE, OP_AND, OP_OR, OP_XOR };
+enum {
+  OP_NONE,
+  OP_POW,
+  OP_MUL,
+  OP_DIV,
+  OP_MOD,
+  OP_ADD,
+  OP_SUB,
+  OP_EQ,
+  OP_NE,
+  OP_GT,
+  OP_GE,
+  OP_LT,
+  OP_LE,
+  OP_AND,
+  OP_OR,
+  OP_XOR
+};
 
 static int precedence(int op) {
   static const int p[] = {0, 6, 5, 5, 5, 4, 4, 3, 3, 3, 3, 3, 3, 2, 2, 2};
@@ -217,9 +276,11 @@ static int precedence(int op) {
 
 /* Reads an operator if one is next (advances), else OP_NONE. */
 static int read_op(swarf_gc_lexer *lx) {
-  static const struct { const char *text; int op; } words[] = {
-      {"MOD", OP_MOD}, {"EQ", OP_EQ}, {"NE", OP_NE}, {"GT", OP_GT}, {"GE", OP_GE}, {"LT", OP_LT},
-      {"LE", OP_LE}, {"AND", OP_AND}, {"OR", OP_OR}, {"XOR", OP_XOR}};
+  static const struct {
+    const char *text;
+    int op;
+  } words[] = {{"MOD", OP_MOD}, {"EQ", OP_EQ}, {"NE", OP_NE},   {"GT", OP_GT}, {"GE", OP_GE},
+               {"LT", OP_LT},   {"LE", OP_LE}, {"AND", OP_AND}, {"OR", OP_OR}, {"XOR", OP_XOR}};
   int c = peek(lx);
   if (c == '*') return lx->pos++, match(lx, "*") ? OP_POW : OP_MUL;
   if (c == '/') return lx->pos++, OP_DIV;
@@ -237,27 +298,52 @@ static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault 
     if (a < 0 && floor(b) != b) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NEGATIVE_POWER, at);
     *v = pow(a, b);
     break;
-  case OP_MUL: *v = a * b; break;
+  case OP_MUL:
+    *v = a * b;
+    break;
   case OP_DIV:
   case OP_MOD:
     if (b == 0.0) return SWARF_GC_FAIL(f, SWARF_GCODE_E_DIVIDE_BY_ZERO, at);
-    if (op == OP_DIV) *v = a / b;
+    if (op == OP_DIV)
+      *v = a / b;
     else {
       *v = fmod(a, b);
       if (*v < 0) *v += fabs(b);
     }
     break;
-  case OP_ADD: *v = a + b; break;
-  case OP_SUB: *v = a - b; break;
-  case OP_EQ: *v = a == b; break;
-  case OP_NE: *v = a != b; break;
-  case OP_GT: *v = a > b; break;
-  case OP_GE: *v = a >= b; break;
-  case OP_LT: *v = a < b; break;
-  case OP_LE: *v = a <= b; break;
-  case OP_AND: *v = a != 0 && b != 0; break;
-  case OP_OR: *v = a != 0 || b != 0; break;
-  default: *v = (a != 0) != (b != 0); break;
+  case OP_ADD:
+    *v = a + b;
+    break;
+  case OP_SUB:
+    *v = a - b;
+    break;
+  case OP_EQ:
+    *v = a == b;
+    break;
+  case OP_NE:
+    *v = a != b;
+    break;
+  case OP_GT:
+    *v = a > b;
+    break;
+  case OP_GE:
+    *v = a >= b;
+    break;
+  case OP_LT:
+    *v = a < b;
+    break;
+  case OP_LE:
+    *v = a <= b;
+    break;
+  case OP_AND:
+    *v = a != 0 && b != 0;
+    break;
+  case OP_OR:
+    *v = a != 0 || b != 0;
+    break;
+  default:
+    *v = (a != 0) != (b != 0);
+    break;
   }
   if (!isfinite(*v)) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NOT_A_NUMBER, at);
   return SWARF_OK;

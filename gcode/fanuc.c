@@ -22,6 +22,9 @@
  *                     the main program, M99 P<n> jumps to N<n>; a bare M99
  *                     would run it again from the start: the run stops
  *                     there, with a note.
+ *   A call of O9000-O9999 that the file lacks (the builder's macros in the
+ *                     control: Renishaw's G65 P9810 probing moves ...) is
+ *                     skipped with a note.
  *   G65 P<prog> L<n> args  a macro call: a new set of locals #1-#33, with
  *                     A=#1 B=#2 C=#3 I=#4 J=#5 K=#6 D=#7 E=#8 F=#9 H=#11
  *                     M=#13 Q=#17 R=#18 S=#19 T=#20 U=#21 V=#22 W=#23 X=#24
@@ -165,8 +168,9 @@ static size_t keyword(const char *t, size_t n, size_t i, char *out, size_t cap) 
   return k >= 2 ? i : 0;
 }
 
-/* What the line is: a program number, a macro statement, or a block. */
-static void classify(fline *l) {
+/* What the line is: a program number, a macro statement, or a block
+ * (`lcnc`: a LinuxCNC program with M98: program numbers only). */
+static void classify(fline *l, int lcnc) {
   const char *t = l->text;
   size_t n = l->len, i = skip(t, n, 0), j;
   char kw[8];
@@ -181,6 +185,7 @@ static void classify(fline *l) {
     }
   }
   i = body_start(t, n, &l->nnum);
+  if (lcnc) return;
   if (i < n && t[i] == '#') {
     l->kind = ST_ASSIGN;
     l->at = i;
@@ -226,7 +231,7 @@ int swarf_gc_fanuc_store(swarf_gc_fanuc *fa, const char *text, size_t len, long 
   l->text[len] = '\0';
   l->len = len;
   l->line = line;
-  classify(l);
+  classify(l, fa->p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC);
   fa->n++;
   return SWARF_OK;
 }
@@ -455,6 +460,7 @@ static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
   swarf_gc_token t;
   size_t spans[64][2];
   int kinds[64], nspan = 0, haas = fa->p->state->dialect == SWARF_GCODE_DIALECT_HAAS;
+  int lcnc = fa->p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC;
   memset(w, 0, sizeof *w);
   swarf_gc_lexer_init(&lx, l->text, l->len, &fa->p->params);
   for (;;) {
@@ -465,7 +471,7 @@ static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
     if (t.kind == SWARF_GC_TOKEN_END) break;
     if (t.kind != SWARF_GC_TOKEN_WORD || nspan == 64) continue;
     if ((t.letter == 'M' && (v == 98 || v == 99 || (v == 97 && haas))) ||
-        (t.letter == 'G' && v == 65)) {
+        (t.letter == 'G' && v == 65 && !lcnc)) {
       w->code = (int)v;
       w->column = t.column;
       kind = 0;
@@ -473,7 +479,7 @@ static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
       *(t.letter == 'P' ? &w->p : &w->l) = v;
       *(t.letter == 'P' ? &w->has_p : &w->has_l) = 1;
       kind = 1;
-    } else if (arg_local(t.letter) > 0) {
+    } else if (arg_local(t.letter) > 0 && !lcnc) {
       w->args[arg_local(t.letter)] = v;
       kind = 2;
     }
@@ -556,6 +562,17 @@ static int call(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_gc_fa
       return SWARF_GC_FAIL(f, SWARF_GCODE_E_FANUC_NO_SEQUENCE, w->column, name, target);
   } else {
     to = find_o(fa, target);
+    if (to >= fa->n && target >= 9000 && target <= 9999) {
+      /* O9000-O9999 are the machine builder's macros, kept in the control
+       * (probing cycles: G65 P9810 ...): not in the file, the call makes
+       * no motion here. */
+      swarf_gc_parser_note(fa->p, w->column,
+                           "%s P%ld: O%ld is a macro of the control's memory, not in this file: "
+                           "skipped (no motion)",
+                           name, target, target);
+      ++*pc;
+      return SWARF_OK;
+    }
     if (to >= fa->n)
       return SWARF_GC_FAIL(f, SWARF_GCODE_E_FANUC_NO_PROGRAM, w->column, name, target);
   }
@@ -574,6 +591,14 @@ static int call(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_gc_fa
 
 /* ---- running ---------------------------------------------------------------------- */
 
+/* A line through the block path; in a LinuxCNC program through its O-word
+ * flow (subs, loops, ifs), which hands ordinary lines to the block path. */
+static int run_text(swarf_gc_fanuc *fa, const char *text, size_t len, long line) {
+  if (fa->p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC)
+    return swarf_gc_parser_flow_line(fa->p, text, len, line);
+  return swarf_gc_parser_run_line(fa->p, text, len, line);
+}
+
 /* A block: its motion first, then its call or return. */
 static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
   const fline *l = &fa->v[*pc];
@@ -582,14 +607,14 @@ static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
   int status;
   if (!may_have_flow(l->text, l->len)) {
     ++*pc;
-    return swarf_gc_parser_run_line(fa->p, l->text, l->len, l->line);
+    return run_text(fa, l->text, l->len, l->line);
   }
   fa->p->cur_line = l->line;
   if ((b = buffer(fa, l->len + 1)) == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
   status = take_flow(fa, l, b, &w, f);
   if (status != SWARF_OK) return status;
   if (w.code == 0 || !rest_empty(b, l->len, body_start(b, l->len, &(long){0}))) {
-    status = swarf_gc_parser_run_line(fa->p, b, l->len, l->line);
+    status = run_text(fa, b, l->len, l->line);
     if (status != SWARF_OK || w.code == 0) {
       ++*pc;
       return status;

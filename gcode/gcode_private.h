@@ -546,6 +546,9 @@ void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
 
+/* The flow's line entry for fanuc.c (LinuxCNC programs with M98). */
+int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t len, long line);
+
 /* ---- parser.c: the parser itself (setup.c sets up its machine) ----------- */
 
 #define SWARF_GC_NTOOLS 1000 /* tool numbers 1..999 */

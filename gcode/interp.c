@@ -133,7 +133,10 @@ static void run_m_codes(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_ex
     if (tool->code == 610 && swarf_gc_block_has(b, 'Q'))
       st->selected_tool = (int)(swarf_gc_block_word(b, 'Q')->value + 0.5);
     st->tool = st->selected_tool;
-    if (tool->code == 60) swarf_gc_out_text(ex->out, "CHANGE_TOOL(%d)", st->tool);
+    if (tool->code == 60)
+      swarf_gc_out_text(ex->out, "CHANGE_TOOL(%d)", st->tool);
+    else
+      swarf_gc_out_text(ex->out, "CHANGE_TOOL_NUMBER(%d)", st->tool);
     swarf_gc_out_tool(ex->out, st, tool->column);
   }
   if (spindle == 190) { /* M19: orient (R angle, P direction mode, Q wait) */

@@ -177,33 +177,35 @@ int swarf_gc_probe(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   return SWARF_OK;
 }
 
+static int is_cycle(int m) {
+  return m == 730 || m == 740 || m == 760 || (m >= 810 && m <= 890);
+}
+
 int swarf_gc_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
                     swarf_gc_fault *f) {
   int m = b->motion, status;
   if (m < 0) return SWARF_OK;
+  if (swarf_gc_fanuc_like(st) && b->g[SWARF_GC_GROUP_NONMODAL].code == 530 &&
+      b->g[SWARF_GC_GROUP_MOTION].code < 0)
+    return straight(b, st, ex, f); /* Fanuc's G53 rapid leaves the modal motion */
+  if (!is_cycle(m)) st->cycle_il_set = st->cycle_after_g87 = 0; /* the cycles end */
+  if (is_cycle(m)) {
+    st->spline_last = 0;
+    status = swarf_gc_cycle(b, st, ex, f);
+    if (status == SWARF_OK) st->modal.motion = m;
+    return status;
+  }
   if (m == 50 || m == 51 || (m >= 382 && m <= 385)) {
     status = m <= 51 ? swarf_gc_spline(b, st, ex, f) : swarf_gc_probe(b, st, ex, f);
     if (status != SWARF_OK) return status;
     st->modal.motion = m;
-    st->spline_last = m == 50;
+    st->spline_last = m == 50; /* the next G5 may leave out I J */
     return SWARF_OK;
   }
   st->spline_last = 0;
-  if (swarf_gc_fanuc_like(st) && b->g[SWARF_GC_GROUP_NONMODAL].code == 530 &&
-      b->g[SWARF_GC_GROUP_MOTION].code < 0)
-    return straight(b, st, ex, f); /* Fanuc's G53 rapid leaves the modal motion */
   if (m <= 30) st->motion01 = m;
-  if (m == 800) {
-    st->modal.motion = 800;
-    return SWARF_OK;
-  }
-  if (m != 730 && m != 740 && !(m >= 810 && m <= 890)) st->cycle_il_set = st->cycle_after_g87 = 0;
-  if (m == 730 || m == 740 || (m >= 810 && m <= 890)) {
-    int status = swarf_gc_cycle(b, st, ex, f);
-    if (status == SWARF_OK) st->modal.motion = m;
-    return status;
-  }
   st->modal.motion = m;
+  if (m == 800) return SWARF_OK;
   if (m == 0 || m == 10) return straight(b, st, ex, f);
   return arc(b, st, ex, f);
 }

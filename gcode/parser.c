@@ -226,6 +226,25 @@ static swarf_status release_held(swarf_gcode_parser *p) {
   return emit(p, "", 0);
 }
 
+/* LinuxCNC 2.9 reads M98 P<n> too (the block path does not know it): at
+ * the first M98 of the streamed program (not inside a construct), the
+ * line and the rest of the program are kept whole, as a Fanuc program is,
+ * and run at the end (its O<n> ... M99 may come after M2). 1: switched. */
+static int m98_switch(swarf_gcode_parser *p, const swarf_gc_fault *f, const char *text, size_t n) {
+  char word[SWARF_GC_WORD_TEXT];
+  swarf_gc_fault g;
+  if (f->code != SWARF_GCODE_E_UNKNOWN_M_CODE || p->fanuc != NULL ||
+      p->state->dialect != SWARF_GCODE_DIALECT_LINUXCNC || p->cur_line != p->lines ||
+      swarf_gc_flow_open_line(p->flow) != 0)
+    return 0;
+  word_at(text, n, f->column, word, sizeof word);
+  if (strtod(word + 1, NULL) != 98.0) return 0;
+  if ((p->fanuc = swarf_gc_fanuc_new(p)) == NULL)
+    return fail_code(p, SWARF_GCODE_E_OUT_OF_MEMORY, 1), 1;
+  if (swarf_gc_fanuc_store(p->fanuc, text, n, p->lines, &g) != SWARF_OK) fail(p, &g, text, n);
+  return 1;
+}
+
 /* Read, check, execute on a copy; commit only if all of it succeeded. */
 static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   swarf_gc_block b;
@@ -239,6 +258,7 @@ static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n)
   status = swarf_gc_block_read(text, n, &p->params, &b, &f);
   if (status == SWARF_OK) status = swarf_gc_block_check(&b, p->state, &f);
   if (status == SWARF_OK) status = swarf_gc_execute(&b, next, &ex, &f);
+  if (status != SWARF_OK && m98_switch(p, &f, text, n)) return p->status;
   if (status != SWARF_OK) return fail(p, &f, text, n);
   p->state = next; /* commit: the copy becomes the state */
   p->params.state = next;
@@ -284,6 +304,17 @@ int swarf_gc_parser_run_line(void *ctx, const char *text, size_t n, long line) {
 
 static int run_line(void *ctx, const char *text, size_t n, long line) {
   return swarf_gc_parser_run_line(ctx, text, n, line);
+}
+
+int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t len, long line) {
+  swarf_gc_fault f;
+  long err_line = line;
+  int status = swarf_gc_flow_line(p->flow, text, len, line, &err_line, &f);
+  if (status != SWARF_OK && p->status == SWARF_OK) {
+    p->cur_line = err_line;
+    return err_line == line ? fail(p, &f, text, len) : fail(p, &f, NULL, 0);
+  }
+  return p->status;
 }
 
 /* Runs a Fanuc or Haas program kept whole (at its closing `%` or the end). */
@@ -366,6 +397,10 @@ static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t
   if (first == n) return SWARF_OK;
   rest = skip_blanks(text, n, first + 1);
   if (p->state->dialect == SWARF_GCODE_DIALECT_GRBL) return grbl_line(p, text, n, first, rest);
+  /* A LinuxCNC program kept for M98: rs274 seeks the O<n> past a `%`. */
+  if (text[first] == '%' && rest == n && p->fanuc != NULL && !p->percent_open &&
+      p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC)
+    return SWARF_OK;
   if (text[first] == '%' && rest == n) return percent_line(p, text, n, first);
   p->seen_code = 1;
   if (p->fanuc != NULL) {

@@ -78,23 +78,55 @@ struct Frame {
   const swarf_stock *initial;
   double tol;
   bool same_lattice;  ///< design and stock: same voxel and origin
+  /// The tolerance reaches beyond the design's band (a design read from a
+  /// mesh): design values at the band's edge are measured on its triangles.
+  bool exact_far;
 };
+
+/// Design values at the band's edge of one block when the frame is
+/// exact_far: blocks whose centre is farther from the design's surface than
+/// their radius plus the tolerance and half a voxel read as that far (no
+/// voxel of theirs is within the tolerance); the others are measured voxel
+/// by voxel on the triangles.
+struct FarValues {
+  const Frame &f;
+  Vec3d centre;      ///< world centre of the block
+  double voxel;      ///< the block's grid's voxel
+  int state = 0;     ///< 0 not yet known, 1 far, 2 near
+  double far = 0.0;  ///< the value of a far block's edge voxels (magnitude)
+  /// d: the grid's value at q (at the band's edge: |d| = background).
+  double at(double d, const Vec3d &q) {
+    if (!f.exact_far || std::fabs(d) < double(f.design.background) * (1.0 - 1e-6)) return d;
+    if (state == 0) {
+      const double reach = f.tol + 0.5 * voxel, r = 3.5 * std::sqrt(3.0) * voxel;
+      state = surface_distance(f.design, centre) - r >= reach ? 1 : 2;
+      far = std::max(double(f.design.background), reach);
+    }
+    const double e = state == 1 ? far : surface_distance(f.design, q);
+    return d < 0.0 ? -e : e;
+  }
+};
+
+inline Vec3d block_centre(const swarf_stock &g, const Coord &o) {
+  return g.origin + g.voxel * Vec3d(o.x() + 3.5, o.y() + 3.5, o.z() + 3.5);
+}
 
 /// Excess in one block of the stock's material.
 void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &dacc, Found &out) {
   const double v = f.s.voxel;
-  if (w.leaf == nullptr && f.same_lattice && dacc.probeConstLeaf(w.origin) == nullptr) {
+  if (w.leaf == nullptr && f.same_lattice && !f.exact_far && dacc.probeConstLeaf(w.origin) == nullptr) {
     const double d = dacc.getValue(w.origin);  // both tiles here
     out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile, v) - inside_fraction(d - f.tol, v));
     const double h = d + vouched_radius(-double(w.tile), v);
     if (h > f.tol) out.depth = h, out.at = index_to_world(f.s, w.origin.offsetBy(4));
     return;
   }
+  FarValues far{f, block_centre(f.s, w.origin), v};
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const double s = w.leaf ? w.leaf->getValue(n) : w.tile;
     if (!(s < 0.5 * v)) continue;  // no material in this voxel
     const Vec3d q = index_to_world(f.s, w.origin + Leaf::offsetToLocalCoord(n));
-    const double d = design.at(q);
+    const double d = far.at(design.at(q), q);
     out.volume += std::max(0.0, inside_fraction(s, v) - inside_fraction(d - f.tol, v));
     if (!(s < 0.0)) continue;
     const double h = d + vouched_radius(-s, v);
@@ -106,19 +138,25 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
 void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *initial, ConstAcc &sacc,
                  Found &out) {
   const double v = f.design.voxel;
-  if (w.leaf == nullptr && f.same_lattice && initial == nullptr && sacc.probeConstLeaf(w.origin) == nullptr) {
+  if (w.leaf == nullptr && f.same_lattice && !f.exact_far && initial == nullptr && sacc.probeConstLeaf(w.origin) == nullptr) {
     const double s = sacc.getValue(w.origin);  // both tiles here
     out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile + f.tol, v) - inside_fraction(s, v));
     const double g = -double(w.tile) + vouched_radius(s, v);
     if (s > 0.0 && g > f.tol) out.depth = g, out.at = index_to_world(f.design, w.origin.offsetBy(4));
     return;
   }
+  FarValues far{f, block_centre(f.design, w.origin), v};
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-    const double d = w.leaf ? w.leaf->getValue(n) : w.tile;
-    const double in = inside_fraction(d + f.tol, v);  // deeper than the tolerance
-    if (!(in > 0.0)) continue;
+    double d = w.leaf ? w.leaf->getValue(n) : w.tile;
+    if (!f.exact_far && !(inside_fraction(d + f.tol, v) > 0.0)) continue;
     const Vec3d q = index_to_world(f.design, w.origin + Leaf::offsetToLocalCoord(n));
     const double s = stock.at(q), s0 = initial ? initial->at(q) : -1e30;
+    if (f.exact_far) {
+      if (s <= -0.5 * f.s.voxel && s0 <= -0.5 * f.s.voxel) continue;  // material there, before and after
+      d = far.at(d, q);
+    }
+    const double in = inside_fraction(d + f.tol, v);  // deeper than the tolerance
+    if (!(in > 0.0)) continue;
     const double had = initial ? inside_fraction(s0, f.s.voxel) : 1.0;
     out.volume += std::max(0.0, std::min(in, had) - inside_fraction(s, f.s.voxel));
     out.missing += std::max(0.0, in - had);
@@ -128,9 +166,10 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
   }
 }
 
-/// Run `fn` on every block in parallel and add the findings up in order.
-template <class Fn> Found sum_blocks(const std::vector<Work> &blocks, Fn &&fn) {
-  std::vector<Found> found(blocks.size());
+/// Run `fn` on every block in parallel and add the findings up in order
+/// (each block's kept in `found`).
+template <class Fn> Found sum_blocks(const std::vector<Work> &blocks, Fn &&fn, std::vector<Found> &found) {
+  found.assign(blocks.size(), Found());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 16), [&](const tbb::blocked_range<size_t> &r) {
     auto state = fn.make();
     for (size_t i = r.begin(); i != r.end(); ++i) fn(*state, blocks[i], found[i]);
@@ -140,6 +179,57 @@ template <class Fn> Found sum_blocks(const std::vector<Work> &blocks, Fn &&fn) {
     total.volume += b.volume, total.missing += b.missing;
     if (b.depth > total.depth) total.depth = b.depth, total.at = b.at;
   }
+  return total;
+}
+
+/// A voxel near the band's edge: its depth is the exact distance to the
+/// design's surface at q plus r.
+struct Beyond {
+  Vec3d q;
+  double r;
+};
+
+/// The deepest point where the design's band ran out (a design read from a
+/// mesh): blocks whose finding reached the reach, taken by decreasing upper
+/// bound (the exact distance at the block's centre plus its radius and a
+/// voxel), the voxels of those that can still beat the best measured
+/// exactly. `collect(state, work, out)` lists a block's voxels near the
+/// band's edge; `grid` is the one the blocks come from.
+template <class Pass, class Collect>
+Found beyond_band(const swarf_stock &design, const swarf_stock &grid, const std::vector<Work> &blocks,
+                  const std::vector<Found> &found, Found total, const Pass &pass, Collect collect) {
+  const double reach = design.background, v = grid.voxel;
+  std::vector<size_t> idx;
+  Found best;  // the exact findings: blocks that stayed within the band
+  for (size_t i = 0; i < found.size(); i++) {
+    if (found[i].depth >= reach) idx.push_back(i);
+    else if (found[i].depth > best.depth) best.depth = found[i].depth, best.at = found[i].at;
+  }
+  if (idx.empty() || !design.surface) return total;
+  std::vector<double> ub(idx.size()), lb(idx.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, idx.size(), 4), [&](const tbb::blocked_range<size_t> &r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      ub[k] = surface_distance(design, block_centre(grid, blocks[idx[k]].origin)) + (3.5 * std::sqrt(3.0) + 1.0) * v;
+      lb[k] = surface_distance(design, found[idx[k]].at);
+    }
+  });
+  for (size_t k = 0; k < idx.size(); k++)
+    if (lb[k] > best.depth) best.depth = lb[k], best.at = found[idx[k]].at;
+  std::vector<size_t> order(idx.size());
+  for (size_t k = 0; k < order.size(); k++) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return ub[a] > ub[b]; });
+  auto state = pass.make();
+  std::vector<Beyond> list;
+  for (size_t k : order) {
+    if (ub[k] <= best.depth) break;
+    list.clear();
+    collect(*state, blocks[idx[k]], list);
+    for (const Beyond &b : list) {
+      const double d = surface_distance(design, b.q) + b.r;
+      if (d > best.depth) best.depth = d, best.at = b.q;
+    }
+  }
+  total.depth = best.depth, total.at = best.at;
   return total;
 }
 
@@ -199,10 +289,37 @@ void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock 
              swarf_stock_deviation &out) {
   check_design(s, design);
   const bool same = GridProbe::lattices_coincide(s, design) && (s.origin - design.origin).length() <= 1e-9 * s.voxel;
-  const Frame f{s, design, initial, tol, same};
-  const Found ex = sum_blocks(blocks_below(s, 0.0f), ExcessPass{f});
-  const Found go = sum_blocks(blocks_below(design, 0.0f), GougePass{f});
-  const double reach = design.background, vs = std::pow(s.voxel, 3), vd = std::pow(design.voxel, 3);
+  const Frame f{s, design, initial, tol, same,
+                design.surface != nullptr && tol + std::max(s.voxel, design.voxel) >= double(design.background)};
+  // Voxels within a voxel of the band's edge may be the deepest of a block
+  // that reached it: they are measured on the triangles too.
+  const double edge = double(design.background) - design.voxel;
+  std::vector<Found> found;
+  const std::vector<Work> sblocks = blocks_below(s, 0.0f), dblocks = blocks_below(design, 0.0f);
+  const ExcessPass xp{f};
+  Found ex = sum_blocks(sblocks, xp, found);
+  ex = beyond_band(design, s, sblocks, found, ex, xp, [&](ExcessPass::State &st, const Work &w, std::vector<Beyond> &l) {
+    for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+      const double sv = w.leaf ? w.leaf->getValue(n) : w.tile;
+      if (!(sv < 0.0)) continue;
+      const Vec3d q = index_to_world(s, w.origin + Leaf::offsetToLocalCoord(n));
+      if (st.design.at(q) >= edge) l.push_back({q, vouched_radius(-sv, s.voxel)});
+    }
+  });
+  const GougePass gp{f};
+  Found go = sum_blocks(dblocks, gp, found);
+  go = beyond_band(design, design, dblocks, found, go, gp, [&](GougePass::State &st, const Work &w, std::vector<Beyond> &l) {
+    for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+      const double d = w.leaf ? w.leaf->getValue(n) : w.tile;
+      if (!(d <= -edge)) continue;
+      const Vec3d q = index_to_world(design, w.origin + Leaf::offsetToLocalCoord(n));
+      const double sv = st.stock.at(q), s0 = st.initial ? st.initial->at(q) : -1e30;
+      if (sv > 0.0 && s0 < 0.0) l.push_back({q, vouched_radius(std::min(sv, -s0), s.voxel)});
+    }
+  });
+  // Beyond the band: exact when the design came from a mesh, else clamped to it.
+  const double reach = design.surface ? std::numeric_limits<double>::infinity() : design.background;
+  const double vs = std::pow(s.voxel, 3), vd = std::pow(design.voxel, 3);
   out.tolerance = tol;
   out.reach = reach;
   out.stock_volume = swarf_stock_volume(&s);

@@ -1,6 +1,6 @@
 /// @file levelset.cc
-/// @brief Stocks made from other shapes: a closed STL mesh (OpenVDB's
-/// meshToVolume, distances made exact), a .vdb grid of swarf or another tool,
+/// @brief Stocks made from other shapes: a closed STL mesh (exact distances
+/// in the band, mesh_sdf.h), a .vdb grid of swarf or another tool,
 /// a stock resampled at another voxel size or placed for the next setup, and
 /// designs for the comparison.
 ///
@@ -17,7 +17,6 @@
 /// sampled trilinearly at A j. Where the source reads its band's edge (it
 /// knows only that the surface is farther), the new grid reads its own.
 #include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
@@ -31,6 +30,7 @@
 #include <vector>
 
 #include "mesh_file.h"
+#include "mesh_sdf.h"
 #include "placement.h"
 #include "stock_private.h"
 
@@ -112,108 +112,29 @@ void check_mesh_size(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tr
     throw Error(SWARF_ERR_LIMIT, "the mesh's surface is too large for this voxel size (band over 4e9 voxels)");
 }
 
-/// The mesh in index space, for exact distances.
-struct IndexMesh {
-  std::vector<Vec3s> points;  ///< index space
-  std::vector<Vec4I> prims;   ///< triangles (prim[3] INVALID_IDX) and quads
-
-  /// Distance (voxels) from index point p to primitive n.
-  double distance(const Vec3d &p, size_t n) const {
-    const Vec4I &q = prims[n];
-    Vec3d uvw;
-    double d2 = (p - openvdb::math::closestPointOnTriangleToPoint(Vec3d(points[q[0]]), Vec3d(points[q[1]]),
-                                                                  Vec3d(points[q[2]]), p, uvw))
-                    .lengthSqr();
-    if (q[3] != openvdb::util::INVALID_IDX)
-      d2 = std::min(d2, (p - openvdb::math::closestPointOnTriangleToPoint(Vec3d(points[q[0]]), Vec3d(points[q[2]]),
-                                                                          Vec3d(points[q[3]]), p, uvw))
-                            .lengthSqr());
-    return std::sqrt(d2);
-  }
-};
-
-using IndexGrid = openvdb::Int32Grid;
-
-/// OpenVDB's band beyond the first voxels takes each voxel's distance to a
-/// polygon its neighbours found closest, which is not always the closest one
-/// (up to a voxel off near a box's edges). One pass: every band voxel takes
-/// the least distance to the polygons closest to it and to its 26 neighbours,
-/// and that polygon; the sign is kept. Two passes reach two voxels away.
-void exact_pass(openvdb::FloatGrid &grid, IndexGrid &index, const IndexMesh &mesh, double voxel) {
-  using ILeaf = openvdb::Int32Tree::LeafNodeType;
-  openvdb::tree::LeafManager<Tree> leaves(grid.tree());
-  std::vector<std::vector<float>> values(leaves.leafCount());
-  std::vector<std::vector<int32_t>> owners(leaves.leafCount());
-  const openvdb::Int32Tree &itree = index.constTree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.leafCount(), 4), [&](const tbb::blocked_range<size_t> &r) {
-    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> acc(itree);
-    std::vector<int32_t> cand;
-    for (size_t l = r.begin(); l != r.end(); ++l) {
-      const Leaf &leaf = leaves.leaf(l);
-      values[l].assign(leaf.buffer().data(), leaf.buffer().data() + Leaf::SIZE);
-      owners[l].assign(Leaf::SIZE, -1);
-      for (auto it = leaf.cbeginValueOn(); it; ++it) {
-        const Coord c = it.getCoord();
-        cand.clear();
-        for (int dx = -1; dx <= 1; dx++)
-          for (int dy = -1; dy <= 1; dy++)
-            for (int dz = -1; dz <= 1; dz++) {
-              const int32_t n = acc.getValue(c.offsetBy(dx, dy, dz));
-              if (n >= 0 && size_t(n) < mesh.prims.size() && std::find(cand.begin(), cand.end(), n) == cand.end())
-                cand.push_back(n);
-            }
-        if (cand.empty()) continue;
-        double best = std::numeric_limits<double>::max();
-        int32_t who = -1;
-        for (int32_t n : cand) {
-          const double d = mesh.distance(Vec3d(c[0], c[1], c[2]), size_t(n));
-          if (d < best) best = d, who = n;
-        }
-        const float v = *it;
-        values[l][it.pos()] = float(v < 0.0f ? -best * voxel : best * voxel);
-        owners[l][it.pos()] = who;
-      }
-    }
-  });
-  openvdb::tree::ValueAccessor<openvdb::Int32Tree> iacc(index.tree());
-  for (size_t l = 0; l < leaves.leafCount(); l++) {
-    Leaf &leaf = leaves.leaf(l);
-    for (auto it = leaf.beginValueOn(); it; ++it) {
-      it.setValue(values[l][it.pos()]);
-      if (owners[l][it.pos()] >= 0) iacc.setValueOnly(it.getCoord(), owners[l][it.pos()]);
-    }
-  }
-  (void)sizeof(ILeaf);
-}
-
-/// A stock from a closed polygon mesh (world points, mm): OpenVDB's
-/// meshToVolume (its renormalization, which smooths the distances near the
-/// surface, turned off) in a band one voxel wider than asked, its distances
-/// made exact (exact_pass), then trimmed to swarf's band.
+/// A stock from a closed polygon mesh (world points, mm): the exact signed
+/// distance in swarf's band (mesh_sdf.h: winding-number signs, closest-point
+/// distances; no meshToVolume, whose band expansion costs ten times more and
+/// is a voxel off near edges). keep_surface: keep the triangles (designs).
 swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tris,
-                        const std::vector<Vec4I> &quads, double voxel, int half_width) {
+                        const std::vector<Vec4I> &quads, double voxel, int half_width,
+                        bool keep_surface = false) {
   check_mesh_size(pts, tris, quads, voxel, half_width);
   init_openvdb();
-  const openvdb::math::Transform::Ptr xf = openvdb::math::Transform::createLinearTransform(voxel);
-  IndexMesh m;
-  m.points.resize(pts.size());
+  std::vector<Vec3s> ip(pts.size());
   for (size_t i = 0; i < pts.size(); i++)
-    m.points[i] = Vec3s(float(pts[i][0] / voxel), float(pts[i][1] / voxel), float(pts[i][2] / voxel));
-  m.prims.reserve(tris.size() + quads.size());
-  for (const Vec3I &t : tris) m.prims.emplace_back(t[0], t[1], t[2], openvdb::util::INVALID_IDX);
-  m.prims.insert(m.prims.end(), quads.begin(), quads.end());
-  const openvdb::tools::QuadAndTriangleDataAdapter<Vec3s, Vec4I> adapter(m.points, m.prims);
-  const float band = float(half_width + 1);
-  IndexGrid::Ptr index = IndexGrid::create(-1);
-  openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
-      adapter, *xf, band, band, openvdb::tools::DISABLE_RENORMALIZATION, index.get());
-  for (int pass = 0; pass < 2; pass++) exact_pass(*grid, *index, m, voxel);
-  index.reset();
+    ip[i] = Vec3s(float(pts[i][0] / voxel), float(pts[i][1] / voxel), float(pts[i][2] / voxel));
+  std::vector<Vec3I> t(tris);
+  for (const Vec4I &q : quads) t.emplace_back(q[0], q[1], q[2]), t.emplace_back(q[0], q[2], q[3]);
+  const float bg = band_background(half_width, voxel);
+  openvdb::FloatGrid::Ptr grid = mesh_band(ip, t, voxel, half_width, bg);
   set_stock_meta(*grid);
-  normalize_band(*grid, band_background(half_width, voxel));
+  normalize_band(*grid, bg);
   if (!has_material(*grid))
     throw Error(SWARF_ERR_FORMAT, "the mesh holds no voxel centre at this voxel size (thinner than a voxel)");
-  return wrap_grid(grid);
+  swarf_stock *s = wrap_grid(grid);
+  if (keep_surface) s->surface = mesh_surface(ip, t);
+  return s;
 }
 
 /// ---- Placement by resampling ----
@@ -374,7 +295,8 @@ std::string lower_extension(const char *path) {
   return ext;
 }
 
-swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double voxel, int half_width) {
+swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double voxel, int half_width,
+                      bool keep_surface = false) {
   check_grid_args(voxel, half_width);
   const Rigid m = placement_map(p ? *p : swarf_stock_placement{});
   TriMesh mesh;
@@ -389,7 +311,7 @@ swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double v
   std::vector<Vec3I> tris(mesh.triangles());
   for (size_t t = 0; t < tris.size(); t++) tris[t] = Vec3I(mesh.tri[3 * t], mesh.tri[3 * t + 1], mesh.tri[3 * t + 2]);
   try {
-    return mesh_stock(pts, tris, {}, voxel, half_width);
+    return mesh_stock(pts, tris, {}, voxel, half_width, keep_surface);
   } catch (const Error &e) {
     throw Error(e.status, std::string(path) + ": " + e.what());
   }
@@ -446,7 +368,7 @@ extern "C" swarf_status swarf_stock_read_design(const char *path, double voxel, 
     swarf::check_path(path);
     const std::string ext = swarf::lower_extension(path);
     if (ext == "stl") {
-      *out = swarf::read_stl(path, nullptr, voxel, SWARF_STOCK_DESIGN_BAND);
+      *out = swarf::read_stl(path, nullptr, voxel, SWARF_STOCK_DESIGN_BAND, /*keep_surface=*/true);
     } else if (ext == "vdb") {
       *out = swarf::read_vdb(path, nullptr, voxel, 0).release();
     } else {

@@ -37,6 +37,8 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -64,7 +66,9 @@ struct Pass {
   double reach;                     ///< half diagonal of a block plus the band, mm
   double eps;                       ///< margin (mm) of the per-voxel Lipschitz test
   float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
+  double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
+  bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -81,6 +85,12 @@ void init_pass(Pass &p) {
       for (int z = 0; z < 8; z++)
         p.radius[(x << 6) | (y << 3) | z] = float(
             v * std::sqrt((x - 3.5) * (x - 3.5) + (y - 3.5) * (y - 3.5) + (z - 3.5) * (z - 3.5)));
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const double dx = (x & 3) - 1.5, dy = (y & 3) - 1.5, dz = (z & 3) - 1.5;
+        p.roct[(x << 6) | (y << 3) | z] = v * std::sqrt(dx * dx + dy * dy + dz * dz);
+      }
 }
 
 /// Index box (block origins, both ends inclusive) of the blocks a cut may
@@ -165,9 +175,38 @@ double block_material(const Pass &p, ConstAcc &acc, const Coord &o, const Leaf *
   return sum;
 }
 
+/// True if the design cannot be gouged anywhere in the block at o (stock
+/// index): the design and the stock share a lattice and every design value
+/// over the block's voxels is at least a voxel (outside the design by more
+/// than any depth vouched there). dacc: the design's tree.
+bool design_clear(const Pass &p, ConstAcc *dacc, const Coord &o) {
+  if (dacc == nullptr) return false;
+  const swarf_stock &d = *p.measure->design;
+  const Vec3d off = (p.s.origin - d.origin) / p.voxel;
+  const Coord lo(o.x() + int(std::lround(off[0])), o.y() + int(std::lround(off[1])), o.z() + int(std::lround(off[2])));
+  const Coord hi = lo.offsetBy(7);
+  const float floor_value = float(p.voxel);
+  for (int x = lo.x() & ~7; x <= hi.x(); x += 8)
+    for (int y = lo.y() & ~7; y <= hi.y(); y += 8)
+      for (int z = lo.z() & ~7; z <= hi.z(); z += 8) {
+        const Coord c(x, y, z);
+        const Leaf *leaf = dacc->probeConstLeaf(c);
+        if (leaf == nullptr) {
+          if (!(dacc->getValue(c) >= floor_value)) return false;
+          continue;
+        }
+        const float *v = leaf->buffer().data();
+        for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
+          if (!(v[n] >= floor_value)) return false;
+      }
+  return true;
+}
+
 /// Pass 2 for one block: keep the cuts that reach into it (compacted to the
 /// front of its pair range, with their centre values) and choose its action.
-void classify(const Pass &p, ConstAcc &acc, Block &b) {
+/// dacc: the design's tree when measuring against a design on the stock's
+/// lattice (else null).
+void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   RemoveScratch &w = p.s.scratch;
   const Leaf *leaf;
   b.action = kSkip;
@@ -182,7 +221,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b) {
       b.action = kClear;
       return;
     }
-    if (-d > p.reach && kept == 0 && p.measure->design == nullptr) {
+    if (-d > p.reach && kept == 0 && (p.measure->design == nullptr || design_clear(p, dacc, b.origin))) {
       // Measured: the first cut reaching the block clears it and removes all of it.
       w.pairs[b.begin] = w.pairs[i];
       w.removed[b.begin] = block_material(p, acc, b.origin, leaf);
@@ -292,15 +331,29 @@ void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, dou
           for (int y = sy; y < sy + 2; y++)
             for (int z = sz; z < sz + 2; z++) {
               const openvdb::Index n = (x << 6) | (y << 3) | z;
-              const double dx = x - (x0 + 1.5), dy = y - (y0 + 1.5), dz = z - (z0 + 1.5);
-              const double r = v * std::sqrt(dx * dx + dy * dy + dz * dz);
-              if (!may_raise(bv.m[n], bg, doct, r)) continue;
+              if (!may_raise(bv.m[n], bg, doct, p.roct[n])) continue;
               if (clear)
                 bv.m[n] = bg;
               else
                 need = true;
             }
         if (need) visit_cube(p, b, cut, sx, sy, sz, bv);
+      }
+}
+
+/// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the
+/// reference the tests compare with): every voxel the block centre's bound
+/// cannot decide is evaluated.
+void visit_flat(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc,
+                BlockValues &bv) {
+  for (int x = 0; x < 8; x++)
+    for (int y = 0; y < 8; y++)
+      for (int z = 0; z < 8; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        if (!may_raise(bv.m[n], p.bgf, dc, p.radius[n])) continue;
+        const Vec3d q = block_point(p, b.origin, x, y, z);
+        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        if (d > bv.m[n]) bv.m[n] = d;
       }
 }
 
@@ -318,10 +371,13 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
     bv.m[n] = data[n];
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    for (int x = 0; x < 8; x += 4)
-      for (int y = 0; y < 8; y += 4)
-        for (int z = 0; z < 8; z += 4)
-          visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
+    if (p.flat)
+      visit_flat(p, b, cut, w.centre_sdf[i], bv);
+    else
+      for (int x = 0; x < 8; x += 4)
+        for (int y = 0; y < 8; y += 4)
+          for (int z = 0; z < 8; z += 4)
+            visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];
@@ -374,7 +430,12 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design)
           if (!(nv > v)) continue;
           w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
           if (design && v < 0.0f && d > 0.0) {
-            if (!have_dq) dq = design->at(q), have_dq = true;
+            if (!have_dq) {
+              dq = design->at(q), have_dq = true;
+              // Beyond the band of a design read from a mesh: its exact depth.
+              const swarf_stock &ds = *p.measure->design;
+              if (ds.surface && dq <= -double(ds.background) * (1.0 - 1e-6)) dq = -surface_distance(ds, q);
+            }
             const double depth = -dq + vouched_radius(std::min(d, -double(v)), p.voxel);
             if (depth > tol && depth > w.gouge[i]) w.gouge[i] = depth, w.gouge_at[i] = q;
           }
@@ -421,6 +482,46 @@ void report_effects(const Pass &p, size_t ncuts) {
   for (size_t i = 0; i < ncuts; i++)
     e[i].removed_voxels = removed[i], e[i].removed = removed[i] * v3;
 }
+
+/// Runs a parallel pass in chunks when the stock has a tick
+/// (swarf_stock_set_tick): between chunks, on the calling thread with no
+/// worker running (the stock is a valid narrow band then), the tick is told
+/// the fraction done once `every` seconds have passed since the last call;
+/// chunks aim at a fifth of that. A non-zero answer stops the pass (ABORTED):
+/// the stock stays valid, partly cut.
+struct Ticker {
+  swarf_stock &s;
+  size_t total;
+  double last;
+  Ticker(swarf_stock &st, size_t n) : s(st), total(n), last(now()) {}
+  static double now() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  /// Items [first, first + n) of the pass's total (as numbered by body).
+  template <class Body> void run(size_t first, size_t n, size_t grain, const Body &body) {
+    if (s.tick == nullptr) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(first, first + n, grain), body);
+      return;
+    }
+    const double aim = s.tick_every > 0 ? 0.2 * s.tick_every : 0.0;
+    size_t chunk = 64;
+    for (size_t at = first; at < first + n;) {
+      const size_t end = std::min(first + n, at + chunk);
+      const double t0 = now();
+      tbb::parallel_for(tbb::blocked_range<size_t>(at, end, grain), body);
+      const double t1 = now(), took = t1 - t0;
+      at = end;
+      if (aim > 0 && took > 0) // next chunk: about `aim` seconds, within 16x of this one
+        chunk = std::max<size_t>(
+            grain, size_t(double(chunk) * std::min(16.0, std::max(1.0 / 16, aim / took))));
+      if (t1 - last < s.tick_every) continue;
+      last = t1;
+      if (s.tick(s.tick_user, total ? double(at) / double(total) : 1.0) != 0)
+        throw Error(SWARF_ERR_ABORTED, "removal stopped by the caller");
+    }
+  }
+};
 
 /// Pass 5: leaves without band become tiles, serial.
 void collapse(Pass &p) {
@@ -525,7 +626,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
                     size_t nclear, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -539,7 +640,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -554,7 +655,7 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
 /// Deepest gouge of the cut into the design where the stock has material (see stock.h).
 double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
                  double tolerance, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   double best = 0.0;
@@ -579,7 +680,9 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
           const Vec3d q = block_point(p, o, l.x(), l.y(), l.z());
           const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
           if (!(d > 0.0)) continue;
-          const double depth = -probe.at(q) + vouched_radius(std::min(d, -v), p.voxel);
+          double dq = probe.at(q);
+          if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6)) dq = -surface_distance(design, q);
+          const double depth = -dq + vouched_radius(std::min(d, -v), p.voxel);
           if (depth > tolerance && depth > best) best = depth, where = q;
         }
       }
@@ -588,7 +691,11 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
 
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
                  const Measure *measure) {
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, measure};
+  static const bool flat = [] {
+    const char *e = std::getenv("SWARF_REMOVE_FLAT");
+    return e != nullptr && e[0] == '1';
+  }();
+  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);
@@ -597,28 +704,31 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
     return;
   }
   const Tree &ctree = s.grid->constTree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, w.blocks.size(), 16),
-                    [&](const tbb::blocked_range<size_t> &r) {
-                      ConstAcc acc(ctree);
-                      for (size_t i = r.begin(); i != r.end(); ++i)
-                        classify(p, acc, w.blocks[i]);
-                    });
+  Ticker ticker(s, w.blocks.size() + w.blocks.size());
+  ticker.run(0, w.blocks.size(), 16, [&](const tbb::blocked_range<size_t> &r) {
+    ConstAcc acc(ctree);
+    std::unique_ptr<ConstAcc> dacc;
+    if (measure && measure->design && GridProbe::lattices_coincide(*measure->design, s))
+      dacc.reset(new ConstAcc(measure->design->grid->constTree()));
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      classify(p, acc, w.blocks[i], dacc.get());
+  });
   change_topology(p);
   Tree &tree = s.grid->tree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, w.visit.size(), 1),
-                    [&](const tbb::blocked_range<size_t> &r) {
-                      Acc acc(tree);
-                      std::unique_ptr<GridProbe> design;
-                      if (measure && measure->design)
-                        design.reset(new GridProbe(*measure->design, s));
-                      for (size_t i = r.begin(); i != r.end(); ++i) {
-                        Block &b = w.blocks[w.visit[i]];
-                        if (measure)
-                          visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
-                        else
-                          visit_leaf(p, *acc.probeLeaf(b.origin), b);
-                      }
-                    });
+  ticker.total = w.blocks.size() + w.visit.size();
+  ticker.run(w.blocks.size(), w.visit.size(), 1, [&](const tbb::blocked_range<size_t> &r0) {
+    const tbb::blocked_range<size_t> r(r0.begin() - w.blocks.size(), r0.end() - w.blocks.size());
+    Acc acc(tree);
+    std::unique_ptr<GridProbe> design;
+    if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      Block &b = w.blocks[w.visit[i]];
+      if (measure)
+        visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
+      else
+        visit_leaf(p, *acc.probeLeaf(b.origin), b);
+    }
+  });
   collapse(p);
   if (measure) report_effects(p, ncuts);
 }
@@ -652,7 +762,7 @@ extern "C" swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], c
     cut.sdf = sdf;
     cut.ctx = ctx;
     check_cut(cut, 0);
-    swarf::remove_cuts(*s, &cut, 1);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, &cut, 1); });
   });
 }
 
@@ -705,7 +815,7 @@ extern "C" swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_sto
     if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
     for (size_t i = 0; i < ncuts; i++)
       check_cut(cuts[i], i);
-    swarf::remove_cuts(*s, cuts, ncuts);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts); });
   });
 }
 
@@ -743,6 +853,6 @@ swarf_stock_remove_batch_measured(swarf_stock *s, const swarf_stock_cut *cuts, s
     for (size_t i = 0; i < ncuts; i++)
       check_cut(cuts[i], i);
     const swarf::Measure m{design, tolerance, effects};
-    swarf::remove_cuts(*s, cuts, ncuts, &m);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, &m); });
   });
 }

@@ -284,6 +284,29 @@ extern "C" void swarf_stock_free(swarf_stock *s) {
 
 extern "C" double swarf_stock_voxel(const swarf_stock *s) { return s ? s->voxel : 0.0; }
 
+extern "C" swarf_status swarf_stock_set_threads(swarf_stock *s, int n, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
+    if (n < 0 || n > 4096) throw swarf::Error(SWARF_ERR_ARG, "threads: give 0 (all cores) to 4096");
+    s->threads = n;
+    s->arena = n > 0 ? std::make_shared<tbb::task_arena>(n) : nullptr;
+  });
+}
+
+extern "C" int swarf_stock_threads(const swarf_stock *s) {
+  return s ? s->threads : 0;
+}
+
+extern "C" swarf_status swarf_stock_set_tick(swarf_stock *s, swarf_stock_tick_fn fn, void *user,
+                                             double every, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
+    if (!(every >= 0.0 && every <= 3600.0))
+      throw swarf::Error(SWARF_ERR_ARG, "tick interval: give 0 to 3600 seconds");
+    s->tick = fn, s->tick_user = user, s->tick_every = every;
+  });
+}
+
 extern "C" int swarf_stock_half_width(const swarf_stock *s) { return s ? s->half_width : 0; }
 
 extern "C" double swarf_stock_volume(const swarf_stock *s) {

@@ -115,6 +115,21 @@ SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_
                                              double depth, int *hit, double where[3],
                                              swarf_error *err);
 
+/* Threads the stock's passes (removal, the checks of cuts) may use: n >= 1,
+ * or 0 for all cores (the default). Per handle; not while a pass runs on it. */
+SWARF_API swarf_status swarf_stock_set_threads(swarf_stock *s, int n, swarf_error *err);
+SWARF_API int swarf_stock_threads(const swarf_stock *s); /* 0: all cores */
+
+/* A long removal pass tells `tick` how far it is (done: 0..1 of its blocks)
+ * at least every `every` seconds (0: after every chunk of blocks; chunks
+ * aim at every / 5 s), from the calling thread, between chunks (no worker
+ * runs then: the stock is a valid level set, partly cut, and may be read).
+ * A non-zero answer stops the pass: the call returns SWARF_ERR_ABORTED and
+ * the stock stays valid. fn NULL: no ticks (one parallel pass). */
+typedef int (*swarf_stock_tick_fn)(void *user, double done);
+SWARF_API swarf_status swarf_stock_set_tick(swarf_stock *s, swarf_stock_tick_fn fn, void *user,
+                                            double every, swarf_error *err);
+
 /* Facts about the grid. */
 SWARF_API double swarf_stock_voxel(const swarf_stock *s);
 SWARF_API int swarf_stock_half_width(const swarf_stock *s);
@@ -263,7 +278,7 @@ SWARF_API swarf_status swarf_stock_resample(const swarf_stock *s, double voxel, 
  * Deviations are measured up to its band (its "reach", mm, = half_width *
  * voxel): beyond it a deviation reads as the reach (the *_clamped flags say
  * so). SWARF_STOCK_DESIGN_BAND is the band the readers below give a design. */
-#define SWARF_STOCK_DESIGN_BAND 10 /* voxels */
+#define SWARF_STOCK_DESIGN_BAND 3 /* voxels */
 
 /* A design from FILE.stl (a closed mesh, as swarf_stock_read_stl, with
  * SWARF_STOCK_DESIGN_BAND voxels of band) or FILE.vdb (as swarf_stock_read_vdb:

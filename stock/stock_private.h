@@ -11,8 +11,11 @@
 
 #include <openvdb/openvdb.h>
 
+#include <tbb/task_arena.h>
+
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
@@ -21,6 +24,12 @@
 #include "stock_error.h"
 
 namespace swarf {
+
+struct MeshSurface;  // mesh_sdf.h
+
+/// Exact distance (mm, >= 0) from world point w to the surface of design d
+/// (d.surface non-null; mesh_sdf.cc).
+double surface_distance(const swarf_stock &d, const openvdb::Vec3d &w);
 
 /// One (block, cut) pair of a removal: the index origin of a leaf-aligned 8^3
 /// block and the number of a cut whose padded bounds meet it.
@@ -98,6 +107,14 @@ struct swarf_stock {
   int half_width;               ///< band half-width in voxels (background / voxel, rounded)
   openvdb::CoordBBox content;   ///< index box holding all material and band; never grows
   swarf::RemoveScratch scratch;
+  /// A design read from a mesh: its triangles (index space of this grid),
+  /// for exact distances beyond the band (mesh_sdf.h); null otherwise.
+  std::shared_ptr<const swarf::MeshSurface> surface;
+  int threads = 0;                        ///< swarf_stock_set_threads: 0 all cores
+  std::shared_ptr<tbb::task_arena> arena; ///< the removal's threads when threads > 0
+  swarf_stock_tick_fn tick = nullptr;     ///< swarf_stock_set_tick
+  void *tick_user = nullptr;
+  double tick_every = 0.0; ///< seconds
   /// swarf_stock_set_region: removal and queries only in the blocks whose
   /// origin lies in [region_lo, region_hi] (block origins, multiples of 8).
   bool has_region = false;
@@ -115,6 +132,14 @@ namespace swarf {
 /// scale, finite positive voxel and background, index box within +-2^30.
 /// Throws Error(SWARF_ERR_FORMAT) with the reason otherwise.
 swarf_stock *wrap_grid(openvdb::FloatGrid::Ptr grid);
+
+/// Run f on the stock's threads (swarf_stock_set_threads; all cores unless set).
+template <class F> void in_arena(swarf_stock &s, F &&f) {
+  if (s.arena)
+    s.arena->execute(f);
+  else
+    f();
+}
 
 /// Apply stock = max(stock, -sdf) for every cut (remove.cc). Arguments are
 /// assumed checked. On an exception the stock may be partly cut but stays a

@@ -277,6 +277,26 @@ static void test_fanuc_dwell_repeats(void) {
   expect("fanuc dwell and K", run(SWARF_GCODE_DIALECT_FANUC, prog), w, 17);
 }
 
+/* G76 fine boring. Rule (Fanuc 0i-MF): "at the bottom of the hole the
+ * spindle stops at a fixed position, the tool moves in the direction
+ * opposite to the tool tip by Q and is retracted"; the shift is +X with the
+ * parameters as shipped (Haas: Setting 27 X+); P dwells at the bottom (ms
+ * without a point); G98 returns to the initial level; then the tool shifts
+ * back over the hole. */
+static void test_fanuc_fine_boring(void) {
+  static const char prog[] = "G21 G90 G0 X10. Y10. Z5. F100. S1000 M3\n"
+                             "G98 G76 X10. Y10. Z-8. R2. Q0.5 P1000\n"
+                             "G80\n"
+                             "M30\n";
+  static const want_move w[] = {{R_, 10, 10, 5, 0},   {R_, 10, 10, 5, 0}, {R_, 10, 10, 2, 0},
+                                {L_, 10, 10, -8, 0},  {D_, 0, 0, 0, 1.0}, {R_, 10.5, 10, -8, 0},
+                                {R_, 10.5, 10, 5, 0}, {R_, 10, 10, 5, 0}};
+  expect("fanuc G76", run(SWARF_GCODE_DIALECT_FANUC, prog), w, 8);
+  /* LinuxCNC's G76 is lathe threading: not supported (refused at line 2). */
+  refused("G76 as linuxcnc", run(SWARF_GCODE_DIALECT_LINUXCNC, prog), 2,
+          SWARF_GCODE_E_CODE_NOT_SUPPORTED);
+}
+
 /* Jumps and the end of the main program. Rules: "M99 Pn in a subprogram
  * returns to the block Nn of the caller"; "GOTO n" jumps to Nn; M99 in the
  * main program would run it again from its start (the simulation stops
@@ -299,12 +319,33 @@ static void test_fanuc_jumps(void) {
   expect("fanuc M99 P and GOTO", run(SWARF_GCODE_DIALECT_FANUC, prog), w, 4);
   CHECK(out.nnotes == 1 && out.note_line[0] == 8 && strstr(out.note[0], "M99") != NULL,
         "M99 in the main program: a note at line 8 (%d notes)", out.nnotes);
+  /* "O9000-O9999: programs the machine builder keeps in the control" (a
+   * probing macro): skipped with a note, no motion. */
+  run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nG65 P9810 Z-5. F1000.\nG0 X2\nM30\n");
+  CHECK(out.status == SWARF_OK && out.n == 2 && out.nnotes == 1 && out.note_line[0] == 2,
+        "G65 P9810 skipped with a note (%d moves, %d notes, %s)", out.n, out.nnotes,
+        out.err.message);
   refused("M98 to a missing program", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nM98 P77\nM30\n"), 2,
           SWARF_GCODE_E_FANUC_NO_PROGRAM);
   refused("GOTO a missing block", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nGOTO 5\nM30\n"), 2,
           SWARF_GCODE_E_FANUC_NO_SEQUENCE);
   refused("a loop that never ends", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\nDO1\nEND1\nM30\n"), 3,
           SWARF_GCODE_E_O_WORK_LIMIT);
+  /* "IF [<expression>] THEN <macro statement>" runs the assignment only when
+   * the expression holds. */
+  run(SWARF_GCODE_DIALECT_FANUC,
+      "#5 = 1\nIF [#5 EQ 1] THEN #5 = 3\nIF [#5 EQ 1] THEN #5 = 9\nG0 X#5\n");
+  CHECK(out.status == SWARF_OK && out.n == 1 && out.v[0].end[0] == 3, "IF THEN (%s)",
+        out.err.message);
+  /* "#0 is always vacant" (read as 0 here); it cannot be set. rs274:
+   * "Parameter number out of range". */
+  run(SWARF_GCODE_DIALECT_FANUC, "#1 = 7\n#1 = #0\nG0 X[#1 + 5.]\n");
+  CHECK(out.status == SWARF_OK && out.n == 1 && out.v[0].end[0] == 5, "fanuc #0 reads 0 (%s)",
+        out.err.message);
+  refused("fanuc #0 = 1", run(SWARF_GCODE_DIALECT_FANUC, "#0 = 1\n"), 1,
+          SWARF_GCODE_E_PARAMETER_RANGE);
+  refused("#0 in linuxcnc", run(SWARF_GCODE_DIALECT_LINUXCNC, "G0 X#0\n"), 1,
+          SWARF_GCODE_E_PARAMETER_RANGE);
   refused("macro alarm", run(SWARF_GCODE_DIALECT_FANUC, "G0 X1\n#3000 = 12 (TOOL BROKEN)\n"), 2,
           SWARF_GCODE_E_FANUC_ALARM);
 }
@@ -430,6 +471,7 @@ int main(void) {
   test_fanuc_macro();
   test_fanuc_offsets();
   test_fanuc_dwell_repeats();
+  test_fanuc_fine_boring();
   test_fanuc_jumps();
   test_haas();
   test_grbl();

@@ -40,11 +40,26 @@ typedef struct {
   int n;
 } moves;
 
-static const char *cases[] = {"program-number", "tool-length", "block-delete", "block-delete-bdel",
-                              "probe",          "m19",         "g87",          "g87-no-spindle",
-                              "g87-no-k",       "spline",      "spline-plane", "spline-pq",
-                              "spline-ij",      "probe-close", "probe-comp",   "subfile",
-                              "retract-default"};
+static const char *cases[] = {"program-number",
+                              "m61",
+                              "tool-length",
+                              "block-delete",
+                              "block-delete-bdel",
+                              "probe",
+                              "m19",
+                              "g87",
+                              "g87-no-spindle",
+                              "g87-no-k",
+                              "spline",
+                              "spline-plane",
+                              "spline-pq",
+                              "spline-ij",
+                              "probe-close",
+                              "probe-comp",
+                              "subfile",
+                              "retract-default",
+                              "m98",
+                              "m98-percent"};
 
 static int keep_move(const swarf_move *mv, void *user) {
   moves *m = user;

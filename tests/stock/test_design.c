@@ -5,8 +5,11 @@
  * (an STL box read with swarf_stock_read_design): the same box down to z = -1.45
  * (its sides and bottom on the stock's). Tolerance t = 0.05 mm (half a voxel).
  *  - excess: the 1.5 mm layer above the design, less t: 9.9^2 (1.5 - t) mm^3;
- *    the largest, 1.5 mm, beyond the design's reach (1 mm): read as the reach,
- *    flagged; a 0.32 mm layer: its volume and height exactly;
+ *    the largest, 1.5 mm, beyond the design's band (0.3 mm): measured on its
+ *    triangles, exactly, also with a tolerance of 0.5 mm; a 0.32 mm layer: its
+ *    volume and height exactly;
+ *  - a gouge 1 mm deep (beyond the band): 1.0 in the query, the batch and
+ *    the comparison;
  *  - a ball plunged 0.3 mm below the design's top on a voxel column: the per-move
  *    query says 0.3 before the cut (0 after), the measured batch says the same,
  *    the comparison gives the gouge there, 0.3 deep, and the cap's volume;
@@ -65,13 +68,22 @@ static void test_excess(const swarf_stock *s, const swarf_stock *d) {
   printf("excess %.4f mm^3 (analytic %.4f), largest %.3f (reach %.3f, clamped %d), gouge %.4f\n",
          dev.excess_volume, layer, dev.excess_height, dev.reach, dev.excess_clamped, dev.gouge_volume);
   CHECK_NEAR(dev.excess_volume, layer, 1e-6 * layer, "excess volume, a 1.5 mm layer less the tolerance");
-  CHECK_NEAR(dev.reach, 10 * V, 1e-6, "reach: the design band");
-  CHECK_NEAR(dev.excess_height, dev.reach, 1e-6, "largest excess 1.5 mm reads as the reach");
-  CHECK(dev.excess_clamped == 1, "flagged as at least the reach");
+  /* A design read from a mesh keeps its triangles: deviations beyond its
+   * band (3 voxels, 0.3 mm) are measured against them exactly. */
+  CHECK(isinf(dev.reach), "reach: unlimited for a mesh design (%g)", dev.reach);
+  CHECK_NEAR(dev.excess_height, 1.5, 1e-4, "largest excess 1.5 mm, 5 band widths out, exact");
+  CHECK(dev.excess_clamped == 0, "not flagged as clamped");
   CHECK(dev.gouge_volume < 1e-9 && dev.gouge_depth == 0, "no gouge: %.3g", dev.gouge_volume);
   CHECK_NEAR(dev.design_volume, 9.9 * 9.9 * 3.5, 1e-6 * 343, "design volume");
   CHECK_NEAR(dev.stock_volume, 9.9 * 9.9 * 5, 1e-6 * 490, "stock volume");
   CHECK(fabs(dev.tolerance - T) < 1e-12, "tolerance kept");
+  /* A tolerance of 0.5 mm, beyond the band: volumes still exact (the design's
+   * values past its band are measured on its triangles). */
+  CHECK(swarf_stock_compare(s, d, NULL, 0.5, &dev, &err) == SWARF_OK, "%s", err.message);
+  printf("tolerance 0.5: excess %.4f mm^3 (analytic %.4f), largest %.4f\n", dev.excess_volume,
+         9.9 * 9.9 * 1.0, dev.excess_height);
+  CHECK_NEAR(dev.excess_volume, 9.9 * 9.9 * 1.0, 1e-6 * 98, "excess beyond a 0.5 mm tolerance");
+  CHECK_NEAR(dev.excess_height, 1.5, 1e-4, "largest excess with a wide tolerance");
 }
 
 static void test_excess_layer(void) {
@@ -147,6 +159,33 @@ static void test_gouge(swarf_stock *s, const swarf_stock *d) {
   swarf_stock_free(initial);
 }
 
+/* A ball plunged 1 mm below the design's top, three band widths: the query,
+ * the measured batch and the comparison give 1.0 (the design's triangles,
+ * not its band, beyond 0.3 mm). */
+static void test_deep_gouge(void) {
+  swarf_stock *s = stock_box(), *initial = copy(s);
+  const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, -1.45};
+  swarf_stock *d = design_box(lo, hi);
+  capsule_shape b = ball(5, 5, -2.45);
+  swarf_stock_cut cut = capsule_cut(&b);
+  swarf_stock_cut_effect e;
+  swarf_stock_deviation dev;
+  swarf_error err;
+  double depth, at[3];
+  CHECK(swarf_stock_gouge(s, d, &cut, T, &depth, at, &err) == SWARF_OK, "%s", err.message);
+  CHECK_NEAR(depth, 1.0, 1e-4, "deep gouge, the query");
+  CHECK(swarf_stock_remove_batch_measured(s, &cut, 1, d, T, &e, &err) == SWARF_OK, "%s", err.message);
+  CHECK_NEAR(e.gouge_depth, 1.0, 1e-4, "deep gouge, the measured batch");
+  CHECK(swarf_stock_compare(s, d, initial, T, &dev, &err) == SWARF_OK, "%s", err.message);
+  printf("deep gouge: query %.5f, batch %.5f, comparison %.5f (clamped %d)\n", depth, e.gouge_depth,
+         dev.gouge_depth, dev.gouge_clamped);
+  CHECK_NEAR(dev.gouge_depth, 1.0, 1e-4, "deep gouge, the comparison");
+  CHECK(dev.gouge_clamped == 0, "not clamped");
+  swarf_stock_free(d);
+  swarf_stock_free(initial);
+  swarf_stock_free(s);
+}
+
 static void test_cleared_blocks(void) {
   swarf_stock *s = stock_box(), *plain;
   plain = copy(s);
@@ -203,6 +242,7 @@ int main(void) {
   swarf_stock_free(d);
   swarf_stock_free(s);
   test_excess_layer();
+  test_deep_gouge();
   test_cleared_blocks();
   test_missing_and_elsewhere();
   return check_done();

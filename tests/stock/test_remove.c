@@ -203,6 +203,54 @@ static void batch_equals_single(void) {
   swarf_stock_free(batch);
 }
 
+typedef struct {
+  int calls, stop_at;
+  double last;
+  int increasing;
+} ticks;
+
+static int on_tick(void *user, double done) {
+  ticks *t = user;
+  if (!(done > t->last && done <= 1.0)) t->increasing = 0;
+  t->last = done;
+  return ++t->calls == t->stop_at;
+}
+
+/* A pass with a tick told after every chunk: the same grid as without one,
+ * ticks in increasing order; a tick that answers 1 stops the pass (ABORTED)
+ * and leaves a valid stock. */
+static void ticks_within_a_pass(void) {
+  enum { N = 300 };
+  static capsule_shape path[N];
+  static swarf_stock_cut cuts[N];
+  swarf_error err = {0};
+  for (int i = 0; i < N; i++) {
+    capsule_shape c = {{1.0 + 0.03 * i, 1.0, 0.3}, {1.0 + 0.03 * i, 7.0, 0.3}, 0.8};
+    path[i] = c;
+    cuts[i] = capsule_cut(&path[i]);
+  }
+  swarf_stock *plain = new_stock(), *ticked = new_stock(), *stopped = new_stock();
+  if (!plain || !ticked || !stopped) return;
+  ticks t = {0, 0, -1.0, 1}, u = {0, 3, -1.0, 1};
+  CHECK(swarf_stock_set_tick(ticked, on_tick, &t, -1.0, &err) == SWARF_ERR_ARG, "every < 0");
+  CHECK(swarf_stock_set_tick(ticked, on_tick, &t, 0.0, &err) == 0, "%s", err.message);
+  CHECK(swarf_stock_set_tick(stopped, on_tick, &u, 0.0, &err) == 0, "%s", err.message);
+  CHECK(swarf_stock_remove_batch(plain, cuts, N, &err) == 0, "plain: %s", err.message);
+  CHECK(swarf_stock_remove_batch(ticked, cuts, N, &err) == 0, "ticked: %s", err.message);
+  printf("ticks: %d in one pass\n", t.calls);
+  CHECK(t.calls >= 3 && t.increasing && t.last == 1.0, "%d ticks, increasing to 1 (%g)", t.calls,
+        t.last);
+  CHECK(stock_differences(plain, ticked) == 0 && stock_differences(ticked, plain) == 0,
+        "ticks change nothing (bit-identical)");
+  CHECK(swarf_stock_remove_batch(stopped, cuts, N, &err) == SWARF_ERR_ABORTED && u.calls == 3,
+        "a tick answering 1 stops the pass");
+  check_valid(stopped, "a stopped pass");
+  CHECK(stock_differences(plain, stopped) > 0, "a stopped pass is partly done");
+  swarf_stock_free(plain);
+  swarf_stock_free(ticked);
+  swarf_stock_free(stopped);
+}
+
 static double nan_sdf(const void *ctx, double x, double y, double z) { return NAN; }
 
 static void bad_arguments(void) {
@@ -268,6 +316,7 @@ int main(void) {
   random_removals();
   order_independence();
   batch_equals_single();
+  ticks_within_a_pass();
   bad_arguments();
   remove_everything();
   return check_done();

@@ -47,6 +47,23 @@ expect lollipop-neck '--tool: K: the neck must be thinner' 'G0 X1\n' "${stock[@]
 expect output-folder-missing 'cannot write' 'G0 X1\n' "${stock[@]}" "${tool[@]}" --image "$dir/nothere/x.png"
 # an error late in a program that already cut: still nothing written
 expect late-error 'prog\.ngc:5:1:' 'G0 Z1\nG0 X5 Y5\nG1 Z-2 F100\nG1 X30\nW1\n' "${stock[@]}" "${tool[@]}"
+# dialects: a name that is none, a Haas code read as LinuxCNC, a cycle grbl lacks
+expect dialect-unknown '--dialect: give linuxcnc, fanuc, haas or grbl' 'G0 X1\n' "${stock[@]}" \
+  "${tool[@]}" --dialect mach3
+expect haas-as-linuxcnc 'prog\.ngc:2:1: Unknown m code used: M97' 'G0 X1\nM97 P10\n' "${stock[@]}" \
+  "${tool[@]}"
+expect grbl-cycle 'prog\.ngc:2:1: G81 is not a grbl code' 'G0 X1 Z5\nG81 X2 Z-1 R1 F100\n' \
+  "${stock[@]}" "${tool[@]}" --dialect grbl
+
+# swarf parse: notes on stderr, the block delete switch
+printf 'G21 G0 X1\n/G0 X2\nM31\nM30\n' > "$dir/h.nc"
+for bd in "" --block-delete; do
+  want=$([ -z "$bd" ] && echo 2 || echo 1)
+  out=$("$swarf" parse --quiet --dialect haas $bd "$dir/h.nc" 2> "$dir/stderr")
+  if [ "$out" = "$dir/h.nc: $want moves" ] &&
+     grep -q "h.nc:3:1: note: M31: chip auger forward: accepted, no motion" "$dir/stderr"; then
+    pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL parse haas $bd: $out"; cat "$dir/stderr"; fi
+done
 
 # the program file itself is missing
 rm -f "$dir"/out.*

@@ -85,6 +85,53 @@ static int on_progress(void *user, const swarf_sim_progress *p) {
   return h->stop_after > 0 && p->report->moves >= h->stop_after;
 }
 
+typedef struct {
+  int in_pass, after_move, stop_in_pass;
+  long line;
+  double last;
+  int increasing;
+} pass_heard;
+
+static int on_pass_progress(void *user, const swarf_sim_progress *p) {
+  pass_heard *h = user;
+  if (p->pass < 0) {
+    h->after_move++, h->last = -1.0;
+    return 0;
+  }
+  if (!(p->pass >= 0.0 && p->pass <= 1.0) || p->stock == NULL) h->increasing = 0;
+  if (p->line != h->line) return 0; /* the plunge's pass */
+  if (!(p->pass > h->last)) h->increasing = 0;
+  h->last = p->pass;
+  h->in_pass++;
+  return h->stop_in_pass > 0 && h->in_pass >= h->stop_in_pass;
+}
+
+/* One long helix (G2 P40 around a 16 mm circle, one move): progress is told
+ * within its removal pass too (cfg.tick < 0: after every chunk of blocks),
+ * with its line, and a stop there aborts the run. */
+static void test_progress_within_a_move(void) {
+  static const char helix[] =
+      "G21 G90 G17\nG0 X28 Y15 Z1\nG1 Z-0.5 F500\nG2 X28 Y15 I-8 J0 Z-6 P40\n";
+  swarf_sim_config cfg;
+  swarf_error err;
+  swarf_stock *out = NULL;
+  pass_heard h = {0, 0, 0, 4, -1.0, 1};
+  base_config(&cfg);
+  cfg.tick = -1.0;
+  cfg.batch = 1;
+  cfg.cb = (swarf_sim_callbacks){.progress = on_pass_progress, .user = &h};
+  CHECK(swarf_sim_run_text(&cfg, "h.ngc", helix, strlen(helix), &out, NULL, &err) == SWARF_OK, "%s",
+        err.message);
+  printf("helix: %d progress calls within passes, %d after moves\n", h.in_pass, h.after_move);
+  CHECK(h.in_pass >= 3 && h.increasing, "progress within the helix's pass (line 4), increasing");
+  swarf_stock_free(out);
+  h = (pass_heard){0, 0, 2, 4, -1.0, 1};
+  CHECK(swarf_sim_run_text(&cfg, "h.ngc", helix, strlen(helix), &out, NULL, &err) ==
+                SWARF_ERR_ABORTED &&
+            out == NULL && h.in_pass == 2,
+        "a stop within a pass aborts the run (%d calls)", h.in_pass);
+}
+
 static swarf_stock *run_chunks(const swarf_sim_config *cfg, const char *text, unsigned seed) {
   swarf_sim *sim;
   size_t len = strlen(text), at = 0;
@@ -129,6 +176,20 @@ static void test_streaming(void) {
     check_same(one, split, "random splits = one feed");
     swarf_stock_free(split);
   }
+  for (int threads = 1; threads <= 3; threads++) { /* the default above: all cores */
+    swarf_stock *t = NULL;
+    cfg.threads = threads;
+    CHECK(swarf_sim_run_text(&cfg, "p.ngc", program, strlen(program), &t, NULL, &err) == SWARF_OK,
+          "%s", err.message);
+    CHECK(swarf_stock_threads(t) == threads, "the stock runs on %d threads", threads);
+    check_same(one, t, "any number of threads = all cores");
+    swarf_stock_free(t);
+  }
+  cfg.threads = -1;
+  CHECK(swarf_sim_run_text(&cfg, "p.ngc", program, strlen(program), &split, NULL, &err) ==
+                SWARF_ERR_ARG &&
+            strstr(err.message, "threads") != NULL,
+        "threads < 0 is refused: %s", err.message);
   swarf_stock_free(one);
 }
 
@@ -229,6 +290,7 @@ static void test_errors(void) {
 int main(void) {
   test_streaming();
   test_add_motion();
+  test_progress_within_a_move();
   test_continue();
   test_errors();
   return check_done();

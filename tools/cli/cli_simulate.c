@@ -92,6 +92,7 @@ static const char help[] =
     "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer;\n"
     "                   with --design, coloured by the deviation, with a legend)\n"
     "  --quiet          no progress bar and no summary\n"
+    "  --threads N      threads for the stock passes (default 0: all cores)\n"
     "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "  --balance N      after the run, how evenly 2 to N processes would share the\n"
@@ -187,6 +188,11 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   if (!strcmp(flag, "--batch")) {
     if (read_double(flag, val, 1, &d)) return 2;
     return o->cfg.batch = (int)d, 0;
+  }
+  if (!strcmp(flag, "--threads")) {
+    if (read_double(flag, val, 0, &d)) return 2;
+    if (d > 4096 || d != floor(d)) return usage_error("--threads: give 0 (all cores) to 4096");
+    return o->cfg.threads = (int)d, 0;
   }
   if (!strcmp(flag, "--balance")) {
     if (read_double(flag, val, 2, &d) || d > 1024) return usage_error("--balance: give 2 to 1024");

@@ -83,11 +83,25 @@ static int spindle_tool(const swarf_sim *s, int move_tool) {
   return move_tool;
 }
 
+static int tell_pass(swarf_sim *s, long line, int tool, double pass);
+
+static int tell_progress(swarf_sim *s, long line, int tool) {
+  return tell_pass(s, line, tool, -1.0);
+}
+
+/* Within a removal pass (the stock's tick): progress with the last queued
+ * move's line and the fraction of the pass done. */
+static int on_tick(void *user, double done) {
+  swarf_sim *s = user;
+  const swarf_motion *m = s->n > 0 ? &s->motions[s->n - 1] : NULL;
+  return tell_pass(s, m ? m->line : 0, spindle_tool(s, m ? m->tool : 0), done);
+}
+
 /* Several processes: the stock is this one's slab only (not shown), and a
  * stop is obeyed at the next batch, on all of them (part.c). */
-static int tell_progress(swarf_sim *s, long line, int tool) {
+static int tell_pass(swarf_sim *s, long line, int tool, double pass) {
   const int parts = swarf_sim_parts(s);
-  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, parts ? NULL : s->stock};
+  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, parts ? NULL : s->stock, pass};
   if (s->cfg.cb.progress == NULL || s->cfg.cb.progress(s->cfg.cb.user, &p) == 0) return 0;
   if (parts) return s->abort_pending = 1, 0;
   swarf_sim_fail(s, SWARF_ERR_ABORTED, line, 0, "aborted by the caller");
@@ -257,9 +271,22 @@ static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf
       swarf_stock_free(stock);
       return st;
     }
+  if (swarf_stock_set_threads(stock, cfg->threads, err) != SWARF_OK) {
+    swarf_stock_free(stock);
+    return SWARF_ERR_ARG;
+  }
   if ((s = calloc(1, sizeof *s)) == NULL) {
     swarf_stock_free(stock);
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
+  }
+  if (cfg->cb.progress != NULL && swarf_stock_set_tick(stock, on_tick, s,
+                                                       cfg->tick > 0   ? cfg->tick
+                                                       : cfg->tick < 0 ? 0.0
+                                                                       : 0.25,
+                                                       err) != SWARF_OK) {
+    free(s);
+    swarf_stock_free(stock);
+    return SWARF_ERR_ARG;
   }
   s->t0 = now_seconds();
   s->cfg = *cfg;
@@ -402,6 +429,7 @@ swarf_stock *swarf_sim_take_stock(swarf_sim *s) {
   if (s == NULL) return NULL;
   st = s->stock;
   s->stock = NULL;
+  swarf_stock_set_tick(st, NULL, NULL, 0.0, NULL); /* the ticks went to this handle */
   if (s->state == SIM_OPEN) s->state = SIM_TAKEN;
   return st;
 }

@@ -121,13 +121,17 @@ typedef struct {
                  * SHANK 1, HOLDER 2; 0 otherwise */
 } swarf_alarm;
 
-/* Progress, after every motion move (and after each chunk of a file). */
+/* Progress, after every motion move (and after each chunk of a file), and
+ * within a long removal pass (pass >= 0). */
 typedef struct {
   double fraction;                /* of the program read, 0..1; < 0 while unknown */
   long line;                      /* source line of the move */
   int tool;                       /* T number in the spindle, 0 none */
   const swarf_sim_report *report; /* counts so far */
   const swarf_stock *stock;       /* the stock as of the last removal pass (read only) */
+  double pass; /* during a removal pass (at least every cfg.tick s, so a long move
+                * does not hold progress still): the fraction of it done, 0..1,
+                * line: its last move's; -1 after a move */
 } swarf_sim_progress;
 
 /* Per source line that moved the tool, in program order, once its moves have
@@ -228,6 +232,11 @@ typedef struct {
    * outlive the handle. NULL: none. */
   const swarf_stock *design;
   double tolerance; /* mm; <= 0: half the stock's voxel */
+  /* Threads the stock passes run on (swarf_stock_set_threads): 0 all cores. */
+  int threads;
+  /* Seconds between progress calls during a removal pass (0: 0.25; < 0: after
+   * every chunk of blocks). */
+  double tick;
   const swarf_sim_comm *comm; /* several processes (borrowed; must outlive the handle);
                                * NULL: one */
   int tally; /* 1: plan slabs and count the blocks removal visits in each, for

@@ -93,6 +93,14 @@ def test_dialect():
     check(b.report.moves == a.report.moves and b.removed == a.removed,
           "haas slot: %d moves, %g mm3 removed (linuxcnc: %d, %g)"
           % (b.report.moves, b.removed, a.report.moves, a.removed))
+    # the same cut through a subroutine file on the path
+    os.makedirs(path("subs"), exist_ok=True)
+    with open(path("subs/slot_pass.ngc"), "w") as f:
+        f.write("o<slot_pass> sub\nG1 Z-1 F100\nG1 X15\no<slot_pass> endsub\n")
+    c = swarf.simulate(text="G21 G90 G17\nG0 X5 Y5 Z2\no<slot_pass> call\nG0 Z2\nM2\n",
+                       subroutine_path=path("nowhere") + ":" + path("subs"), **kw)
+    check(c.report.moves == a.report.moves and c.removed == a.removed,
+          "subroutine file: %d moves, %g mm3" % (c.report.moves, c.removed))
     try:
         swarf.simulate(text=HAAS_SLOT, **kw)
         check(False, "the Haas program raises under the LinuxCNC dialect (M97)")

@@ -135,6 +135,7 @@ static void structs(void) {
   FIELD(swarf_sim_config, start, "c_double * 3");
   FIELD(swarf_sim_config, dialect, "c_int");
   FIELD(swarf_sim_config, block_delete, "c_int");
+  FIELD(swarf_sim_config, subroutine_path, "c_char_p");
   end();
   fprintf(out, "]\n\n");
 }
@@ -226,8 +227,8 @@ static void functions(void) {
      double, const swarf_stock *, double, double, double);
   FN(swarf_stock_check, "\"c_int\"", "\"c_void_p\", \"" P_ERR "\"", swarf_status,
      const swarf_stock *, swarf_error *);
-  FN(swarf_stock_write_vdb, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"" P_ERR "\"",
-     swarf_status, const swarf_stock *, const char *, swarf_error *);
+  FN(swarf_stock_write_vdb, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"" P_ERR "\"", swarf_status,
+     const swarf_stock *, const char *, swarf_error *);
   FN(swarf_stock_write_stl, "\"c_int\"",
      "\"c_void_p\", \"c_char_p\", \"POINTER(c_size_t)\", \"" P_ERR "\"", swarf_status,
      const swarf_stock *, const char *, size_t *, swarf_error *);

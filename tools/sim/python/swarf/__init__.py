@@ -402,12 +402,13 @@ class Simulation:
     in machine coordinates, mm), units ("mm" or "in": the machine's unit),
     offsets (LinuxCNC's parameter file). How the program is read, as
     --dialect and --block-delete: dialect ("linuxcnc", the default, "fanuc",
-    "haas" or "grbl"), block_delete (True: `/` blocks are skipped). name is
-    the program's name in messages."""
+    "haas" or "grbl"), block_delete (True: `/` blocks are skipped),
+    subroutine_path (where `o<name> call` finds <name>.ngc: directories
+    joined by ':'). name is the program's name in messages."""
 
     def __init__(self, stock, tools=(), *, voxel=None, machine=None, band=None, batch=None,
                  line_volumes=False, start=None, g54=None, units=None, offsets=None,
-                 dialect=None, block_delete=False,
+                 dialect=None, block_delete=False, subroutine_path=None,
                  name="program", progress=None, alarm=None, line=None):
         self._h = c_void_p()
         self._exc = None
@@ -423,6 +424,10 @@ class Simulation:
                            % (dialect,), "dialect")
             cfg.dialect = _DIALECTS[dialect]
         cfg.block_delete = 1 if block_delete else 0
+        subpath = None
+        if subroutine_path is not None:
+            subpath = _path(subroutine_path)  # borrowed by new (it copies it)
+            cfg.subroutine_path = subpath
         # The C callbacks; kept alive as long as the handle.
         self._cbs = (types["PROGRESS_FN"](self._on_progress), types["ALARM_FN"](self._on_alarm),
                      types["LINE_FN"](self._on_line))
@@ -436,7 +441,7 @@ class Simulation:
                                          byref(err)) != _OK:
                 _raise(err)
             rc = lib.swarf_sim_new(byref(cfg), self.name.encode(), byref(self._h), byref(err))
-        del borrowed  # the offsets file's name: read by new
+        del borrowed, subpath  # the offsets file's name, the path: read by new
         if rc != _OK:
             self._h = c_void_p()
             _raise(err)
@@ -525,7 +530,7 @@ class Simulation:
 
 def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=None, band=None,
              batch=None, line_volumes=False, start=None, g54=None, units=None, offsets=None,
-             dialect=None, block_delete=False,
+             dialect=None, block_delete=False, subroutine_path=None,
              name=None, progress=None, alarm=None, line=None) -> Result:
     """Runs a program: the G-code file at `program`, or the string `text`.
     Options as Simulation (and `swarf simulate`). Returns the Result; raises
@@ -537,6 +542,7 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
     with Simulation(stock, tools, voxel=voxel, machine=machine, band=band, batch=batch,
                     line_volumes=line_volumes, start=start, g54=g54, units=units,
                     offsets=offsets, dialect=dialect, block_delete=block_delete,
+                    subroutine_path=subroutine_path,
                     name=name, progress=progress, alarm=alarm,
                     line=line) as sim:
         if text is not None:

@@ -1,0 +1,46 @@
+/// @file mesh_sdf.h
+/// @brief The narrow band of a closed triangle mesh's signed distance, made
+/// without OpenVDB's meshToVolume (mesh_sdf.cc): signs from winding numbers
+/// along voxel columns, distances exact (closest points on the triangles)
+/// wherever they are below the band's half-width. Used for STL stocks and
+/// designs (levelset.cc).
+#ifndef SWARF_STOCK_MESH_SDF_H
+#define SWARF_STOCK_MESH_SDF_H
+
+#include <openvdb/openvdb.h>
+
+#include <memory>
+#include <vector>
+
+namespace swarf {
+
+/// A mesh's triangles kept for exact distance queries far from the surface,
+/// where a band holds only +-its half-width (designs: deepest gouges and
+/// largest excesses beyond the band). Index space, as mesh_band's points.
+struct MeshSurface;
+
+/// The surface of the mesh (index-space points, triangles), for queries.
+std::shared_ptr<const MeshSurface> mesh_surface(const std::vector<openvdb::Vec3s> &points,
+                                                const std::vector<openvdb::Vec3I> &triangles);
+
+/// Exact distance (index units) from the index-space point p to the surface:
+/// triangles in chunks of 32 along a Morton curve, chunks whose bounding box
+/// is farther than the best found skipped.
+double mesh_surface_distance(const MeshSurface &m, const openvdb::Vec3d &p);
+
+/// A level set of the solid bounded by the mesh: points in index space
+/// (world mm / voxel; voxel centres at integer points), triangles
+/// counter-clockwise seen from outside, the mesh closed and consistently
+/// oriented (mesh_file.h's check_solid). The grid has a linear transform of
+/// `voxel` mm, background bg (mm, >= half_width * voxel); voxels whose
+/// distance to the surface is below half_width voxels hold it exactly
+/// (negative inside, mm) and are active, all others hold +-bg, inactive
+/// (tiles by signed flood fill). Throws Error(SWARF_ERR_LIMIT) when the
+/// triangles' bounding boxes span too many blocks.
+openvdb::FloatGrid::Ptr mesh_band(const std::vector<openvdb::Vec3s> &points,
+                                  const std::vector<openvdb::Vec3I> &triangles, double voxel,
+                                  int half_width, float bg);
+
+} // namespace swarf
+
+#endif

@@ -199,7 +199,7 @@ void write_atomic(const char *path, const std::function<void(std::ostream &)> &b
   struct stat st;
   if (::lstat(path, &st) == 0) {
     if (const char *kind = refused_kind(st.st_mode))
-      throw Error(SWARF_ERR_ARG, std::string(path) + " is " + kind + ": not replaced");
+      throw Error(SWARF_ERR_IO, std::string(path) + " is " + kind + ": not replaced");
     if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return write_into(path, body);
   }
   sweep_stale(path);

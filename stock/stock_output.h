@@ -27,12 +27,12 @@ extern "C" {
 
 /* Hold every file written from now on until the commit; installs the
  * signal handlers that remove named temporaries. */
-void swarf_stock_outputs_begin(void);
+SWARF_API void swarf_stock_outputs_begin(void);
 /* Publishes the held files in the order written; SWARF_ERR_IO if one cannot
  * be (those after it are dropped, those before it stay published). */
-swarf_status swarf_stock_outputs_commit(swarf_error *err);
+SWARF_API swarf_status swarf_stock_outputs_commit(swarf_error *err);
 /* Drops the held files (nothing is published). */
-void swarf_stock_outputs_abort(void);
+SWARF_API void swarf_stock_outputs_abort(void);
 
 #ifdef __cplusplus
 }

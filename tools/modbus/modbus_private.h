@@ -21,14 +21,14 @@
 
 #include <modbus.h>
 
-#include "swarf_sim.h"
 #include "job.h"
+#include "swarf_sim.h"
 
 /* The register map (README.md, "Status over Modbus"). */
-#define SWARF_MB_NREGS 64    /* input registers 0..63; holding registers 0..63 the same */
-#define SWARF_MB_CMD_REG 64  /* holding register: commands */
-#define SWARF_MB_NAME_REG 32 /* 32..63: program name, two ASCII bytes each */
-#define SWARF_MB_NBITS 7     /* discrete inputs 0..6 */
+#define SWARF_MB_NREGS 64      /* input registers 0..63; holding registers 0..63 the same */
+#define SWARF_MB_CMD_REG 64    /* holding register: commands */
+#define SWARF_MB_NAME_REG 32   /* 32..63: program name, two ASCII bytes each */
+#define SWARF_MB_NBITS 7       /* discrete inputs 0..6 */
 #define SWARF_MB_MAP_VERSION 2 /* +1 whenever a register is added or changes meaning */
 
 enum {
@@ -50,8 +50,7 @@ enum {
 };
 
 /* Fill the 64 status registers for the snapshot at monotonic time `now`. */
-void swarf_mb_map_registers(const swarf_job_snapshot *s, double now,
-                            uint16_t regs[SWARF_MB_NREGS]);
+void swarf_mb_map_registers(const swarf_job_snapshot *s, double now, uint16_t regs[SWARF_MB_NREGS]);
 /* Fill the discrete inputs (0 or 1 each). */
 void swarf_mb_map_bits(const swarf_job_snapshot *s, uint8_t bits[SWARF_MB_NBITS]);
 
@@ -80,7 +79,9 @@ typedef struct {
   swarf_job *status;
   modbus_mapping_t *map;
   int unit;
-  int tcp; /* 1: TCP (unit 0 and 255 also accepted), 0: RTU */
+  int tcp;     /* 1: TCP (unit 0 and 255 also accepted), 0: RTU */
+  int refused; /* set by each swarf_mb_respond: 1 if the request got an
+                  exception or no answer, 0 if a normal reply */
 } swarf_mb_responder;
 
 int swarf_mb_responder_init(swarf_mb_responder *r, swarf_job *status, int unit, int tcp);

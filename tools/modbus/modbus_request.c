@@ -9,7 +9,9 @@
  * function codes from 0x80 up (exception codes, not functions) are dropped.
  * Exceptions for unknown functions and bad counts are sent from here:
  * libmodbus's own path for them sleeps the response timeout and flushes.
- * The responder owns its mapping; the caller owns ctx and the request.
+ * The responder records whether the last request was refused (an exception
+ * or no answer): the TCP server ranks its clients by it. The responder owns
+ * its mapping; the caller owns ctx and the request.
  */
 #include "modbus_private.h"
 
@@ -18,6 +20,7 @@ int swarf_mb_responder_init(swarf_mb_responder *r, swarf_job *status, int unit, 
   r->status = status;
   r->unit = unit;
   r->tcp = tcp;
+  r->refused = 0;
   r->map = modbus_mapping_new_start_address(0, 0, 0, SWARF_MB_NBITS, 0, SWARF_MB_NREGS + 1, 0,
                                             SWARF_MB_NREGS);
   return r->map ? 0 : -1;
@@ -116,10 +119,22 @@ static void refresh(swarf_mb_responder *r) {
   swarf_mb_map_bits(&s, r->map->tab_input_bits);
 }
 
+/* Answer req with a normal reply; r->refused tells whether libmodbus
+ * answered an exception itself (an address outside the map): an exception is
+ * the header, function and code (+ CRC), every normal reply is longer. */
+static int reply(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, int len, int h) {
+  int rc;
+  refresh(r);
+  rc = modbus_reply(ctx, req, len, r->map);
+  r->refused = rc == h + 2 + (r->tcp ? 0 : 2);
+  return rc;
+}
+
 int swarf_mb_respond(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, int len) {
   int h = modbus_get_header_length(ctx), n, unit, ex = 0;
   swarf_job_snapshot s;
   if (r == NULL || ctx == NULL || req == NULL || h < 1) return -1;
+  r->refused = 1;                 /* until a normal reply is sent */
   n = len - h - (r->tcp ? 0 : 2); /* RTU frames end with a CRC */
   if (n < 1) return 0;
   unit = req[h - 1];
@@ -135,6 +150,5 @@ int swarf_mb_respond(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, i
     ex = s.commands ? command_write(r, req + h) : MODBUS_EXCEPTION_ILLEGAL_FUNCTION;
   }
   if (ex) return modbus_reply_exception(ctx, req, (unsigned)ex);
-  refresh(r);
-  return modbus_reply(ctx, req, len, r->map);
+  return reply(r, ctx, req, len, h);
 }

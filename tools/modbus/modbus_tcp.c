@@ -5,10 +5,19 @@
  * own frame buffer (MBAP framing is done here, so a client that sends half
  * a frame holds only its own slot), a reply that does not fit in a client's
  * socket buffer drops that client, and clients idle too long are closed.
- * When all slots are taken, a newcomer replaces the client idle the longest
- * (if idle for a second or more) or is turned away. The server owns the
- * listening socket, the client sockets and its libmodbus context; it only
- * reads the status it was given, which must outlive it.
+ *
+ * The table (README, "Status over Modbus"): KEEP slots for polite clients
+ * plus SPARE more, so that a newcomer always gets in. When all slots are
+ * taken, the newcomer replaces, in this order: a misbehaving client (a
+ * request refused in the last minute, or a frame left half sent), an
+ * unproven one (no request answered yet), an overdue one (silent for longer
+ * than three of its own polling periods and 5 s), each the one idle the
+ * longest; else the youngest polite client, who is never among the KEEP
+ * longest-connected ones. So churn, idle sockets and abusers never reset a
+ * polite poller among the KEEP longest-connected clients.
+ *
+ * The server owns the listening socket, the client sockets and its libmodbus
+ * context; it only reads the status it was given, which must outlive it.
  */
 #define _GNU_SOURCE /* accept4, pipe2 */
 #include <errno.h>
@@ -26,17 +35,30 @@
 
 #include "modbus_private.h"
 
-#define SWARF_MB_MAX_CLIENTS 64
+#define KEEP 64 /* polite clients a newcomer never replaces */
+#define SPARE 8 /* slots beyond them: the newcomers' way in */
+#define SWARF_MB_MAX_CLIENTS (KEEP + SPARE)
 #define IDLE_LIMIT_S 60.0   /* no complete request for this long: closed */
 #define PARTIAL_LIMIT_S 5.0 /* a frame left unfinished for this long: closed */
+#define PARTIAL_BAD_S 1.0   /* ... for this long: misbehaving */
+#define REFUSED_BAD_S 60.0  /* a refused request marks a client for this long */
+#define OVERDUE_MIN_S 5.0   /* silent for less is never overdue */
+#define OVERDUE_PERIODS 3.0 /* ... nor for less than this many of its periods */
 
 typedef struct {
   int fd; /* -1: free slot */
   int len;
+  double since;         /* connection */
   double last;          /* last complete request (or connection) */
   double partial_since; /* first byte of the unfinished frame, 0 if none */
+  double good;          /* last request answered normally, 0 if none */
+  double period;        /* running mean of the time between answered requests, 0 if unknown */
+  double refused;       /* last request refused (exception or no answer), 0 if none */
   uint8_t buf[MODBUS_TCP_MAX_ADU_LENGTH];
 } client;
+
+/* Who a newcomer replaces first: lower ranks first. */
+enum { RANK_MISBEHAVING, RANK_UNPROVEN, RANK_OVERDUE, RANK_POLITE };
 
 struct swarf_mb_tcp {
   pthread_t thread;
@@ -52,6 +74,37 @@ static void drop(client *c) {
   c->fd = -1;
   c->len = 0;
   c->partial_since = 0;
+}
+
+/* A new client in slot c, connected at now. */
+static void client_init(client *c, int fd, double now) {
+  c->fd = fd;
+  c->len = 0;
+  c->since = c->last = now;
+  c->partial_since = c->good = c->period = c->refused = 0;
+}
+
+/* Note one complete request at now, answered normally or refused. */
+static void client_note(client *c, int refused, double now) {
+  c->last = now;
+  c->partial_since = 0;
+  if (refused) {
+    c->refused = now;
+    return;
+  }
+  if (c->good > 0) /* a mean over the last ~4 periods */
+    c->period = c->period > 0 ? 0.75 * c->period + 0.25 * (now - c->good) : now - c->good;
+  c->good = now;
+}
+
+static int client_rank(const client *c, double now) {
+  double overdue = OVERDUE_PERIODS * c->period;
+  if ((c->refused > 0 && now - c->refused < REFUSED_BAD_S) ||
+      (c->partial_since > 0 && now - c->partial_since >= PARTIAL_BAD_S))
+    return RANK_MISBEHAVING;
+  if (c->good == 0) return RANK_UNPROVEN;
+  if (now - c->good > (overdue > OVERDUE_MIN_S ? overdue : OVERDUE_MIN_S)) return RANK_OVERDUE;
+  return RANK_POLITE;
 }
 
 /* Total length of the first frame in c's buffer, 0 if incomplete, -1 if it
@@ -75,8 +128,7 @@ static void serve_frames(struct swarf_mb_tcp *t, client *c, double now) {
     }
     memmove(c->buf, c->buf + n, (size_t)(c->len - n));
     c->len -= n;
-    c->last = now;
-    c->partial_since = 0;
+    client_note(c, t->resp.refused, now);
   }
   if (c->fd >= 0 && c->len > 0 && c->partial_since == 0) c->partial_since = now;
 }
@@ -91,17 +143,27 @@ static void on_readable(struct swarf_mb_tcp *t, client *c, double now) {
   serve_frames(t, c, now);
 }
 
-/* A free slot, or the slot of the client idle the longest if idle >= 1 s. */
+/* Should a newcomer replace a (of rank ra) rather than b (of rank rb)? The
+ * lower rank; in a rank, the one idle the longest, but among polite clients
+ * the youngest (so the KEEP longest-connected ones stay). */
+static int replace_first(const client *a, int ra, const client *b, int rb) {
+  if (ra != rb) return ra < rb;
+  return ra == RANK_POLITE ? a->since > b->since : a->last < b->last;
+}
+
+/* A free slot, or the slot of the client a newcomer replaces (closed). */
 static client *free_slot(struct swarf_mb_tcp *t, double now) {
-  client *oldest = NULL;
+  client *victim = NULL;
+  int vrank = 0;
   for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++) {
     client *c = &t->clients[i];
+    int r;
     if (c->fd < 0) return c;
-    if (oldest == NULL || c->last < oldest->last) oldest = c;
+    r = client_rank(c, now);
+    if (victim == NULL || replace_first(c, r, victim, vrank)) victim = c, vrank = r;
   }
-  if (oldest == NULL || now - oldest->last < 1.0) return NULL;
-  drop(oldest);
-  return oldest;
+  drop(victim);
+  return victim;
 }
 
 static void on_accept(struct swarf_mb_tcp *t, double now) {
@@ -112,10 +174,7 @@ static void on_accept(struct swarf_mb_tcp *t, double now) {
     close(fd);
     return;
   }
-  c->fd = fd;
-  c->len = 0;
-  c->last = now;
-  c->partial_since = 0;
+  client_init(c, fd, now);
 }
 
 static void close_stale(struct swarf_mb_tcp *t, double now) {
@@ -177,7 +236,7 @@ static int listen_on(struct swarf_mb_tcp *t, const swarf_mb_endpoint *e, char *m
   t->listen_fd = socket(ai->ai_family, ai->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (t->listen_fd >= 0) setsockopt(t->listen_fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   rc = t->listen_fd < 0 || bind(t->listen_fd, ai->ai_addr, ai->ai_addrlen) ||
-       listen(t->listen_fd, 16) || getsockname(t->listen_fd, (struct sockaddr *)&ss, &sl);
+       listen(t->listen_fd, SOMAXCONN) || getsockname(t->listen_fd, (struct sockaddr *)&ss, &sl);
   freeaddrinfo(ai);
   if (rc) {
     snprintf(msg, msglen,

@@ -18,6 +18,22 @@ int swarf_cli_render(int argc, char **argv);
 int swarf_cli_envelope(int argc, char **argv);
 int swarf_cli_help(const char *command);
 
+/* Output paths (outputs.c): refuses, naming `flag` on stderr and returning
+ * 2, an empty name, a name ending in '/', an existing folder, symbolic link,
+ * block device or socket, or a missing or unwritable folder; a character
+ * device or FIFO is accepted (written into). NULL path: 0. */
+int swarf_cli_output_ok(const char *cmd, const char *flag, const char *path);
+
+/* A file named on the command line and the flag (or role) that named it. */
+typedef struct {
+  const char *flag, *path; /* path NULL: not given */
+} swarf_cli_path;
+
+/* 2 (with a message) when an output is one of the inputs or another output
+ * (same device and inode, or the same absolute name), else 0. */
+int swarf_cli_outputs_distinct(const char *cmd, const swarf_cli_path *outs, int nout,
+                               const swarf_cli_path *ins, int nin);
+
 /* A progress bar on stderr, drawn only when stderr is a terminal. */
 typedef struct {
   int enabled;

@@ -259,6 +259,13 @@ static int render_args(render_options *o, int argc, char **argv) {
   if (!o->in || !o->out) return fputs(render_help, stderr), 2;
   if (o->tolerance > 0 && !o->design)
     return fprintf(stderr, "swarf render: --tolerance needs --design\n"), 2;
+  {
+    const swarf_cli_path outs[] = {{"--image", o->out}};
+    const swarf_cli_path ins[] = {{"FILE.vdb", o->in}, {"--design", o->design}};
+    if (swarf_cli_output_ok("render", "--image", o->out) ||
+        swarf_cli_outputs_distinct("render", outs, 1, ins, 2))
+      return 2;
+  }
   return 0;
 }
 

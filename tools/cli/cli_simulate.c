@@ -10,12 +10,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "cli.h"
 #include "cli_mpi.h"
 #include "cli_stock.h"
 #include "modbus_service.h"
+#include "stock_output.h"
 #include "swarf_sim.h"
 #include "verify.h"
 
@@ -284,15 +286,23 @@ static int build_tools(sim_options *o) {
 /* 0 on the rank that writes (rank 0, or the one process). */
 static int writer_rank = 0;
 
-/* Refuse an output whose folder does not exist or is not writable (where
- * it is written: on rank 0). */
-static int check_output(const char *flag, const char *path) {
-  char copy[4096], what[4200];
-  if (path == NULL || writer_rank != 0) return 0;
-  snprintf(copy, sizeof copy, "%s", path);
-  if (access(dirname(copy), W_OK) == 0) return 0;
-  snprintf(what, sizeof what, "%s: cannot write \"%s\": %s", flag, path, strerror(errno));
-  return usage_error(what);
+/* Every output can be written and none is an input or another output
+ * (outputs.c), checked before any work, where the outputs are written (rank 0). */
+static int check_outputs(const sim_options *o) {
+  const swarf_cli_path outs[] = {{"--out", o->out},
+                                 {"--mesh", o->mesh},
+                                 {"--image", o->image},
+                                 {"--report", o->verify.report_path}};
+  const swarf_cli_path ins[] = {{"PROGRAM", o->program},
+                                {"--stock", o->stock.file},
+                                {"--design", o->verify.design_path},
+                                {"--tool-table", o->tool_table},
+                                {"--tool-library", o->tool_library},
+                                {"--offsets", o->verify.offsets}};
+  if (writer_rank != 0) return 0;
+  for (size_t i = 0; i < sizeof outs / sizeof outs[0]; i++)
+    if (swarf_cli_output_ok("simulate", outs[i].flag, outs[i].path)) return 2;
+  return swarf_cli_outputs_distinct("simulate", outs, 4, ins, 6);
 }
 
 static int parse_args(sim_options *o, int argc, char **argv) {
@@ -322,36 +332,85 @@ static int parse_args(sim_options *o, int argc, char **argv) {
                        "T1=ball,D3.175");
   if (!o->out) return usage_error("--out FILE.vdb is required");
   if (swarf_cli_mesh_name("--mesh", o->mesh)) return 2;
-  return check_output("--out", o->out) || check_output("--mesh", o->mesh) ||
-                 check_output("--image", o->image)
-             ? 2
-             : 0;
+  return check_outputs(o);
 }
 
-/* Refuse a voxel so small that the narrow band of the box would not fit in
- * memory (about 4.5 bytes per active voxel plus tree overhead). */
+/* Bytes a narrow-band voxel costs at the peak of a run (grid, removal
+ * passes, writing): measured with /usr/bin/time on a 40 x 40 x 10 mm box,
+ * 0.1 mm to 0.05 mm voxels (2.40 M to 9.59 M active voxels, 84.5 MB to 193 MB:
+ * 15.5 bytes a voxel), with a margin. */
+#define BYTES_PER_VOXEL 18.0
+
+/* The memory a run may take: 80 % of the physical memory, or of the
+ * address-space limit if lower. */
+static double memory_budget(void) {
+  double phys = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
+  struct rlimit as;
+  if (!(phys > 0)) phys = 8e9;
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY && (double)as.rlim_cur < phys)
+    phys = (double)as.rlim_cur;
+  return 0.8 * phys;
+}
+
+/* Refuse a voxel larger than the stock's smallest side (the grid could not
+ * hold the stock: volumes off by orders of magnitude), or so small that the
+ * narrow band of the stock's surface would not fit in memory (suggesting a
+ * voxel that fits). */
 static int check_size(const swarf_sim_config *cfg) {
-  double d[3], area, voxels;
-  char what[256];
+  double d[3], area, voxels, bytes, budget, smallest;
+  char what[320];
   for (int k = 0; k < 3; k++)
     d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
+  smallest = fmin(d[0], fmin(d[1], d[2]));
+  if (smallest < 1e-3) {
+    snprintf(what, sizeof what,
+             "--stock: %g mm thick, thinner than the smallest voxel (0.001 mm): no grid can hold it",
+             smallest);
+    return usage_error(what);
+  }
+  if (cfg->voxel > smallest) {
+    snprintf(what, sizeof what,
+             "--voxel %g: larger than the stock's smallest side (%g mm): the grid cannot hold the "
+             "stock; give --voxel %.3g or less (a quarter of that side or less for usable volumes)",
+             cfg->voxel, smallest, smallest);
+    return usage_error(what);
+  }
   area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
   voxels = area / (cfg->voxel * cfg->voxel) * 2.0 * cfg->half_width;
-  if (voxels < 2e9) return 0;
+  bytes = voxels * BYTES_PER_VOXEL;
+  budget = memory_budget();
+  if (bytes <= budget) return 0;
   snprintf(what, sizeof what,
-           "--voxel %g: the stock's surface alone would need ~%.0f GB; use --voxel %.3g or more",
-           cfg->voxel, voxels * 8.0 / 1e9, cfg->voxel * sqrt(voxels / 2e9) * 1.01);
+           "--voxel %g: the stock's surface alone would need ~%.3g GB (%.3g M voxels at %.0f bytes), "
+           "more than the %.3g GB this machine can give; use --voxel %.3g or more",
+           cfg->voxel, bytes / 1e9, voxels / 1e6, BYTES_PER_VOXEL, budget / 1e9,
+           cfg->voxel * sqrt(bytes / budget) * 1.05);
   return usage_error(what);
 }
 
+/* The .vdb, mesh and picture: all or none (held unnamed, published
+ * together once all are written; stock_output.h). */
 static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
   swarf_error err;
+  int rc;
+  swarf_error_init(&err);
+  swarf_stock_outputs_begin();
   if (swarf_stock_write_vdb(stock, o->out, &err) != SWARF_OK) {
+    swarf_stock_outputs_abort();
+    fprintf(stderr, "swarf simulate: %s\n", err.message);
+    return (int)swarf_status_classify(err.status);
+  }
+  rc = swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
+                             o->verify.tolerance, o->stock.view, ntri);
+  if (rc != 0) {
+    swarf_stock_outputs_abort();
+    return rc;
+  }
+  if (swarf_stock_outputs_commit(&err) != SWARF_OK) {
     fprintf(stderr, "swarf simulate: %s\n", err.message);
     return 1;
   }
-  return swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
-                               o->verify.tolerance, o->stock.view, ntri);
+  return 0;
 }
 
 static void print_alarm(const sim_options *o, const swarf_alarm *a) {

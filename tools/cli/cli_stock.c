@@ -1,5 +1,6 @@
 /* cli_stock.c -- stocks from files, their placement, outputs by format and
  * `swarf compare` (cli_stock.h). */
+#include "cli.h"
 #include "cli_stock.h"
 
 #include <ctype.h>
@@ -187,12 +188,7 @@ typedef struct {
 
 /* 2 with a message unless the folder of `path` (may be NULL) is writable. */
 static int folder_ok(const char *flag, const char *path) {
-  char copy[4096];
-  if (path == NULL) return 0;
-  snprintf(copy, sizeof copy, "%s", path);
-  if (access(dirname(copy), W_OK) == 0) return 0;
-  fprintf(stderr, "swarf: %s: cannot write \"%s\": %s\n", flag, path, strerror(errno));
-  return 2;
+  return swarf_cli_output_ok("compare", flag, path); /* outputs.c */
 }
 
 static int compare_args(compare_options *o, int argc, char **argv) {

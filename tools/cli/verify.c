@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cli.h"
 #include "gcode.h"
 #include "verify.h"
 
@@ -122,11 +123,7 @@ void swarf_verify_note(swarf_verify *v, long line, int column, const char *text)
 }
 
 static int check_folder(const char *flag, const char *path) {
-  char copy[4096];
-  snprintf(copy, sizeof copy, "%s", path);
-  if (access(dirname(copy), W_OK) == 0) return 0;
-  fprintf(stderr, "swarf simulate: %s: cannot write \"%s\": %s\n", flag, path, strerror(errno));
-  return 2;
+  return swarf_cli_output_ok("simulate", flag, path); /* outputs.c */
 }
 
 static int read_design(swarf_verify *v, double voxel) {

@@ -1,0 +1,41 @@
+/* stock_output.h -- how the stock module's files reach the disk (plain C).
+ *
+ * Every file the stock module writes (.vdb, meshes, pictures) goes through
+ * one writer (atomic_file.cc) with these rules:
+ *  - an existing character device or FIFO named by the user is written into
+ *    (`--out /dev/null` discards); a symbolic link, folder, block device or
+ *    socket is refused, never replaced;
+ *  - a regular file is replaced whole: the content goes to an unnamed file
+ *    in the same folder (O_TMPFILE), synced, then linked under a temporary
+ *    name PATH.tmp.PID and renamed onto PATH; where the filesystem has no
+ *    O_TMPFILE, PATH.tmp.PID from the start, removed on SIGINT, SIGTERM and
+ *    SIGHUP. Stale PATH.tmp.PID of dead swarf processes are swept;
+ *  - between swarf_stock_outputs_begin and _commit, files are held unnamed
+ *    and published together at the commit (all outputs or none): a failing
+ *    mesh leaves the old .vdb in place. kill -9 before the commit leaves
+ *    nothing behind (the unnamed files vanish with the process).
+ * The group is process-wide: one caller at a time (the command line).
+ */
+#ifndef SWARF_STOCK_OUTPUT_H
+#define SWARF_STOCK_OUTPUT_H
+
+#include "swarf_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Hold every file written from now on until the commit; installs the
+ * signal handlers that remove named temporaries. */
+SWARF_API void swarf_stock_outputs_begin(void);
+/* Publishes the held files in the order written; SWARF_ERR_IO if one cannot
+ * be (those after it are dropped, those before it stay published). */
+SWARF_API swarf_status swarf_stock_outputs_commit(swarf_error *err);
+/* Drops the held files (nothing is published). */
+SWARF_API void swarf_stock_outputs_abort(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,66 @@
+#!/bin/sh
+# outputs.sh SWARF P10000: the output rules of ../shared/reliability
+# (README "Outputs"), run in a scratch folder (as root in CI: a rename onto a
+# device, FIFO or symlink would succeed there). P10000 is the slow helix
+# program: a refusal before any work returns at once even with it.
+swarf=$1 slow=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+cd "$dir" || exit 1
+pass=0 fail=0
+ok() { if eval "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL $1"; cat err 2>/dev/null; fi; }
+S="--stock box:0,0,-10,40,40,0 --tool T1=ball,D3 --voxel 0.5 --quiet"
+printf 'G21 G0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X30 Y20\nM30\n' > p.ngc
+cp p.ngc p.orig
+# Refused before any work (the slow program would run for minutes), naming the flag.
+for bad in "." "sub/" ""; do
+  "$swarf" simulate "$slow" $S --out "$bad" 2> err
+  ok "--out \"$bad\" refused before the run" '[ $? -eq 2 ] && grep -q -- "--out: cannot write" err'
+done
+"$swarf" simulate p.ngc $S --out p.ngc 2> err
+ok "the program as --out refused, unchanged" '[ $? -eq 2 ] && grep -q "is the input PROGRAM" err && cmp -s p.ngc p.orig'
+"$swarf" simulate p.ngc $S --out a.vdb --report a.vdb 2> err
+ok "one file for two outputs refused" '[ $? -eq 2 ] && grep -q "is also the output of --out" err && [ ! -e a.vdb ]'
+# A symlink as --mesh: refused, the link and its target untouched.
+echo target > t.stl
+ln -s t.stl link.stl
+"$swarf" simulate p.ngc $S --out o.vdb --mesh link.stl 2> err
+ok "a symlink as --mesh refused" '[ $? -eq 2 ] && [ -L link.stl ] && [ "$(cat t.stl)" = target ] && [ ! -e o.vdb ]'
+# A FIFO as --mesh: written into (the reader gets a whole binary STL), still a FIFO.
+mkfifo f.stl
+(cat f.stl > from-fifo.stl) &
+reader=$!
+"$swarf" simulate p.ngc $S --out o.vdb --mesh f.stl 2> err
+rc=$?
+wait $reader
+ok "a FIFO as --mesh is written into" '[ $rc -eq 0 ] && [ -p f.stl ] && [ $(wc -c < from-fifo.stl) -gt 84 ]'
+# A character device: --out /dev/null discards, /dev/null stays a device.
+"$swarf" simulate p.ngc $S --out /dev/null 2> err
+ok "--out /dev/null discards" '[ $? -eq 0 ] && [ -c /dev/null ]'
+# All outputs or none: the mesh cannot be written (file size limit), the old .vdb stays.
+cp o.vdb old.vdb
+printf 'G21 G0 X0 Y0 Z1\nG1 Z-2 F100\nG1 X35 Y30\nM30\n' > q.ngc
+sh -c "trap '' XFSZ; ulimit -f 1000; exec \"$swarf\" simulate q.ngc $S --out o.vdb --mesh big.stl" 2> err
+ok "all or none: a failed mesh keeps the old .vdb" '[ $? -eq 1 ] && cmp -s o.vdb old.vdb && [ ! -e big.stl ]'
+ok "no temporary after the failure" '[ -z "$(ls | grep "\.tmp\.")" ]'
+# kill -9 and SIGTERM during runs that write (finer voxel: a longer write): no temporary left.
+K="--stock box:0,0,-10,40,40,0 --tool T1=ball,D3 --voxel 0.08 --quiet"
+for sig in KILL TERM INT; do
+  for delay in 0.3 0.8 1.5 2.5; do
+    "$swarf" simulate q.ngc $K --out k.vdb --mesh k.stl 2> /dev/null &
+    pid=$!
+    sleep $delay
+    kill -$sig $pid 2> /dev/null
+    wait $pid 2> /dev/null
+  done
+  ok "no temporary after kill -$sig" '[ -z "$(ls | grep "\.tmp\.")" ]'
+done
+# A stale temporary of a dead swarf is swept by the next write there.
+sh -c 'exit 0' &
+dead=$!
+wait $dead
+echo stale > "o.vdb.tmp.$dead"
+"$swarf" simulate p.ngc $S --out o.vdb 2> err
+ok "a dead process's temporary is swept" '[ $? -eq 0 ] && [ ! -e "o.vdb.tmp.$dead" ]'
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

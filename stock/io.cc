@@ -262,7 +262,11 @@ size_t write_mesh_file(const swarf_stock &s, const char *path, const swarf_stock
     rgb.resize(3 * m.points.size());
     dev.resize(m.points.size());
     for (size_t i = 0; i < m.points.size(); i++) {
-      dev[i] = float(sampler.wsSample(openvdb::Vec3d(m.points[i])));
+      double d = sampler.wsSample(openvdb::Vec3d(m.points[i]));
+      // Near or beyond the band of a design read from a mesh: its triangles.
+      if (opt.design->surface && std::fabs(d) > double(opt.design->background) - opt.design->voxel)
+        d = std::copysign(surface_distance(*opt.design, openvdb::Vec3d(m.points[i])), d);
+      dev[i] = float(d);
       float c[3];
       deviation_colour(dev[i], tol, range, c);
       for (int k = 0; k < 3; k++) rgb[3 * i + k] = (unsigned char)std::lround(255.0f * c[k]);

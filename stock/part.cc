@@ -42,48 +42,51 @@ bool in_region(const swarf_stock &s, const Coord &o) {
   return true;
 }
 
-void put(std::vector<char> &b, const void *p, size_t n) {
-  const char *c = static_cast<const char *>(p);
-  b.insert(b.end(), c, c + n);
-}
-
-void put_origin(std::vector<char> &b, char kind, const Coord &o) {
-  b.push_back(kind);
-  for (int k = 0; k < 3; k++) {
-    const int32_t v = o[k];
-    put(b, &v, sizeof v);
+/// Bytes written to a buffer, or only counted (p NULL): save() runs twice, so
+/// that the part is written once into a buffer of its exact size.
+struct Out {
+  char *p = nullptr;
+  size_t n = 0;
+  void put(const void *src, size_t k) {
+    if (p != nullptr) std::memcpy(p + n, src, k);
+    n += k;
   }
-}
+  void put_origin(char kind, const Coord &o) {
+    put(&kind, 1);
+    for (int k = 0; k < 3; k++) {
+      const int32_t v = o[k];
+      put(&v, sizeof v);
+    }
+  }
+};
 
-std::vector<char> save(const swarf_stock &s) {
-  std::vector<char> b;
-  put(b, kMagic, 4);
-  put(b, &s.voxel, sizeof s.voxel);
-  put(b, &s.background, sizeof s.background);
+void save(const swarf_stock &s, Out &b) {
+  b.put(kMagic, 4);
+  b.put(&s.voxel, sizeof s.voxel);
+  b.put(&s.background, sizeof s.background);
   std::vector<const Internal1 *> nodes;
   s.grid->constTree().getNodes(nodes);
   for (const Internal1 *n : nodes) {
     for (auto it = n->cbeginChildOn(); it; ++it) {
       const Leaf &leaf = *it;
       if (!in_region(s, leaf.origin())) continue;
-      put_origin(b, 0, leaf.origin());
+      b.put_origin(0, leaf.origin());
       for (int w = 0; w < 8; w++) {
         const uint64_t word = leaf.getValueMask().template getWord<uint64_t>(w);
-        put(b, &word, sizeof word);
+        b.put(&word, sizeof word);
       }
-      put(b, leaf.buffer().data(), Leaf::SIZE * sizeof(float));
+      b.put(leaf.buffer().data(), Leaf::SIZE * sizeof(float));
     }
     for (auto it = n->cbeginValueAll(); it; ++it) {
       const Coord o = it.getCoord();
       if (!in_region(s, o)) continue;
-      put_origin(b, 1, o);
+      b.put_origin(1, o);
       const float v = it.getValue();
       const char on = it.isValueOn() ? 1 : 0;
-      put(b, &v, sizeof v);
-      b.push_back(on);
+      b.put(&v, sizeof v);
+      b.put(&on, 1);
     }
   }
-  return b;
 }
 
 template <class T> T get(const char *&p) {
@@ -167,13 +170,27 @@ extern "C" swarf_status swarf_stock_set_region(swarf_stock *s, const int lo[3], 
   });
 }
 
-extern "C" void swarf_stock_set_tally(swarf_stock *s, int axis, int first,
-                                      unsigned long long *counts, size_t n) {
+extern "C" void swarf_stock_set_tally(swarf_stock *s, const int lo[3], const int n[3],
+                                      unsigned long long *counts) {
   if (s == nullptr) return;
-  s->tally = axis >= 0 && axis < 3 ? counts : nullptr;
-  s->ntally = s->tally ? n : 0;
-  s->tally_axis = axis;
-  s->tally_first = first & ~7;
+  s->tally = lo != nullptr && n != nullptr ? counts : nullptr;
+  for (int k = 0; s->tally && k < 3; k++) {
+    s->tally_lo[k] = lo[k] & ~7;
+    s->tally_n[k] = n[k] > 0 ? n[k] : 0;
+  }
+}
+
+extern "C" swarf_status swarf_stock_part_crop(swarf_stock *s, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
+    if (!s->has_region) return;
+    std::vector<Coord> out;
+    for (auto it = s->grid->constTree().cbeginLeaf(); it; ++it)
+      if (!in_region(*s, it->origin())) out.push_back(it->origin());
+    Tree &tree = s->grid->tree();
+    for (const Coord &o : out)
+      tree.addTile(1, o, s->background, false);
+  });
 }
 
 extern "C" swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, size_t *len,
@@ -183,12 +200,13 @@ extern "C" swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, 
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || buf == nullptr || len == nullptr)
       throw Error(SWARF_ERR_ARG, "stock, buf or len is NULL");
-    const std::vector<char> b = save(*s);
-    void *m = std::malloc(b.size());
-    if (m == nullptr) throw std::bad_alloc();
-    std::memcpy(m, b.data(), b.size());
-    *buf = m;
-    *len = b.size();
+    Out count;
+    save(*s, count);
+    Out b;
+    if ((b.p = static_cast<char *>(std::malloc(count.n))) == nullptr) throw std::bad_alloc();
+    save(*s, b);
+    *buf = b.p;
+    *len = b.n;
   });
 }
 

@@ -238,10 +238,15 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   if (kept > 0) b.action = leaf ? kVisitLeaf : kVisitTile;
 }
 
-/// Count a visited block in its slab (swarf_stock_set_tally).
-inline void tally_block(swarf_stock &s, const Coord &o) {
-  const long i = (long(o[s.tally_axis]) - s.tally_first) / 8;
-  if (i >= 0 && size_t(i) < s.ntally) s.tally[i]++;
+/// Count a visited block's cuts (swarf_stock_set_tally).
+inline void tally_block(swarf_stock &s, const Coord &o, uint32_t cuts) {
+  long at = 0;
+  for (int k = 0; k < 3; k++) {
+    const long i = (long(o[k]) - s.tally_lo[k]) / 8;
+    if (i < 0 || i >= s.tally_n[k]) return;
+    at = at * s.tally_n[k] + i;
+  }
+  s.tally[at] += cuts;
 }
 
 /// Pass 3: topology changes, serial. Collects the blocks to visit.
@@ -255,7 +260,7 @@ void change_topology(Pass &p) {
     if (b.action == kVisitTile) tree.touchLeaf(b.origin);
     if (b.action == kVisitLeaf || b.action == kVisitTile) {
       w.visit.push_back(uint32_t(i));
-      if (p.s.tally) tally_block(p.s, b.origin);
+      if (p.s.tally) tally_block(p.s, b.origin, b.count);
     }
   }
 }

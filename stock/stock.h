@@ -196,13 +196,20 @@ SWARF_API void swarf_stock_index_of(const swarf_stock *s, const double p[3], int
 SWARF_API swarf_status swarf_stock_set_region(swarf_stock *s, const int lo[3], const int hi[3],
                                               swarf_error *err);
 
-/* Count the blocks whose voxels removal visits (evaluates the volumes at),
- * per slab of 8 voxels along `axis`: counts[i] += 1 for a visited block whose
- * origin on that axis is first + 8 i (first rounded down to a multiple of
- * 8; blocks outside [0, n) are not counted). The array is the caller's and
- * must outlive the removals; counts NULL (or axis not 0..2): off. */
-SWARF_API void swarf_stock_set_tally(swarf_stock *s, int axis, int first,
-                                     unsigned long long *counts, size_t n);
+/* Count, per block, the volumes removal visits it for (evaluates them at its
+ * voxels: the work): counts[(i n[1] + j) n[2] + k] += that number for the
+ * block whose origin is lo + 8 (i, j, k) (lo rounded down to multiples of
+ * 8; blocks outside the n[0] x n[1] x n[2] box are not counted). The array
+ * is the caller's and must outlive the removals; NULL: off. */
+SWARF_API void swarf_stock_set_tally(swarf_stock *s, const int lo[3], const int n[3],
+                                     unsigned long long *counts);
+
+/* Free the leaves outside the region (they become outside tiles): a copy
+ * that keeps to its region then holds its part only. The values outside
+ * the region are meaningless afterwards, until parts are loaded there (a
+ * part holds every leaf of its region, so the stock gathering the parts
+ * may be cropped too). Without a region: nothing. */
+SWARF_API swarf_status swarf_stock_part_crop(swarf_stock *s, swarf_error *err);
 
 /* The part of the stock in its region (the whole stock without one): its
  * blocks below the tree's level-1 nodes, which are the only ones removal

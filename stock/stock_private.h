@@ -119,10 +119,10 @@ struct swarf_stock {
   /// origin lies in [region_lo, region_hi] (block origins, multiples of 8).
   bool has_region = false;
   openvdb::Coord region_lo, region_hi;
-  /// swarf_stock_set_tally: blocks visited per slab of 8 voxels (the caller's array).
+  /// swarf_stock_set_tally: cuts visiting each block of a box of blocks
+  /// (origin tally_lo, tally_n blocks a side; the caller's array).
   unsigned long long *tally = nullptr;
-  size_t ntally = 0;
-  int tally_axis = 0, tally_first = 0;
+  openvdb::Coord tally_lo, tally_n;
 };
 
 namespace swarf {

@@ -4,7 +4,8 @@
  * exact sdf (test_profile.c checks that sdf against the families' drawings),
  * with golden-section polish around every sampled local minimum.
  *   - lines (slot, plunge up and down, ramp), planar arcs and full circles,
- *     helices (and G18 arcs), xyza and 5-axis trt moves;
+ *     helices (and G18 arcs), xyza and 5-axis trt moves, and the paper's
+ *     Example 2 motion (a turn about (2,1,2)/3 while moving along (1,1,0));
  *   - outside the swept volume the sweep equals the truth to 1e-6 mm; inside
  *     it is never shallower than the deepest instance (the plunge's closed
  *     form is the exact depth of the union, deeper);
@@ -192,12 +193,14 @@ static void run_cutter(const char *cname, const swarf_cutter *c, int npts, errs 
             {"helix", tk_helix(o, c2, up, 2.0, -1.5), 8000},
             {"G18 arc", tk_helix(o, c18, ny, 1.0, 0.0), 4000},
             {"xyza", machine_move("xyza", a0, a1), 8000},
-            {"xyzac-trt", machine_move("xyzac-trt", t0, t1), 8000}};
+            {"xyzac-trt", machine_move("xyzac-trt", t0, t1), 8000},
+            {"the paper's Example 2", tk_example2(2.0), 8000}};
   for (size_t i = 0; i < sizeof mv / sizeof mv[0]; i++) {
     char name[96];
     snprintf(name, sizeof name, "%s, %s", cname, mv[i].what);
     compare(name, c, &mv[i].m, npts, mv[i].nsamp, tot);
-    if (i == 3 || i == 6 || i == 9) on_characteristic(name, c, &mv[i].m, npts, &tot->curve);
+    if (i == 3 || i == 6 || i == 9 || i == 10)
+      on_characteristic(name, c, &mv[i].m, npts, &tot->curve);
   }
 }
 

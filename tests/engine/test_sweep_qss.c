@@ -19,8 +19,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "stock.h"
 #include "engine_private.h" /* the sweep's typed data */
+#include "stock.h"
 #include "testkit.h"
 
 #define VOXEL 0.05    /* mm: the point tests */
@@ -124,19 +124,9 @@ static double at_b(double B, const double p[3]) {
   return at_pose(t, U, p, NULL);
 }
 
-/* The production motion: a RIGID TCP line turning one table axis (U = R^T, R = Rot(axis, -alpha)).
- */
+/* The production motion: a RIGID TCP line turning one table axis (testkit.h). */
 static swarf_motion example2(void) {
-  swarf_motion m;
-  double A = 2 * atan(BMAX);
-  memset(&m, 0, sizeof m);
-  m.kind = SWARF_MOTION_RIGID;
-  m.tcp = 1;
-  memcpy(m.e1, axis, sizeof m.e1);
-  m.th1[0] = -A;
-  m.p1[0] = m.p1[1] = A;
-  m.turn = A, m.length = A * sqrt(2.0), m.duration = 1.0;
-  return m;
+  return tk_example2(BMAX);
 }
 
 static void test_body_sdf(void) {

@@ -30,10 +30,12 @@ static inline double tk_uniform(tk_rng *r, double lo, double hi) {
 static inline void tk_unit(tk_rng *r, double n[3]) {
   double m;
   do {
-    for (int k = 0; k < 3; k++) n[k] = tk_uniform(r, -1.0, 1.0);
+    for (int k = 0; k < 3; k++)
+      n[k] = tk_uniform(r, -1.0, 1.0);
     m = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   } while (m < 0.1 || m > 1.0);
-  for (int k = 0; k < 3; k++) n[k] /= m;
+  for (int k = 0; k < 3; k++)
+    n[k] /= m;
 }
 
 static inline double tk_dot(const double a[3], const double b[3]) {
@@ -61,7 +63,8 @@ static inline double tk_seg_dist(const double p[3], const double a[3], const dou
   dd = tk_dot(d, d);
   t = dd > 0.0 ? tk_dot(w, d) / dd : 0.0;
   t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-  for (int k = 0; k < 3; k++) w[k] -= t * d[k];
+  for (int k = 0; k < 3; k++)
+    w[k] -= t * d[k];
   return sqrt(tk_dot(w, w));
 }
 
@@ -95,7 +98,25 @@ static inline swarf_motion tk_helix(const double start[3], const double center[3
   mv.angle = angle;
   mv.rise = rise;
   swarf_motion_from_move(&mv, &m, NULL);
-  for (int k = 0; k < 3; k++) mv.end[k] = m.p1[k];
+  for (int k = 0; k < 3; k++)
+    mv.end[k] = m.p1[k];
+  return m;
+}
+
+/* The paper's Example 2 (ENVELOPE.md, Fact 3): U(alpha) = rotation by
+ * +alpha about (2,1,2)/3, t(alpha) = alpha (1,1,0), alpha in [0, 2 atan bmax]
+ * (half-angle tangent up to bmax), as a RIGID TCP motion turning about that
+ * axis (U = R^T, R = Rot(axis, -alpha)). */
+static inline swarf_motion tk_example2(double bmax) {
+  swarf_motion m;
+  double A = 2 * atan(bmax);
+  memset(&m, 0, sizeof m);
+  m.kind = SWARF_MOTION_RIGID;
+  m.tcp = 1;
+  m.e1[0] = 2.0 / 3.0, m.e1[1] = 1.0 / 3.0, m.e1[2] = 2.0 / 3.0;
+  m.th1[0] = -A;
+  m.p1[0] = m.p1[1] = A;
+  m.turn = A, m.length = A * sqrt(2.0), m.duration = 1.0;
   return m;
 }
 
@@ -103,7 +124,8 @@ static inline double tk_instance(const swarf_cutter *c, const swarf_motion *m, c
                                  double alpha) {
   double t[3], q[3];
   swarf_motion_eval(m, alpha, t, NULL);
-  for (int k = 0; k < 3; k++) q[k] = p[k] - t[k];
+  for (int k = 0; k < 3; k++)
+    q[k] = p[k] - t[k];
   return swarf_cutter_sdf(c, q);
 }
 

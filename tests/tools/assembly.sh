@@ -34,6 +34,35 @@ run --fail-on collision
 rc=$?
 ok "--fail-on collision: exit 4, outputs written" '[ $rc -eq 4 ] && [ -s "$dir/out.vdb" ]'
 
+# the same clamp as a closed STL mesh (12 triangles, outward normals): the same warnings
+/usr/bin/python3 - "$dir/clamp.stl" <<'PY'
+import sys
+lo, hi = (50, 0, 0), (60, 40, 5)
+c = lambda i: tuple(hi[k] if (i >> k) & 1 else lo[k] for k in range(3))
+faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+with open(sys.argv[1], "w") as f:
+    f.write("solid clamp\n")
+    for a, b, cc, d in faces:
+        for t in ((a, b, cc), (a, cc, d)):
+            f.write(" facet normal 0 0 0\n  outer loop\n")
+            for i in t:
+                f.write("   vertex %g %g %g\n" % c(i))
+            f.write("  endloop\n endfacet\n")
+    f.write("endsolid clamp\n")
+PY
+"$swarf" simulate "$dir/p.ngc" $stock --tool T1=flat,D6,L10,S25 --holder T1=20x40 \
+  --fixture "stl:$dir/clamp.stl" --out "$dir/out.vdb" > "$dir/summary" 2> "$dir/stderr"
+rc=$?
+ok "an STL fixture: exit 0, fixture warnings at lines 6 and 7, 3.0 mm deep" \
+  '[ $rc -eq 0 ] && [ "$(grep -c "p.ngc:[67]:[0-9]*: warning: T1 cutter hits fixture 1 (3.0 mm deep)" "$dir/stderr")" = 2 ]'
+printf 'solid open\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid open\n' > "$dir/open.stl"
+rm -f "$dir/out.vdb"
+"$swarf" simulate "$dir/p.ngc" $stock --tool T1=flat,D6 --fixture "stl:$dir/open.stl" \
+  --out "$dir/out.vdb" > "$dir/summary" 2> "$dir/stderr"
+rc=$?
+ok "an open STL fixture is refused: exit 2, nothing written" \
+  '[ $rc -eq 2 ] && [ ! -e "$dir/out.vdb" ] && grep -q "fixture 1" "$dir/stderr"'
+
 printf 'G0 X10 Y10 Z5\nG1 Z-9.5 F300\nG1 X50\nG1 Y30 Z-9\nG0 Z30\nM2\n' > "$dir/clean.ngc"
 "$swarf" simulate "$dir/clean.ngc" $stock --tool T1=flat,D6,L10,S25 --holder T1=20x40 \
   --out "$dir/out.vdb" --fail-on collision > "$dir/summary" 2> "$dir/stderr"

@@ -15,6 +15,8 @@
       parser: every edge is shared by two triangles in opposite directions,
       the enclosed volume is EXPECTED_VOLUME; with dev: vertices at height Z
       carry the deviation VALUE (PLY) and a red colour
+  ply-dev FILE.ply Z VALUE TOL
+      the "deviation" of the vertices at height Z is VALUE (within TOL)
   png FILE legend|view-top|view-front
       decode the PNG (zlib, filter bytes) and check what the picture shows
 Exit status 0 when every check holds; failures are printed.
@@ -220,6 +222,15 @@ def mesh(path, expected, rel, dev=None):
         check(red == len(top), "those vertices are red (%d of %d)" % (red, len(top)))
 
 
+def ply_dev(path, z, value, tol):
+    """The deviation of a PLY's vertices at height z (only, not the mesh's topology)."""
+    pts, tris, verts = read_ply(path)
+    top = [v for v in verts if abs(v["z"] - z) < 1e-3]
+    check(len(top) > 0, "vertices at z=%g" % z)
+    worst = max(abs(v["deviation"] - value) for v in top) if top else 1e30
+    check(worst <= tol, "deviation at z=%g: %g within %g (worst %.4f)" % (z, value, tol, worst))
+
+
 def read_png(path):
     data = open(path, "rb").read()
     check(data[:8] == b"\x89PNG\r\n\x1a\n", "PNG signature")
@@ -283,6 +294,8 @@ def main(argv):
     elif cmd == "mesh":
         dev = (float(argv[6]), float(argv[7]), float(argv[8])) if len(argv) > 5 and argv[5] == "dev" else None
         mesh(argv[2], float(argv[3]), float(argv[4]), dev)
+    elif cmd == "ply-dev":
+        ply_dev(argv[2], float(argv[3]), float(argv[4]), float(argv[5]))
     elif cmd == "png":
         png(argv[2], argv[3])
     return 1 if failures else 0

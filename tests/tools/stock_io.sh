@@ -9,6 +9,8 @@
 #    bottom face, the volume is the box less the slot (analytic);
 #  - swarf info calls every output valid at voxel sizes that rounded badly
 #    in float (0.3 mm);
+#  - a design 1 mm off (beyond its 3-voxel band): the PLY's deviations and
+#    swarf compare measure it exactly; an unknown mesh extension is refused;
 #  - bad input: open, non-manifold and empty STLs, a .vdb without a level
 #    set, a bad transform: exit 2, a message, nothing written.
 set -u
@@ -65,6 +67,22 @@ sim "$dir/a.ngc" --stock "stl:$dir/box.stl" $tool --voxel 0.3 --out "$dir/v.vdb"
 ok "swarf info: an STL stock's 0.3 mm output is valid" '"$swarf" info "$dir/v.vdb" | grep -q "level_set valid"'
 sim "$dir/b.ngc" --stock "vdb:$dir/a.vdb" $tool --voxel 0.3 --out "$dir/v.vdb"
 ok "swarf info: a resampled stock's 0.3 mm output is valid" '"$swarf" info "$dir/v.vdb" | grep -q "level_set valid"'
+
+# a design 1 mm below the top (3 band widths): the PLY's deviation there is
+# 1.0 (measured on the design's triangles beyond its band); swarf compare
+# gives the same largest excess and deepest gouge (the slot is 1 mm deep in
+# it); a mesh of unknown extension is refused before the run
+$check box-stl "$dir/design.stl" 0,0,-10,40,20,-1 good
+sim "$dir/a.ngc" --stock $box $tool --design "$dir/design.stl" --out "$dir/d.vdb" --mesh "$dir/d.ply"
+ok "a run with a design and a PLY" '[ $? -eq 0 ] && [ -s "$dir/d.ply" ]'
+ok "the PLY's deviation at the top is 1.0 mm" '$check ply-dev "$dir/d.ply" 0 1.0 0.01'
+"$swarf" compare "$dir/d.vdb" "$dir/design.stl" > "$dir/cmp" 2>&1
+ok "swarf compare: largest excess 1.0, deepest gouge 1.0" \
+  'grep -q "^excess_mm=1.0000" "$dir/cmp" && grep -q "^gouge_depth_mm=1.0000" "$dir/cmp"'
+rm -f "$dir/out.vdb"
+sim "$dir/a.ngc" --stock $box $tool --out "$dir/out.vdb" --mesh "$dir/out.xyz"
+rc=$?
+ok "--mesh .xyz: exit 2, nothing written" '[ $rc -eq 2 ] && [ ! -e "$dir/out.vdb" ] && [ ! -e "$dir/out.xyz" ]'
 
 # bad input: exit 2, a message naming the file, nothing written
 for damage in open nonmanifold empty; do

@@ -80,8 +80,9 @@ static const char help[] =
     "  --tool-table-units mm|in  the table's unit (default mm)\n"
     "  --tool-library FILE  full assemblies in JSON (README: tool libraries);\n"
     "                   --tool and --holder override the table and the library\n"
-    "  --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX   a body (vice, clamp) no part\n"
-    "                   of the tool may enter, cutter included; repeatable\n"
+    "  --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX | stl:FILE   a body (vice,\n"
+    "                   clamp; a box or a closed STL mesh, mm, workpiece frame) no\n"
+    "                   part of the tool may enter, cutter included; repeatable\n"
     "  --fail-on collision  exit status 4 after the run (outputs written) when a\n"
     "                   shank, holder or fixture collision was found\n"
     "  --collision-depths N  measure the depth of the first N collisions of each\n"
@@ -363,9 +364,10 @@ static int check_size(const swarf_sim_config *cfg) {
     d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
   smallest = fmin(d[0], fmin(d[1], d[2]));
   if (smallest < 1e-3) {
-    snprintf(what, sizeof what,
-             "--stock: %g mm thick, thinner than the smallest voxel (0.001 mm): no grid can hold it",
-             smallest);
+    snprintf(
+        what, sizeof what,
+        "--stock: %g mm thick, thinner than the smallest voxel (0.001 mm): no grid can hold it",
+        smallest);
     return usage_error(what);
   }
   if (cfg->voxel > smallest) {
@@ -380,11 +382,12 @@ static int check_size(const swarf_sim_config *cfg) {
   bytes = voxels * BYTES_PER_VOXEL;
   budget = memory_budget();
   if (bytes <= budget) return 0;
-  snprintf(what, sizeof what,
-           "--voxel %g: the stock's surface alone would need ~%.3g GB (%.3g M voxels at %.0f bytes), "
-           "more than the %.3g GB this machine can give; use --voxel %.3g or more",
-           cfg->voxel, bytes / 1e9, voxels / 1e6, BYTES_PER_VOXEL, budget / 1e9,
-           cfg->voxel * sqrt(bytes / budget) * 1.05);
+  snprintf(
+      what, sizeof what,
+      "--voxel %g: the stock's surface alone would need ~%.3g GB (%.3g M voxels at %.0f bytes), "
+      "more than the %.3g GB this machine can give; use --voxel %.3g or more",
+      cfg->voxel, bytes / 1e9, voxels / 1e6, BYTES_PER_VOXEL, budget / 1e9,
+      cfg->voxel * sqrt(bytes / budget) * 1.05);
   return usage_error(what);
 }
 
@@ -575,7 +578,8 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
     return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
   if (rank == 0) rc = swarf_modbus_start(&o.modbus, o.program, &mb); /* rank 0's only */
   if ((rc = swarf_cli_mpi_agree(mpi, rc)))
-    return swarf_stock_free(initial), swarf_verify_free(&o.verify), swarf_modbus_finish(mb, rc, NULL), rc;
+    return swarf_stock_free(initial), swarf_verify_free(&o.verify),
+           swarf_modbus_finish(mb, rc, NULL), rc;
   if (rank != 0) o.quiet = 1;
   if (parts) o.cfg.comm = &mpi->comm;
   swarf_progress_init(&pb);

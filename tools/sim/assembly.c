@@ -105,8 +105,7 @@ swarf_status swarf_sim_split_assembly(const char *spec, char *cutter_spec, size_
   return SWARF_OK;
 }
 
-swarf_status swarf_sim_check_assembly(const swarf_sim_tool *t, const char *what,
-                                      swarf_error *err) {
+swarf_status swarf_sim_check_assembly(const swarf_sim_tool *t, const char *what, swarf_error *err) {
   if (!(t->stickout >= 0) || !isfinite(t->stickout) || !(t->shank >= 0) || !isfinite(t->shank))
     return swarf_error_set(err, SWARF_ERR_TOOL, "%s: T%d: stick-out and shank must be >= 0 mm",
                            what, t->number);
@@ -172,9 +171,16 @@ swarf_status swarf_sim_parse_holder(const char *spec, swarf_sim_tool *out, swarf
 /* ---- --fixture ------------------------------------------------------------ */
 
 swarf_status swarf_sim_parse_fixture(const char *spec, swarf_sim_fixture *out, swarf_error *err) {
-  static const char usage[] = "write --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm)";
+  static const char usage[] =
+      "write --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or --fixture stl:FILE";
   const char *s = spec;
   double v[6];
+  if (spec != NULL && strncmp(spec, "stl:", 4) == 0) {
+    if (spec[4] == '\0') return spec_error(err, "--fixture", "no file in \"%s\"", spec, usage);
+    memset(out, 0, sizeof *out);
+    out->stl = spec + 4;
+    return SWARF_OK;
+  }
   if (spec == NULL || strncmp(spec, "box:", 4) != 0)
     return spec_error(err, "--fixture", "unknown fixture \"%s\"", spec ? spec : "", usage);
   s += 4;
@@ -190,6 +196,7 @@ swarf_status swarf_sim_parse_fixture(const char *spec, swarf_sim_fixture *out, s
     out->lo[k] = v[k];
     out->hi[k] = v[k + 3];
   }
+  out->stl = NULL;
   return SWARF_OK;
 }
 

@@ -60,8 +60,8 @@ typedef struct {
  * motion (the closed forms); anything else (a cone, a motion in TCP mode) a
  * profile body at its height (engine.h: swarf_cutter_add_frustum) on m
  * itself. -1 if the body cannot be built. */
-static int part_sweep_init(part_sweep *ps, double z0, double z1, double d0, double d1,
-                           double lift, const swarf_motion *m, double voxel) {
+static int part_sweep_init(part_sweep *ps, double z0, double z1, double d0, double d1, double lift,
+                           const swarf_motion *m, double voxel) {
   swarf_error err;
   if (d0 == d1 && swarf_sim_shift_motion(m, z0 + lift, &ps->motion) == 0) {
     if (swarf_cutter_init(&ps->body, SWARF_CUTTER_FLAT, d0, 0, z1 - z0, &err) != SWARF_OK)
@@ -83,8 +83,10 @@ static int part_sweep_init(part_sweep *ps, double z0, double z1, double d0, doub
  * motion; -1 when the motion cannot be shifted and lift is not 0). */
 static int cutter_sweep_init(part_sweep *ps, const swarf_cutter *c, double lift,
                              const swarf_motion *m, double voxel) {
-  if (lift == 0) ps->motion = *m;
-  else if (swarf_sim_shift_motion(m, lift, &ps->motion) != 0) return -1;
+  if (lift == 0)
+    ps->motion = *m;
+  else if (swarf_sim_shift_motion(m, lift, &ps->motion) != 0)
+    return -1;
   ps->body = *c;
   swarf_sweep_init_voxel(&ps->sweep, &ps->body, &ps->motion, voxel);
   swarf_sweep_bounds(&ps->sweep, ps->lo, ps->hi);
@@ -108,7 +110,7 @@ static double sweep_sdf(const void *ctx, double x, double y, double z) {
 typedef struct {
   swarf_sim *s;
   const swarf_stock *grid;
-  double z0, z1, d0, d1;       /* the body (part_sweep_init) ... */
+  double z0, z1, d0, d1;      /* the body (part_sweep_init) ... */
   const swarf_cutter *cutter; /* ... or, when not NULL, the cutter itself */
   const swarf_motion *m;
   const swarf_stock_cut *clear; /* the volumes cut away but not removed yet */
@@ -129,11 +131,11 @@ static int penetrates_at(const part_check *pc, double lift, double where[3]) {
              0) {
     return -2;
   }
-  swarf_stock_cut cut = {{ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, sweep_sdf,
-                         &ps.sweep};
+  swarf_stock_cut cut = {
+      {ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, sweep_sdf, &ps.sweep};
   const double h = 0.5 * swarf_stock_voxel(pc->grid);
-  if (swarf_stock_penetrates(pc->grid, &cut, pc->clear, (size_t)pc->nclear, h, &hit, where,
-                             &err) != SWARF_OK) {
+  if (swarf_stock_penetrates(pc->grid, &cut, pc->clear, (size_t)pc->nclear, h, &hit, where, &err) !=
+      SWARF_OK) {
     swarf_sim_fail(pc->s, err.status, pc->m->line, pc->m->column, "%s", err.message);
     return -1;
   }
@@ -153,8 +155,10 @@ static double clearing_depth(const part_check *pc) {
     const double mid = 0.5 * (lo + hi);
     const int r = penetrates_at(pc, mid, where);
     if (r < 0) return NAN;
-    if (r) lo = mid;
-    else hi = mid;
+    if (r)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi) + h;
 }
@@ -267,7 +271,16 @@ static int fixture_part(swarf_sim *s, const swarf_motion *m, int f, const swarf_
                              : part_sweep_init(&ps, q->z0, q->z1, q->d0, q->d1, 0, m, s->cfg.voxel);
   if (built != 0 || !boxes_meet(ps.lo, ps.hi, fx->lo, fx->hi)) return 0;
   c->checked++;
-  part_check pc = {s, c->fixture[f], 0, 0, 0, 0, cutter, m, NULL, 0,
+  part_check pc = {s,
+                   c->fixture[f],
+                   0,
+                   0,
+                   0,
+                   0,
+                   cutter,
+                   m,
+                   NULL,
+                   0,
                    lift_bound(m, fx->lo, fx->hi, ps.lo, ps.hi)};
   if (q != NULL) pc.z0 = q->z0, pc.z1 = q->z1, pc.d0 = q->d0, pc.d1 = q->d1;
   int r = penetrates_at(&pc, 0, where);
@@ -292,29 +305,44 @@ static int fixtures(swarf_sim *s, const swarf_motion *m, const swarf_sim_part *p
 
 /* ---- The driver's calls --------------------------------------------------- */
 
+/* Fixture f's level set at the stock's voxel: its box, or its STL mesh
+ * (whose bounds become the fixture's lo, hi); the path is dropped after (the
+ * caller's string is borrowed only until swarf_sim_new returns). */
+static int fixture_init(swarf_sim *s, int f) {
+  swarf_sim_fixture *fx = &s->cfg.fixtures[f];
+  double voxel = swarf_stock_voxel(s->stock);
+  int hw = swarf_stock_half_width(s->stock);
+  swarf_error e;
+  swarf_status st = fx->stl != NULL
+                        ? swarf_stock_read_stl(fx->stl, NULL, voxel, hw, &s->col.fixture[f], &e)
+                        : swarf_stock_new_box(fx->lo, fx->hi, voxel, hw, &s->col.fixture[f], &e);
+  if (st != SWARF_OK) {
+    swarf_sim_fail(s, e.status, 0, 0, "fixture %d: %s", f + 1, e.message);
+    return 1;
+  }
+  if (fx->stl != NULL) swarf_stock_bounds(s->col.fixture[f], fx->lo, fx->hi);
+  fx->stl = NULL;
+  return 0;
+}
+
 int swarf_sim_collide_init(swarf_sim *s) {
   swarf_sim_collide *c = &s->col;
   memset(c, 0, sizeof *c);
   c->last_line[0] = c->last_line[1] = -1;
   for (int f = 0; f < SWARF_SIM_MAX_FIXTURES; f++)
-    for (int p = 0; p < 3; p++) c->fixture_line[f][p] = -1;
+    for (int p = 0; p < 3; p++)
+      c->fixture_line[f][p] = -1;
   c->clear = malloc(sizeof *c->clear * (size_t)(s->cap + 1));
   if (c->clear == NULL) return -1;
-  for (int f = 0; f < s->cfg.nfixtures; f++) {
-    const swarf_sim_fixture *fx = &s->cfg.fixtures[f];
-    swarf_error e;
-    if (swarf_stock_new_box(fx->lo, fx->hi, swarf_stock_voxel(s->stock),
-                            swarf_stock_half_width(s->stock), &c->fixture[f], &e) != SWARF_OK) {
-      swarf_sim_fail(s, e.status, 0, 0, "fixture %d: %s", f + 1, e.message);
-      return 1;
-    }
-  }
+  for (int f = 0; f < s->cfg.nfixtures; f++)
+    if (fixture_init(s, f) != 0) return 1;
   return 0;
 }
 
 void swarf_sim_collide_clear(swarf_sim *s) {
   free(s->col.clear);
-  for (int f = 0; f < SWARF_SIM_MAX_FIXTURES; f++) swarf_stock_free(s->col.fixture[f]);
+  for (int f = 0; f < SWARF_SIM_MAX_FIXTURES; f++)
+    swarf_stock_free(s->col.fixture[f]);
   memset(&s->col, 0, sizeof s->col);
 }
 

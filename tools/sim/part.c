@@ -3,12 +3,15 @@
  * estimates, queries and measured effects combined across processes, the
  * slabs gathered into rank 0's stock at finish.
  *
- * The stock's index space is cut along its longest axis into slabs of
- * whole 8-voxel blocks (the unit of removal, stock/remove.cc). A survey
- * handle (a second handle on the same config with a token stock) plays the
- * program without removing anything and adds, for each cut, the blocks its
- * padded bounds cover to the slabs they fall in: the work estimate. Every
- * process computes the same plan from the same program, with no message.
+ * The stock's index space is cut into columns of whole 8-voxel blocks (the
+ * unit of removal, stock/remove.cc) across its two longest axes, and the
+ * columns into one rectangle a process by recursive bisection, balancing
+ * the estimated work. A survey handle (a second handle on the same config
+ * with a token stock) plays the program without removing anything and
+ * adds, for each cut, the blocks its padded bounds cover to their columns:
+ * the work estimate (block and cut pairs, what removal's cost follows).
+ * Every process computes the same plan from the same program, with no
+ * message.
  *
  * Exactness: removal is per block, so the slabs' blocks are the one-process
  * run's; a query's first hit is the minimum of the processes' first hits in
@@ -36,20 +39,26 @@ void swarf_sim_part_clear(swarf_sim *s) {
 
 /* ---- The plan --------------------------------------------------------------- */
 
-/* Slabs along the index box's longest axis. */
-static int plan_slabs(swarf_sim *s) {
-  int best = 0;
-  swarf_stock_index_box(s->stock, s->index_lo, s->index_hi);
+/* Columns of blocks across the index box's two longest axes (ax[0], ax[1]):
+ * each rank gets a rectangle of them, through the whole third axis. */
+static int plan_columns(swarf_sim *s) {
+  int lo[3], hi[3];
+  swarf_stock_index_box(s->stock, lo, hi);
+  for (int k = 0; k < 3; k++) {
+    s->blo[k] = lo[k] & ~7;
+    s->nb[k] = hi[k] < lo[k] ? 1 : ((hi[k] & ~7) - s->blo[k]) / 8 + 1;
+    s->index_lo[k] = lo[k];
+    s->index_hi[k] = hi[k];
+  }
+  int shortest = 0;
   for (int k = 1; k < 3; k++)
-    if (s->index_hi[k] - s->index_lo[k] > s->index_hi[best] - s->index_lo[best]) best = k;
-  s->part_axis = best;
-  s->part_first = s->index_lo[best] & ~7;
-  s->ncol = s->index_hi[best] < s->index_lo[best]
-                ? 1
-                : ((s->index_hi[best] & ~7) - s->part_first) / 8 + 1;
-  s->work = calloc((size_t)s->ncol, sizeof *s->work);
-  s->tally = calloc((size_t)s->ncol, sizeof *s->tally);
-  if (s->work == NULL || s->tally == NULL) {
+    if (s->nb[k] < s->nb[shortest]) shortest = k;
+  s->ax[0] = shortest == 0 ? 1 : 0;
+  s->ax[1] = shortest == 2 ? 1 : 2;
+  const size_t ncol = (size_t)s->nb[s->ax[0]] * (size_t)s->nb[s->ax[1]];
+  s->work = calloc(ncol, sizeof *s->work);
+  if (s->cfg.tally) s->tally = calloc(ncol * (size_t)s->nb[shortest], sizeof *s->tally);
+  if (s->work == NULL || (s->cfg.tally && s->tally == NULL)) {
     swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory");
     return 1;
   }
@@ -59,24 +68,24 @@ static int plan_slabs(swarf_sim *s) {
 void swarf_sim_part_survey(swarf_sim *s, const swarf_stock_cut *c) {
   swarf_sim *p = s->surveyor;
   const double pad = swarf_stock_half_width(p->stock) + 2.0;
-  int a[3], b[3];
-  double lo[3], hi[3], n = 1;
+  int a[3], b[3], n = 1, third = 3 - p->ax[0] - p->ax[1];
+  double lo[3], hi[3];
   for (int k = 0; k < 3; k++) {
     lo[k] = c->lo[k] - pad * s->cfg.voxel;
     hi[k] = c->hi[k] + pad * s->cfg.voxel;
   }
   swarf_stock_index_of(p->stock, lo, a);
   swarf_stock_index_of(p->stock, hi, b);
-  for (int k = 0; k < 3; k++) {
-    a[k] = (a[k] > p->index_lo[k] ? a[k] : p->index_lo[k]) & ~7;
-    b[k] = (b[k] < p->index_hi[k] ? b[k] : p->index_hi[k]) & ~7;
+  for (int k = 0; k < 3; k++) { /* block numbers within the index box */
+    a[k] = ((a[k] > p->index_lo[k] ? a[k] : p->index_lo[k]) & ~7) - p->blo[k];
+    b[k] = ((b[k] < p->index_hi[k] ? b[k] : p->index_hi[k]) & ~7) - p->blo[k];
     if (a[k] > b[k]) return;
-    if (k != p->part_axis) n *= (b[k] - a[k]) / 8 + 1;
+    a[k] /= 8, b[k] /= 8;
   }
-  for (int x = a[p->part_axis]; x <= b[p->part_axis]; x += 8) {
-    const long i = ((long)x - p->part_first) / 8;
-    if (i >= 0 && i < p->ncol) p->work[i] += n;
-  }
+  n = b[third] - a[third] + 1;
+  for (int i = a[p->ax[0]]; i <= b[p->ax[0]]; i++)
+    for (int j = a[p->ax[1]]; j <= b[p->ax[1]]; j++)
+      p->work[(size_t)i * (size_t)p->nb[p->ax[1]] + (size_t)j] += n;
 }
 
 /* A survey of the program at `path`: a handle on the same config that
@@ -116,38 +125,84 @@ static int survey(swarf_sim *s, const char *path) {
   return st != SWARF_OK;
 }
 
-/* Rank r's slabs [b[r], b[r+1]): equal shares of the estimated work (plus
- * a floor a slab, so that slabs nobody cuts still spread). */
-static void shares(const double *work, int ncol, int nranks, int *b) {
-  double total = 0, floor_w, sum = 0;
-  for (int i = 0; i < ncol; i++)
-    total += work[i];
-  floor_w = 1e-3 * total / ncol + 1e-9;
-  total += floor_w * ncol;
-  b[0] = 0;
-  int r = 1;
-  for (int i = 0; i < ncol && r < nranks; i++) {
-    sum += work[i] + floor_w;
-    while (r < nranks && sum >= total * r / nranks)
-      b[r++] = i + 1;
+/* A rectangle of columns [lo, hi) on ax[0], ax[1]; empty when lo == hi. */
+typedef struct {
+  int lo[2], hi[2];
+} part_box;
+
+/* Work of the columns of slice `c` across axis d of box b (plus a floor a
+ * column, so that columns nobody cuts still spread). */
+static double slice_work(const swarf_sim *s, const part_box *b, int d, int c, double floor_w) {
+  double w = 0;
+  for (int o = b->lo[1 - d]; o < b->hi[1 - d]; o++) {
+    const int i = d == 0 ? c : o, j = d == 0 ? o : c;
+    w += s->work[(size_t)i * (size_t)s->nb[s->ax[1]] + (size_t)j] + floor_w;
   }
-  while (r <= nranks)
-    b[r++] = ncol;
+  return w;
 }
 
-static int set_region(swarf_sim *s, const int *b) {
-  const int r = s->cfg.comm->rank, ax = s->part_axis;
+/* Recursive bisection: ranks [r0, r1) share box b, split across its longer
+ * side where the work divides as the ranks do. */
+static void bisect(const swarf_sim *s, part_box b, int r0, int r1, double floor_w, part_box *out) {
+  const int n = r1 - r0, na = n / 2;
+  int d = b.hi[0] - b.lo[0] >= b.hi[1] - b.lo[1] ? 0 : 1;
+  if (n == 1) {
+    out[r0] = b;
+    return;
+  }
+  if (b.hi[d] - b.lo[d] < 2) { /* one column: the first rank takes it */
+    out[r0] = b;
+    for (int r = r0 + 1; r < r1; r++)
+      out[r] = (part_box){{0, 0}, {0, 0}};
+    return;
+  }
+  double total = 0, sum = 0, best = -1;
+  for (int c = b.lo[d]; c < b.hi[d]; c++)
+    total += slice_work(s, &b, d, c, floor_w);
+  const double target = total * na / n;
+  int cut = b.lo[d] + 1;
+  for (int c = b.lo[d]; c < b.hi[d] - 1; c++) {
+    sum += slice_work(s, &b, d, c, floor_w);
+    const double miss = sum > target ? sum - target : target - sum;
+    if (best < 0 || miss < best) best = miss, cut = c + 1;
+  }
+  part_box a = b, z = b;
+  a.hi[d] = cut;
+  z.lo[d] = cut;
+  bisect(s, a, r0, r0 + na, floor_w, out);
+  bisect(s, z, r0 + na, r1, floor_w, out);
+}
+
+/* Each rank's rectangle for `nranks` ranks; NULL when out of memory. */
+static part_box *plan(const swarf_sim *s, int nranks) {
+  part_box *out = malloc(sizeof *out * (size_t)nranks), all = {{0, 0}, {0, 0}};
+  const size_t ncol = (size_t)s->nb[s->ax[0]] * (size_t)s->nb[s->ax[1]];
+  double total = 0;
+  if (out == NULL) return NULL;
+  for (size_t i = 0; i < ncol; i++)
+    total += s->work[i];
+  all.hi[0] = s->nb[s->ax[0]];
+  all.hi[1] = s->nb[s->ax[1]];
+  bisect(s, all, 0, nranks, 1e-3 * total / (double)ncol + 1e-9, out);
+  return out;
+}
+
+static int set_region(swarf_sim *s, const part_box *b) {
   int lo[3], hi[3];
   swarf_error e;
   for (int k = 0; k < 3; k++)
     lo[k] = -(1 << 30), hi[k] = 1 << 30;
-  if (b[r] == b[r + 1]) /* no slab: a block beyond any stock */
-    lo[ax] = hi[ax] = INT_MAX & ~7;
-  else {
-    if (r > 0) lo[ax] = s->part_first + 8 * b[r];
-    if (r < s->cfg.comm->size - 1) hi[ax] = s->part_first + 8 * b[r + 1] - 1;
+  for (int d = 0; d < 2; d++) {
+    const int k = s->ax[d];
+    if (b->lo[d] == b->hi[d]) { /* nothing: a block beyond any stock */
+      lo[k] = hi[k] = INT_MAX & ~7;
+      continue;
+    }
+    if (b->lo[d] > 0) lo[k] = s->blo[k] + 8 * b->lo[d];
+    if (b->hi[d] < s->nb[k]) hi[k] = s->blo[k] + 8 * b->hi[d] - 1;
   }
-  if (swarf_stock_set_region(s->stock, lo, hi, &e) != SWARF_OK) {
+  if (swarf_stock_set_region(s->stock, lo, hi, &e) != SWARF_OK ||
+      swarf_stock_part_crop(s->stock, &e) != SWARF_OK) { /* memory: this part only */
     swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
     return 1;
   }
@@ -159,14 +214,12 @@ int swarf_sim_part_plan(swarf_sim *s, const char *path) {
   if (s->planned || s->surveyor != NULL) return 0;
   s->planned = 1;
   if (!swarf_sim_parts(s) && !s->cfg.tally) return 0;
-  if (plan_slabs(s) != 0 || (path != NULL && survey(s, path) != 0)) return 1;
-  if (s->cfg.tally)
-    swarf_stock_set_tally(s->stock, s->part_axis, s->part_first, s->tally, (size_t)s->ncol);
+  if (plan_columns(s) != 0 || (path != NULL && survey(s, path) != 0)) return 1;
+  if (s->cfg.tally) swarf_stock_set_tally(s->stock, s->blo, s->nb, s->tally);
   if (swarf_sim_parts(s)) {
-    int *b = malloc(sizeof *b * (size_t)(s->cfg.comm->size + 1));
+    part_box *b = plan(s, s->cfg.comm->size);
     if (b == NULL) return swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
-    shares(s->work, s->ncol, s->cfg.comm->size, b);
-    rc = set_region(s, b);
+    rc = set_region(s, &b[s->cfg.comm->rank]);
     free(b);
   }
   return rc;
@@ -176,14 +229,18 @@ swarf_status swarf_sim_balance(const swarf_sim *s, int nranks, double *max_over_
                                double *visited) {
   if (s == NULL || nranks < 1 || max_over_mean == NULL) return SWARF_ERR_ARG;
   if (s->tally == NULL || s->work == NULL) return SWARF_ERR_STATE;
-  int *b = malloc(sizeof *b * (size_t)(nranks + 1));
+  part_box *b = plan(s, nranks);
   double most = 0, total = 0;
   if (b == NULL) return SWARF_ERR_MEMORY;
-  shares(s->work, s->ncol, nranks, b);
   for (int r = 0; r < nranks; r++) {
     double w = 0;
-    for (int i = b[r]; i < b[r + 1]; i++)
-      w += 512.0 * (double)s->tally[i];
+    int lo[3] = {0, 0, 0}, hi[3] = {s->nb[0], s->nb[1], s->nb[2]};
+    for (int d = 0; d < 2; d++)
+      lo[s->ax[d]] = b[r].lo[d], hi[s->ax[d]] = b[r].hi[d];
+    for (int i = lo[0]; i < hi[0]; i++)
+      for (int j = lo[1]; j < hi[1]; j++)
+        for (int k = lo[2]; k < hi[2]; k++)
+          w += 512.0 * (double)s->tally[((size_t)i * s->nb[1] + j) * s->nb[2] + k];
     total += w;
     if (w > most) most = w;
   }

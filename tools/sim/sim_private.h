@@ -53,13 +53,13 @@ struct swarf_sim {
   /* the workpiece frame: machine = Rz(frame_rot) workpiece + frame_origin */
   double frame_origin[3], frame_cos, frame_sin;
   int units_checked; /* the first move was checked for a units word */
-  /* parts (part.c): slabs of 8 voxels along part_axis, the first at index
-   * part_first; ncol of them */
-  int planned;        /* the slabs are planned (several processes or a tally) */
-  int part_axis, part_first, ncol;
+  /* parts (part.c): the index box's blocks, nb[k] a side from blo; columns
+   * across ax[0], ax[1] */
+  int planned; /* the parts are planned (several processes or a tally) */
+  int blo[3], nb[3], ax[2];
   int index_lo[3], index_hi[3]; /* the stock's index box */
-  double *work;                  /* estimated work per slab (the survey's) */
-  unsigned long long *tally;     /* blocks visited per slab (cfg.tally) */
+  double *work;                 /* estimated work per column (the survey's) */
+  unsigned long long *tally;    /* cuts visiting each block (cfg.tally) */
   swarf_sim *surveyor;           /* non-NULL: this is a survey handle feeding it */
   int abort_pending;             /* a progress callback asked to stop (several processes) */
 };

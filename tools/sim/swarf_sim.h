@@ -78,9 +78,13 @@ typedef struct {
 } swarf_sim_tool;
 
 /* A body no part of the tool may enter, cutter included (a vice, a clamp):
- * an axis-aligned box in the workpiece frame, mm. */
+ * an axis-aligned box in the workpiece frame, mm, or a closed STL mesh in
+ * that frame (read at the stock's voxel by swarf_sim_new; lo and hi are then
+ * its bounds, set by the handle). */
 typedef struct {
   double lo[3], hi[3];
+  const char *stl; /* NULL: the box; else the mesh's path, borrowed until swarf_sim_new
+                    * returns */
 } swarf_sim_fixture;
 
 typedef enum {
@@ -239,8 +243,8 @@ typedef struct {
   double tick;
   const swarf_sim_comm *comm; /* several processes (borrowed; must outlive the handle);
                                * NULL: one */
-  int tally; /* 1: plan slabs and count the blocks removal visits in each, for
-              * swarf_sim_balance (one process) */
+  int tally;                  /* 1: plan slabs and count the blocks removal visits in each, for
+                               * swarf_sim_balance (one process) */
 } swarf_sim_config;
 
 /* How far above the stock the tool starts by default, mm. */
@@ -357,7 +361,8 @@ SWARF_API swarf_status swarf_sim_parse_stock(const char *spec, swarf_sim_stock_s
  * D2 (top) over H. Fills out->number and the holder fields only. */
 SWARF_API swarf_status swarf_sim_parse_holder(const char *spec, swarf_sim_tool *out,
                                               swarf_error *err);
-/* "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" (mm). */
+/* "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" (mm) or "stl:FILE" (out->stl then points
+ * into spec, which must live until swarf_sim_new returns). */
 SWARF_API swarf_status swarf_sim_parse_fixture(const char *spec, swarf_sim_fixture *out,
                                                swarf_error *err);
 

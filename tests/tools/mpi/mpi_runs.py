@@ -8,7 +8,7 @@ same active topology, same leaves), that the summaries agree line for line
 (but for wall times) and that the warnings (alarms) are the same lines:
   bear      camotics-bear.nc at 0.5 mm (a rapid move cutting material at its end);
   impeller  the LinuxCNC impeller's first 600 lines on its 5-axis machine;
-  alarms    bear's first 3000 lines and a few moves of our own on a tool
+  alarms    bear's first 1500 lines and a few moves of our own on a tool
             whose shank enters the material (collisions, depths measured by
             bisection), a rapid through material, and a design the moves
             gouge (per-move gouges, per-line volumes in the JSON report,
@@ -129,7 +129,7 @@ case("impeller", [imp, "--machine", "xyzac-trt", "--stock", "cylinder:z,42,0,30"
 
 prog = os.path.join(d, "alarms.ngc")
 with open(bear) as f, open(prog, "w") as g:
-    g.writelines(f.readlines()[:3000])
+    g.writelines(f.readlines()[:1500])
     g.write("G0 Z5\nG0 X10 Y70\nG1 Z-3 F300\nG1 X70\nG0 Z-6 X40 Y75\nG0 Z20\nM30\n")
 design = os.path.join(d, "design.stl")
 vk.write_stl(design, vk.box_triangles((2, 2, -20), (78, 78, -2.5)))

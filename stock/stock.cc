@@ -134,9 +134,27 @@ void check_box_args(const double lo[3], const double hi[3], double voxel, int ha
     throw Error(SWARF_ERR_MEMORY, "box too large for this voxel size (band over 4e9 voxels)");
 }
 
+/// Block origins (multiples of 8) in the index box [lo, hi], as
+/// swarf_stock_set_region rounds them: lo up, hi down.
+void region_blocks(const int lo[3], const int hi[3], int rl[3], int rh[3]) {
+  for (int k = 0; k < 3; k++) {
+    rl[k] = int((long(lo[k]) + 7) & ~7L);
+    rh[k] = hi[k] & ~7;
+  }
+}
+
 /// A stock filling the box [lo, hi] minus the cut `outside` (minus the shape's sdf).
+/// With a region (rlo, rhi not NULL: an index box, as swarf_stock_set_region),
+/// only the blocks whose origin lies in it are filled and carved, the region
+/// is set, and the index box is the whole stock's: removal is per block, so
+/// those blocks are the whole build's; and prune() (constant nodes only)
+/// keeps every value, where pruneLevelSet would give an inactive node holding
+/// the region's inside tiles beside the unbuilt outside the sign of its first
+/// value. (In the whole build the two agree: an inactive node there is of one
+/// sign, the band lying between inside and outside.)
 swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, int half_width,
-                        swarf_stock_sdf_fn outside, const void *ctx) {
+                        swarf_stock_sdf_fn outside, const void *ctx, const int *rlo = nullptr,
+                        const int *rhi = nullptr) {
   init_openvdb();
   const float bg = band_background(half_width, voxel);
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(bg);
@@ -149,22 +167,62 @@ swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, in
     a[k] = (int(std::floor(lo[k] / voxel)) - half_width - 2) & ~7;
     b[k] = (int(std::ceil(hi[k] / voxel)) + half_width + 2) | 7;
   }
-  const openvdb::CoordBBox region(openvdb::Coord(a[0], a[1], a[2]), openvdb::Coord(b[0], b[1], b[2]));
-  grid->tree().fill(region, -bg, false);
+  const openvdb::CoordBBox whole(openvdb::Coord(a[0], a[1], a[2]),
+                                 openvdb::Coord(b[0], b[1], b[2]));
+  int rl[3], rh[3];
+  openvdb::CoordBBox region = whole;
+  if (rlo != nullptr) {
+    region_blocks(rlo, rhi, rl, rh);
+    for (int k = 0; k < 3; k++) { // the region's blocks, clipped to the whole box
+      const int f0 = std::max(a[k], rl[k]), f1 = rh[k] > b[k] - 7 ? b[k] : rh[k] + 7;
+      region.min()[k] = f0, region.max()[k] = f1;
+    }
+  }
+  if (!region.empty()) grid->tree().fill(region, -bg, false);
   std::unique_ptr<swarf_stock> s(wrap_grid(grid));
+  if (rlo != nullptr) {
+    s->content = whole; // the whole build's (wrap_grid found the filled box: that)
+    s->has_region = true;
+    s->region_lo = openvdb::Coord(rl[0], rl[1], rl[2]);
+    s->region_hi = openvdb::Coord(rh[0], rh[1], rh[2]);
+  }
   swarf_stock_cut cut;
   for (int k = 0; k < 3; k++) cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;
   cut.sdf = outside;
   cut.ctx = ctx;
   remove_cuts(*s, &cut, 1);
-  openvdb::tools::pruneLevelSet(grid->tree());
+  if (rlo != nullptr)
+    openvdb::tools::prune(grid->tree());
+  else
+    openvdb::tools::pruneLevelSet(grid->tree());
   return s.release();
 }
 
-swarf_stock *make_box(const double lo[3], const double hi[3], double voxel, int half_width) {
+swarf_stock *make_box(const double lo[3], const double hi[3], double voxel, int half_width,
+                      const int *rlo = nullptr, const int *rhi = nullptr) {
   Box box;
-  for (int k = 0; k < 3; k++) box.lo[k] = lo[k], box.hi[k] = hi[k];
-  return make_shape(lo, hi, voxel, half_width, box_outside, &box);
+  for (int k = 0; k < 3; k++)
+    box.lo[k] = lo[k], box.hi[k] = hi[k];
+  return make_shape(lo, hi, voxel, half_width, box_outside, &box, rlo, rhi);
+}
+
+/// The cylinder stock of swarf_stock_new_cylinder (a region: as make_shape).
+swarf_stock *make_cylinder(int axis, double radius, double start, double end, double voxel,
+                           int half_width, const int *rlo = nullptr, const int *rhi = nullptr) {
+  if (axis < 0 || axis > 2) throw Error(SWARF_ERR_ARG, "axis must be 0, 1 or 2 (x, y, z)");
+  if (!std::isfinite(radius) || !(radius > 0.0))
+    throw Error(SWARF_ERR_ARG, "radius must be finite and > 0");
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; k++)
+    lo[k] = -radius, hi[k] = radius;
+  lo[axis] = start, hi[axis] = end;
+  check_box_args(lo, hi, voxel, half_width);
+  const Cylinder cyl{axis, radius, start, end};
+  return make_shape(lo, hi, voxel, half_width, cylinder_outside, &cyl, rlo, rhi);
+}
+
+void check_region(const int *rlo, const int *rhi) {
+  if (rlo == nullptr || rhi == nullptr) throw Error(SWARF_ERR_ARG, "region lo or hi is NULL");
 }
 
 /// Volume (mm^3) enclosed by the zero level: voxel^3 times the sum of the
@@ -262,16 +320,32 @@ extern "C" swarf_status swarf_stock_new_cylinder(int axis, double radius, double
   if (out == nullptr) return swarf::set_error(err, SWARF_ERR_ARG, nullptr, "out is NULL");
   *out = nullptr;
   return swarf::guard(err, nullptr, [&] {
-    if (axis < 0 || axis > 2) throw Error(SWARF_ERR_ARG, "axis must be 0, 1 or 2 (x, y, z)");
-    if (!std::isfinite(radius) || !(radius > 0.0))
-      throw Error(SWARF_ERR_ARG, "radius must be finite and > 0");
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; k++)
-      lo[k] = -radius, hi[k] = radius;
-    lo[axis] = start, hi[axis] = end;
+    *out = swarf::make_cylinder(axis, radius, start, end, voxel, half_width);
+  });
+}
+
+extern "C" swarf_status swarf_stock_new_box_part(const double lo[3], const double hi[3],
+                                                 double voxel, int half_width, const int rlo[3],
+                                                 const int rhi[3], swarf_stock **out,
+                                                 swarf_error *err) {
+  if (out == nullptr) return swarf::set_error(err, SWARF_ERR_ARG, nullptr, "out is NULL");
+  *out = nullptr;
+  return swarf::guard(err, nullptr, [&] {
     swarf::check_box_args(lo, hi, voxel, half_width);
-    const swarf::Cylinder cyl{axis, radius, start, end};
-    *out = swarf::make_shape(lo, hi, voxel, half_width, swarf::cylinder_outside, &cyl);
+    swarf::check_region(rlo, rhi);
+    *out = swarf::make_box(lo, hi, voxel, half_width, rlo, rhi);
+  });
+}
+
+extern "C" swarf_status swarf_stock_new_cylinder_part(int axis, double radius, double start,
+                                                      double end, double voxel, int half_width,
+                                                      const int rlo[3], const int rhi[3],
+                                                      swarf_stock **out, swarf_error *err) {
+  if (out == nullptr) return swarf::set_error(err, SWARF_ERR_ARG, nullptr, "out is NULL");
+  *out = nullptr;
+  return swarf::guard(err, nullptr, [&] {
+    swarf::check_region(rlo, rhi);
+    *out = swarf::make_cylinder(axis, radius, start, end, voxel, half_width, rlo, rhi);
   });
 }
 

@@ -49,6 +49,26 @@ SWARF_API swarf_status swarf_stock_new_cylinder(int axis, double radius, double 
                                                 double voxel, int half_width, swarf_stock **out,
                                                 swarf_error *err);
 
+/* The box or cylinder stock above built only in its part of the index space
+ * (stock.h's "Parts of the stock"), for a process that keeps to that part:
+ * the blocks whose origin lies in the index box [rlo, rhi] (rounded as
+ * swarf_stock_set_region does, which is set on the new stock) hold the
+ * values, active states and leaves of the whole build; the others hold the
+ * outside background, as after swarf_stock_part_crop; the index box
+ * (swarf_stock_index_box) and the index mapping are the whole stock's. A
+ * region with no block origin (rlo > rhi on an axis) builds nothing: a
+ * shell with the whole stock's index box, voxel and band. Memory: about the
+ * part's share of the whole build's. Errors as the whole builds'; rlo or rhi
+ * NULL is SWARF_ERR_ARG. */
+SWARF_API swarf_status swarf_stock_new_box_part(const double lo[3], const double hi[3],
+                                                double voxel, int half_width, const int rlo[3],
+                                                const int rhi[3], swarf_stock **out,
+                                                swarf_error *err);
+SWARF_API swarf_status swarf_stock_new_cylinder_part(int axis, double radius, double start,
+                                                     double end, double voxel, int half_width,
+                                                     const int rlo[3], const int rhi[3],
+                                                     swarf_stock **out, swarf_error *err);
+
 /* Read the grid named "stock" (or the first float level set) of a .vdb file
  * into *out: SWARF_ERR_OPEN when it cannot be opened, SWARF_ERR_FORMAT when
  * it is not a usable level set (err->file is the path). OpenVDB's reader is

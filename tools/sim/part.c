@@ -13,6 +13,12 @@
  * Every process computes the same plan from the same program, with no
  * message.
  *
+ * A process other than rank 0 whose stock is a box or cylinder spec builds
+ * it at the plan, in its part only (sim.c, swarf_sim_part_stock): until then
+ * a shell with the whole stock's index box, which is all the plan reads.
+ * Stocks read from files (and rank 0's, which gathers the whole) are built
+ * whole, then cropped to the part.
+ *
  * Exactness: removal is per block, so the slabs' blocks are the one-process
  * run's; a query's first hit is the minimum of the processes' first hits in
  * the stock's scan order (blocks x, y, z, then voxels x, y, z: remove.cc's
@@ -201,6 +207,7 @@ static int set_region(swarf_sim *s, const part_box *b) {
     if (b->lo[d] > 0) lo[k] = s->blo[k] + 8 * b->lo[d];
     if (b->hi[d] < s->nb[k]) hi[k] = s->blo[k] + 8 * b->hi[d] - 1;
   }
+  if (s->part_build) return swarf_sim_part_stock(s, lo, hi); /* built in its part only */
   if (swarf_stock_set_region(s->stock, lo, hi, &e) != SWARF_OK ||
       swarf_stock_part_crop(s->stock, &e) != SWARF_OK) { /* memory: this part only */
     swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
@@ -215,13 +222,13 @@ int swarf_sim_part_plan(swarf_sim *s, const char *path) {
   s->planned = 1;
   if (!swarf_sim_parts(s) && !s->cfg.tally) return 0;
   if (plan_columns(s) != 0 || (path != NULL && survey(s, path) != 0)) return 1;
-  if (s->cfg.tally) swarf_stock_set_tally(s->stock, s->blo, s->nb, s->tally);
   if (swarf_sim_parts(s)) {
     part_box *b = plan(s, s->cfg.comm->size);
     if (b == NULL) return swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
-    rc = set_region(s, &b[s->cfg.comm->rank]);
+    rc = set_region(s, &b[s->cfg.comm->rank]); /* may build the stock: the tally after */
     free(b);
   }
+  if (rc == 0 && s->cfg.tally) swarf_stock_set_tally(s->stock, s->blo, s->nb, s->tally);
   return rc;
 }
 

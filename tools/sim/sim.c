@@ -187,16 +187,24 @@ static void set_tool_table(swarf_sim *s) {
                                 s->cfg.tools[i].cutter.diameter);
 }
 
-static swarf_stock *build_stock(const swarf_sim_config *cfg, swarf_error *err) {
+/* The stock of cfg's spec: whole (rlo NULL), or only its part [rlo, rhi]
+ * (stock.h's swarf_stock_new_box_part). */
+static swarf_stock *build_stock(const swarf_sim_config *cfg, const int *rlo, const int *rhi,
+                                swarf_error *err) {
   const swarf_sim_stock_spec *k = &cfg->stock;
   swarf_error e = {0};
   swarf_stock *st = NULL;
   swarf_status rc;
   if (k->kind == SWARF_SIM_STOCK_CYLINDER)
-    rc = swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis], cfg->voxel,
-                                  cfg->half_width, &st, &e);
+    rc = rlo == NULL
+             ? swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis],
+                                        cfg->voxel, cfg->half_width, &st, &e)
+             : swarf_stock_new_cylinder_part(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis],
+                                             cfg->voxel, cfg->half_width, rlo, rhi, &st, &e);
   else
-    rc = swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, &st, &e);
+    rc = rlo == NULL ? swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, &st, &e)
+                     : swarf_stock_new_box_part(k->lo, k->hi, cfg->voxel, cfg->half_width, rlo, rhi,
+                                                &st, &e);
   if (rc != SWARF_OK) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", e.message);
   return st;
 }
@@ -257,6 +265,35 @@ static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
   return SWARF_OK;
 }
 
+/* The handle's settings on a stock: its threads and progress ticks. */
+static swarf_status stock_settings(swarf_sim *s, const swarf_sim_config *cfg, swarf_stock *stock,
+                                   swarf_error *err) {
+  if (swarf_stock_set_threads(stock, cfg->threads, err) != SWARF_OK) return SWARF_ERR_ARG;
+  if (cfg->cb.progress != NULL && swarf_stock_set_tick(stock, on_tick, s,
+                                                       cfg->tick > 0   ? cfg->tick
+                                                       : cfg->tick < 0 ? 0.0
+                                                                       : 0.25,
+                                                       err) != SWARF_OK)
+    return SWARF_ERR_ARG;
+  return SWARF_OK;
+}
+
+int swarf_sim_part_stock(swarf_sim *s, const int lo[3], const int hi[3]) {
+  swarf_error e;
+  swarf_stock *st;
+  swarf_error_init(&e);
+  if ((st = build_stock(&s->cfg, lo, hi, &e)) == NULL ||
+      stock_settings(s, &s->cfg, st, &e) != SWARF_OK) {
+    swarf_stock_free(st);
+    swarf_sim_fail(s, e.status != SWARF_OK ? e.status : SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
+    return 1;
+  }
+  swarf_stock_free(s->stock);
+  s->stock = st;
+  s->part_build = 0;
+  return 0;
+}
+
 static swarf_status sim_new(const swarf_sim_config *cfg, const char *name, swarf_stock *stock,
                             const swarf_sim_stock_spec *spec, swarf_sim **out, swarf_error *err) {
   swarf_sim *s;
@@ -312,8 +349,18 @@ swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_
   swarf_stock *stock;
   if (out != NULL) *out = NULL;
   if (cfg == NULL || out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no config or output");
-  if ((stock = build_stock(cfg, err)) == NULL) return SWARF_ERR_ARG;
-  return sim_new(cfg, name, stock, &cfg->stock, out, err);
+  /* Under MPI, the processes other than rank 0 (which gathers the whole
+   * stock) build only their part, once it is planned: a shell until then.
+   * Not with a design, which compares against a copy of the whole stock. */
+  const int part =
+      cfg->comm != NULL && cfg->comm->size > 1 && cfg->comm->rank != 0 && cfg->design == NULL;
+  static const int none_lo[3] = {8, 8, 8}, none_hi[3] = {0, 0, 0};
+  swarf_status st;
+  if ((stock = build_stock(cfg, part ? none_lo : NULL, part ? none_hi : NULL, err)) == NULL)
+    return SWARF_ERR_ARG;
+  st = sim_new(cfg, name, stock, &cfg->stock, out, err);
+  if (st == SWARF_OK) (*out)->part_build = part;
+  return st;
 }
 
 static swarf_status check_open(swarf_sim *s) {

@@ -55,7 +55,8 @@ struct swarf_sim {
   int units_checked; /* the first move was checked for a units word */
   /* parts (part.c): the index box's blocks, nb[k] a side from blo; columns
    * across ax[0], ax[1] */
-  int planned; /* the parts are planned (several processes or a tally) */
+  int planned;    /* the parts are planned (several processes or a tally) */
+  int part_build; /* the stock is a shell built from cfg.stock: its part is built at the plan */
   int blo[3], nb[3], ax[2];
   int index_lo[3], index_hi[3]; /* the stock's index box */
   double *work;                 /* estimated work per column (the survey's) */
@@ -67,6 +68,9 @@ struct swarf_sim {
 /* part.c. Return 0, or 1 after swarf_sim_fail. */
 int swarf_sim_parts(const swarf_sim *s); /* 1 with several processes */
 int swarf_sim_part_plan(swarf_sim *s, const char *path); /* path NULL: even slabs */
+/* The stock's part [lo, hi] (index box) built from cfg.stock in place of the
+ * shell (sim.c; part_build); 0 or 1 on failure (s's error set). */
+int swarf_sim_part_stock(swarf_sim *s, const int lo[3], const int hi[3]);
 void swarf_sim_part_clear(swarf_sim *s);
 /* A survey handle's cut: its estimated work added to the surveyor's slabs. */
 void swarf_sim_part_survey(swarf_sim *s, const swarf_stock_cut *c);

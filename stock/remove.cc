@@ -38,8 +38,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 
@@ -183,7 +183,8 @@ bool design_clear(const Pass &p, ConstAcc *dacc, const Coord &o) {
   if (dacc == nullptr) return false;
   const swarf_stock &d = *p.measure->design;
   const Vec3d off = (p.s.origin - d.origin) / p.voxel;
-  const Coord lo(o.x() + int(std::lround(off[0])), o.y() + int(std::lround(off[1])), o.z() + int(std::lround(off[2])));
+  const Coord lo(o.x() + int(std::lround(off[0])), o.y() + int(std::lround(off[1])),
+                 o.z() + int(std::lround(off[2])));
   const Coord hi = lo.offsetBy(7);
   const float floor_value = float(p.voxel);
   for (int x = lo.x() & ~7; x <= hi.x(); x += 8)
@@ -221,7 +222,8 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
       b.action = kClear;
       return;
     }
-    if (-d > p.reach && kept == 0 && (p.measure->design == nullptr || design_clear(p, dacc, b.origin))) {
+    if (-d > p.reach && kept == 0 &&
+        (p.measure->design == nullptr || design_clear(p, dacc, b.origin))) {
       // Measured: the first cut reaching the block clears it and removes all of it.
       w.pairs[b.begin] = w.pairs[i];
       w.removed[b.begin] = block_material(p, acc, b.origin, leaf);
@@ -362,6 +364,26 @@ void visit_flat(const Pass &p, const Block &b, const swarf_stock_cut &cut, doubl
       }
 }
 
+/// Store a raised value: inactive at the band's edges (+-bgf), active inside.
+inline void put_value(Leaf &leaf, openvdb::Index n, float v, float bgf) {
+  if (v >= bgf)
+    leaf.setValueOff(n, bgf);
+  else if (v <= -bgf)
+    leaf.setValueOff(n, -bgf);
+  else
+    leaf.setValueOn(n, v);
+}
+
+/// After a pass: a block left with no active voxel and one value becomes a tile.
+inline void collapse_if_uniform(const Leaf &leaf, Block &b) {
+  if (!leaf.isInactive()) return;
+  const float *data = leaf.buffer().data();
+  for (openvdb::Index n = 1; n < Leaf::SIZE; n++)
+    if (data[n] != data[0]) return;
+  b.action = kCollapse;
+  b.tile = data[0];
+}
+
 /// Pass 4 for one leaf: max over the cuts, clamp, band state. Each cut is
 /// applied to the block top down (8^3 block centre, 4^3 octants, 2^3 cubes,
 /// voxels; the sdf is 1-Lipschitz): a voxel's sdf is evaluated only where the
@@ -388,19 +410,9 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
     const float old = data[n];
     const double m = bv.m[n];
     if (!(old < bgf) || !(m > old)) continue;
-    const float v = float(m);
-    if (v >= bgf)
-      leaf.setValueOff(n, bgf);
-    else if (v <= -bgf)
-      leaf.setValueOff(n, -bgf);
-    else
-      leaf.setValueOn(n, v);
+    put_value(leaf, n, float(m), bgf);
   }
-  if (!leaf.isInactive()) return;
-  for (openvdb::Index n = 1; n < Leaf::SIZE; n++)
-    if (data[n] != data[0]) return;
-  b.action = kCollapse;
-  b.tile = data[0];
+  collapse_if_uniform(leaf, b);
 }
 
 /// A voxel's value as stored: float, clamped to the band.
@@ -439,7 +451,8 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design)
               dq = design->at(q), have_dq = true;
               // Beyond the band of a design read from a mesh: its exact depth.
               const swarf_stock &ds = *p.measure->design;
-              if (ds.surface && dq <= -double(ds.background) * (1.0 - 1e-6)) dq = -surface_distance(ds, q);
+              if (ds.surface && dq <= -double(ds.background) * (1.0 - 1e-6))
+                dq = -surface_distance(ds, q);
             }
             const double depth = -dq + vouched_radius(std::min(d, -double(v)), p.voxel);
             if (depth > tol && depth > w.gouge[i]) w.gouge[i] = depth, w.gouge_at[i] = q;
@@ -448,18 +461,9 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design)
           if (v >= bgf) break;
         }
         if (!(v > old)) continue;
-        if (v >= bgf)
-          leaf.setValueOff(n, bgf);
-        else if (v <= -bgf)
-          leaf.setValueOff(n, -bgf);
-        else
-          leaf.setValueOn(n, v);
+        put_value(leaf, n, v, bgf);
       }
-  if (!leaf.isInactive()) return;
-  for (openvdb::Index n = 1; n < Leaf::SIZE; n++)
-    if (data[n] != data[0]) return;
-  b.action = kCollapse;
-  b.tile = data[0];
+  collapse_if_uniform(leaf, b);
 }
 
 /// Measured: the pairs' findings added up per cut, in pair order (deterministic).
@@ -686,7 +690,8 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
           const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
           if (!(d > 0.0)) continue;
           double dq = probe.at(q);
-          if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6)) dq = -surface_distance(design, q);
+          if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6))
+            dq = -surface_distance(design, q);
           const double depth = -dq + vouched_radius(std::min(d, -v), p.voxel);
           if (depth > tolerance && depth > best) best = depth, where = q;
         }

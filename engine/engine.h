@@ -357,6 +357,16 @@ SWARF_API void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[
  * not NULL it receives the time of the nearest cutter instance. */
 SWARF_API double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
+/* swarf_sweep_sdf at p where only values in (lo, hi) matter (lo < hi; the
+ * stock: hi the value that would not change the voxel, lo the depth that
+ * clears it): the sdf, to the certified error, if it lies in [lo, hi);
+ * if it is below lo, a value <= lo that is still >= the sdf (the first
+ * instant found that deep); if it is at least hi, a value >= hi. RIGID
+ * sweeps of the cutter prune their search by both (sweep_rigid.c); other
+ * sweeps return swarf_sweep_sdf. */
+SWARF_API double swarf_sweep_sdf_range(const swarf_sweep *s, const double p[3], double lo,
+                                       double hi);
+
 /* The characteristic curve of the sweep at time alpha in [0, 1]: the cutter
  * at the pose of the motion, moving with its velocity d/dalpha (for the xyz
  * machine U = I, omega = 0 and v = dt/dalpha). The union over alpha of these

@@ -406,5 +406,6 @@ static inline double swarf_cutter_rz(const swarf_cutter *c, double r, double z) 
 }
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha);
+double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], double lo, double hi);
 
 #endif

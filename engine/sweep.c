@@ -71,6 +71,12 @@ double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   }
 }
 
+double swarf_sweep_sdf_range(const swarf_sweep *s, const double p[3], double lo, double hi) {
+  if (swarf_sweep_cdata(s)->method == SWARF_SWEEP_RIGID)
+    return swarf_sweep_rigid_sdf_range(s, p, lo, hi);
+  return swarf_sweep_sdf(s, p, NULL);
+}
+
 swarf_status swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,
                                     swarf_char_curve *cc) {
   double t[3], U[9], tdot[3], v[3], omega[3];

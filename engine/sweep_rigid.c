@@ -51,6 +51,7 @@ typedef struct {
   swarf_body_sdf_fn body;
   const void *body_ctx;
   const double *p;
+  double floor; /* stop once a value at or below it is found (-inf: never) */
   int evals;
   rsample best;
   rspan heap[HEAP];
@@ -123,7 +124,9 @@ static void rpush(rctx *h, rsample lo, rsample hi) {
   swarf_tspan_push(h->heap, &h->nheap, sp);
 }
 
-static rspan rpop(rctx *h) { return swarf_tspan_pop(h->heap, &h->nheap); }
+static rspan rpop(rctx *h) {
+  return swarf_tspan_pop(h->heap, &h->nheap);
+}
 
 /* lo.dg < 0 < hi.dg: Illinois regula falsi to g' = 0 (the characteristic). */
 static rsample rrefine(rctx *h, rsample lo, rsample hi) {
@@ -148,20 +151,25 @@ static rsample rrefine(rctx *h, rsample lo, rsample hi) {
   return m;
 }
 
-/* Steps 2 and 3 over the sampled poses. */
-static void rcertify(rctx *h, const rsample *smp, int n) {
-  for (int i = 0; i < n; i++) {
-    if (smp[i].dg < 0.0 && smp[i + 1].dg > 0.0 && rbound(h, &smp[i], &smp[i + 1]) < h->best.g) {
-      rsample m = rrefine(h, smp[i], smp[i + 1]);
-      if (m.a > smp[i].a && m.a < smp[i + 1].a) {
-        rpush(h, smp[i], m);
-        rpush(h, m, smp[i + 1]);
-        continue;
-      }
+/* Step 2 on one interval between samples: refined to g' = 0 where g' goes
+ * from - to +, its parts queued for step 3. */
+static void rinterval(rctx *h, rsample lo, rsample hi) {
+  if (h->best.g <= h->floor) return;
+  if (lo.dg < 0.0 && hi.dg > 0.0 && rbound(h, &lo, &hi) < h->best.g) {
+    rsample m = rrefine(h, lo, hi);
+    if (m.a > lo.a && m.a < hi.a) {
+      rpush(h, lo, m);
+      rpush(h, m, hi);
+      return;
     }
-    rpush(h, smp[i], smp[i + 1]);
   }
-  while (h->nheap > 0 && h->evals < MAX_EVALS) {
+  rpush(h, lo, hi);
+}
+
+/* Step 3: the queued intervals split, lowest bound first, until none can
+ * hold a value below best - EPS (or the cap). */
+static void rheap(rctx *h) {
+  while (h->nheap > 0 && h->evals < MAX_EVALS && h->best.g > h->floor) {
     rspan sp = rpop(h);
     rsample m;
     if (sp.lb >= h->best.g - EPS) break;
@@ -173,6 +181,13 @@ static void rcertify(rctx *h, const rsample *smp, int n) {
     rpush(h, sp.lo, m);
     rpush(h, m, sp.hi);
   }
+}
+
+/* Steps 2 and 3 over the sampled poses. */
+static void rcertify(rctx *h, const rsample *smp, int n) {
+  for (int i = 0; i < n; i++)
+    rinterval(h, smp[i], smp[i + 1]);
+  rheap(h);
 }
 
 /* The sample at step i of n, from the pose table if there is one. */
@@ -215,7 +230,7 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
   if (*lb > swarf_sweep_cdata(h->s)->u.rigid.far) return -1;
   for (int k = 0; k < nc; k++) {
     int j = order[k], i1 = (j + 1) * S < n ? (j + 1) * S : n;
-    if (lbc[j] >= h->best.g - EPS) break;
+    if (lbc[j] >= h->best.g - EPS || h->best.g <= h->floor) break;
     for (int i = j * S + 1; i < i1; i++)
       smp[i] = rstep(h, table, i, n), have[i] = 1;
   }
@@ -224,14 +239,15 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
   return m - 1;
 }
 
-double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
-                                    const double p[3], double upper, double *alpha) {
+/* The search, pruned by upper (best value to beat) and stopped at floor. */
+static double rsearch(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                      const double p[3], double floor, double upper, double *alpha) {
   rsample smp[MAXN + 1];
   const swarf_pose *table;
   rctx h;
   int n;
   double lb;
-  h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.evals = 0, h.nheap = 0;
+  h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.floor = floor, h.evals = 0, h.nheap = 0;
   h.best.a = 0.0, h.best.g = upper, h.best.dg = 0.0, h.best.dist = 0.0;
   n = swarf_sweep_cdata(s)->u.rigid.n;
   swarf_motion_pose_table(s->motion, n, &table); /* NULL when out of memory: poses computed */
@@ -242,6 +258,15 @@ double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body
   rcertify(&h, smp, n);
   if (alpha != NULL) *alpha = h.best.a;
   return h.best.g;
+}
+
+double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
+                                    const double p[3], double upper, double *alpha) {
+  return rsearch(s, body, ctx, p, -INFINITY, upper, alpha);
+}
+
+double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], double lo, double hi) {
+  return rsearch(s, cutter_body, s->cutter, p, lo, hi + EPS, NULL);
 }
 
 double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,

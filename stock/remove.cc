@@ -69,11 +69,29 @@ struct Pass {
   double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
   bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
+  bool plain = false; ///< SWARF_REMOVE_PLAIN=1: no range functions, cuts in batch order (tests)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
 inline Vec3d block_point(const Pass &p, const Coord &o, double dx, double dy, double dz) {
   return p.s.origin + p.voxel * Vec3d(o.x() + dx, o.y() + dy, o.z() + dz);
+}
+
+/// Margin (mm) of the hierarchical tests below: above the certified error of
+/// any cut's sdf (1e-6 mm for rotary sweeps), so that a voxel they pass over
+/// or clear ends exactly as if its sdf had been evaluated.
+constexpr double kMargin = 1e-5;
+
+/// A cut's sdf at q where only values in (lo, hi) decide anything: with the
+/// cut's range function (rotary sweeps: their search is pruned by both), a
+/// value <= lo (still >= the sdf) below lo, >= hi at or above hi; else sdf.
+/// Every test below that reads it gives what the full sdf would give (to the
+/// cut's certified error, under kMargin).
+inline double cut_value(const Pass &p, const swarf_stock_cut &cut, const Vec3d &q, double lo,
+                        double hi) {
+  if (cut.range == nullptr || p.plain || !(lo < hi)) return cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+  const double qq[3] = {q.x(), q.y(), q.z()};
+  return cut.range(cut.ctx, qq, lo, hi);
 }
 
 void init_pass(Pass &p) {
@@ -203,6 +221,22 @@ bool design_clear(const Pass &p, ConstAcc *dacc, const Coord &o) {
   return true;
 }
 
+/// Orders the block's cuts by their sdf at its centre, deepest first
+/// (insertion sort: a few cuts a block). The voxels end the same in any
+/// order; taking first the cut likely to set a voxel's final value lets the
+/// others be passed over by the bounds (and by a range function's pruning).
+void sort_cuts(const Pass &p, const Block &b) {
+  RemoveScratch &w = p.s.scratch;
+  for (uint32_t i = b.begin + 1; i < b.begin + b.count; i++) {
+    const BlockCut pc = w.pairs[i];
+    const double dc = w.centre_sdf[i];
+    uint32_t j = i;
+    for (; j > b.begin && w.centre_sdf[j - 1] > dc; j--)
+      w.pairs[j] = w.pairs[j - 1], w.centre_sdf[j] = w.centre_sdf[j - 1];
+    w.pairs[j] = pc, w.centre_sdf[j] = dc;
+  }
+}
+
 /// Pass 2 for one block: keep the cuts that reach into it (compacted to the
 /// front of its pair range, with their centre values) and choose its action.
 /// dacc: the design's tree when measuring against a design on the stock's
@@ -216,7 +250,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   uint32_t kept = 0;
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    const double d = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
+    const double d = cut_value(p, cut, c, -p.reach - kMargin, p.reach + kMargin);
     if (d > p.reach) continue; // untouched (a NaN is kept: its voxels decide)
     if (-d > p.reach && p.measure == nullptr) {
       b.action = kClear;
@@ -238,6 +272,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   }
   b.count = kept;
   if (kept > 0) b.action = leaf ? kVisitLeaf : kVisitTile;
+  if (p.measure == nullptr && kept > 1 && !p.plain) sort_cuts(p, b);
 }
 
 /// Count a visited block's cuts (swarf_stock_set_tally).
@@ -267,11 +302,6 @@ void change_topology(Pass &p) {
   }
 }
 
-/// Margin (mm) of the hierarchical tests below: above the certified error of
-/// any cut's sdf (1e-6 mm for rotary sweeps), so that a voxel they pass over
-/// or clear ends exactly as if its sdf had been evaluated.
-constexpr double kMargin = 1e-5;
-
 /// Voxel values of a block while its cuts are applied one after another.
 struct BlockValues {
   double m[Leaf::SIZE]; ///< max(old, -sdf) over the cuts applied so far
@@ -284,6 +314,28 @@ inline bool may_raise(double m, double bg, double d, double r) {
   return m < bg && !(d - r + m >= kMargin); // a NaN sdf: the voxels decide
 }
 
+/// A cut's sdf at voxel centre q whose value is m: only values that change
+/// the voxel matter (below -m; deeper than -bg - kMargin it is cleared).
+inline double voxel_sdf(const Pass &p, const swarf_stock_cut &cut, const Vec3d &q, double m) {
+  return cut_value(p, cut, q, -double(p.bgf) - kMargin, -m);
+}
+
+/// max(r[n] - m[n]) + kMargin over the voxels n of the box [x0, x0 + e)^3
+/// that are not outside: a value of the cut's sdf at the box's centre at or
+/// above it raises none of them (r: distances to that centre).
+template <class R>
+double raise_limit(const Pass &p, const BlockValues &bv, const R &r, int x0, int y0, int z0,
+                   int e) {
+  double hi = -std::numeric_limits<double>::infinity();
+  for (int x = x0; x < x0 + e; x++)
+    for (int y = y0; y < y0 + e; y++)
+      for (int z = z0; z < z0 + e; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        if (bv.m[n] < p.bgf) hi = std::max(hi, r(n) - bv.m[n]);
+      }
+  return hi + kMargin;
+}
+
 /// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and cut i, whose sdf
 /// at the block centre is dc and at the enclosing 4^3 octant's centre is doct
 /// (NaN: not evaluated yet; evaluated on demand into *doct). The cut's sdf is
@@ -293,7 +345,11 @@ void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x
                 BlockValues &bv) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
   const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
-  const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
+  const double hi = cut.range && !p.plain
+                        ? raise_limit(
+                              p, bv, [rv](openvdb::Index) { return rv; }, x0, y0, z0, 2)
+                        : 0.0;
+  const double dcube = cut_value(p, cut, c, -bg - kMargin - rv, hi);
   const bool clear = dcube + rv <= -bg - kMargin;
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
@@ -305,8 +361,7 @@ void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x
           m = bg;
           continue;
         }
-        const Vec3d q = block_point(p, b.origin, x, y, z);
-        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        const double d = -voxel_sdf(p, cut, block_point(p, b.origin, x, y, z), m);
         if (d > m) m = d;
       }
 }
@@ -327,8 +382,12 @@ void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, dou
       }
   if (!any) return;
   const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
-  const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
   const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
+  const double hi = cut.range && !p.plain
+                        ? raise_limit(
+                              p, bv, [&p](openvdb::Index n) { return p.roct[n]; }, x0, y0, z0, 4)
+                        : 0.0;
+  const double doct = cut_value(p, cut, c, -bg - kMargin - rcube - rv, hi);
   for (int sx = x0; sx < x0 + 4; sx += 2)
     for (int sy = y0; sy < y0 + 4; sy += 2)
       for (int sz = z0; sz < z0 + 4; sz += 2) {
@@ -358,8 +417,7 @@ void visit_flat(const Pass &p, const Block &b, const swarf_stock_cut &cut, doubl
       for (int z = 0; z < 8; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         if (!may_raise(bv.m[n], p.bgf, dc, p.radius[n])) continue;
-        const Vec3d q = block_point(p, b.origin, x, y, z);
-        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        const double d = -voxel_sdf(p, cut, block_point(p, b.origin, x, y, z), bv.m[n]);
         if (d > bv.m[n]) bv.m[n] = d;
       }
 }
@@ -701,11 +759,15 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
 
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
                  const Measure *measure) {
+  static const bool plain = [] {
+    const char *e = std::getenv("SWARF_REMOVE_PLAIN");
+    return e != nullptr && e[0] == '1';
+  }();
   static const bool flat = [] {
     const char *e = std::getenv("SWARF_REMOVE_FLAT");
     return e != nullptr && e[0] == '1';
   }();
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat};
+  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat, plain};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);
@@ -766,7 +828,7 @@ extern "C" swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], c
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || lo == nullptr || hi == nullptr)
       throw swarf::Error(SWARF_ERR_ARG, "stock, lo or hi is NULL");
-    swarf_stock_cut cut;
+    swarf_stock_cut cut{};
     for (int k = 0; k < 3; k++)
       cut.lo[k] = lo[k], cut.hi[k] = hi[k];
     cut.sdf = sdf;

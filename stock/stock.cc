@@ -186,7 +186,7 @@ swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, in
     s->region_lo = openvdb::Coord(rl[0], rl[1], rl[2]);
     s->region_hi = openvdb::Coord(rh[0], rh[1], rh[2]);
   }
-  swarf_stock_cut cut;
+  swarf_stock_cut cut{};
   for (int k = 0; k < 3; k++) cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;
   cut.sdf = outside;
   cut.ctx = ctx;

@@ -94,12 +94,21 @@ SWARF_API swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], co
                                           swarf_stock_sdf_fn sdf, const void *ctx,
                                           swarf_error *err);
 
+/* The sdf at p where only values in (lo, hi) matter (lo < hi): the sdf (to
+ * the volume's certified error) if it lies in [lo, hi); below lo any value
+ * <= lo that is still >= the sdf; at or above hi any value >= hi. */
+typedef double (*swarf_stock_range_fn)(const void *ctx, const double p[3], double lo, double hi);
+
 /* Remove a batch of volumes at once (one TBB pass over the union of their
- * bounds); equivalent to calling swarf_stock_remove for each. */
+ * bounds); equivalent to calling swarf_stock_remove for each. `range` may be
+ * NULL (zero-initialise the struct); when set, the removal asks it instead of
+ * sdf at the voxels, with hi the value that leaves the voxel as it is and lo
+ * the depth that clears it (rotary sweeps prune their search by both). */
 typedef struct {
   double lo[3], hi[3];
   swarf_stock_sdf_fn sdf;
   const void *ctx;
+  swarf_stock_range_fn range;
 } swarf_stock_cut;
 SWARF_API swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
                                                 size_t ncuts, swarf_error *err);

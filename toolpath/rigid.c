@@ -13,6 +13,52 @@
 
 #include "toolpath_private.h"
 
+/* sin and cos of th0 + x: for |x| <= 1/16 from those of th0 (kept per thread
+ * for the last two th0 asked: a motion's axes) and the Taylor series of x
+ * (to x^9 / 9!: the rest below 3e-19), else sin and cos. Poses at arbitrary times
+ * (the rigid sweep's refinement) spend most of their time here otherwise. */
+static _Thread_local struct {
+  double th0[2], s0[2], c0[2];
+  int next;
+} sc_base = {{NAN, NAN}, {0, 0}, {0, 0}, 0};
+
+static void sin_cos_sum(double th0, double x, double *s, double *c) {
+  double x2 = x * x, x4, sx, cx, s0, c0;
+  int k;
+  if (!(fabs(x) <= 0.0625)) {
+    *s = sin(th0 + x), *c = cos(th0 + x);
+    return;
+  }
+  for (k = 0; k < 2 && sc_base.th0[k] != th0; k++)
+    ;
+  if (k == 2) {
+    k = sc_base.next, sc_base.next ^= 1;
+    sc_base.th0[k] = th0, sc_base.s0[k] = sin(th0), sc_base.c0[k] = cos(th0);
+  }
+  s0 = sc_base.s0[k], c0 = sc_base.c0[k];
+  x4 = x2 * x2;
+  sx = x * ((1.0 - x2 * (1.0 / 6)) + x4 * ((1.0 / 120 - x2 * (1.0 / 5040)) + x4 * (1.0 / 362880)));
+  cx = (1.0 - 0.5 * x2) + x4 * ((1.0 / 24 - x2 * (1.0 / 720)) + x4 * (1.0 / 40320));
+  *s = s0 * cx + c0 * sx;
+  *c = c0 * cx - s0 * sx;
+}
+
+/* Rotation matrix (row-major) by th0 + x about the unit axis n (right-hand rule). */
+static void rot_matrix_sum(const double n[3], double th0, double x, double M[9]) {
+  double c, s, k;
+  sin_cos_sum(th0, x, &s, &c);
+  k = 1.0 - c;
+  M[0] = c + n[0] * n[0] * k;
+  M[1] = n[0] * n[1] * k - n[2] * s;
+  M[2] = n[0] * n[2] * k + n[1] * s;
+  M[3] = n[1] * n[0] * k + n[2] * s;
+  M[4] = c + n[1] * n[1] * k;
+  M[5] = n[1] * n[2] * k - n[0] * s;
+  M[6] = n[2] * n[0] * k - n[1] * s;
+  M[7] = n[2] * n[1] * k + n[0] * s;
+  M[8] = c + n[2] * n[2] * k;
+}
+
 /* Rotation matrix (row-major) by th about the unit axis n (right-hand rule). */
 static void rot_matrix(const double n[3], double th, double M[9]) {
   double c = cos(th), s = sin(th), k = 1.0 - c;
@@ -35,20 +81,14 @@ static void mat_mul(const double A[9], const double B[9], double C[9]) {
   memcpy(C, r, sizeof r);
 }
 
-static void angles(const swarf_motion *m, double alpha, double th[2]) {
-  for (int k = 0; k < 2; k++)
-    th[k] = m->th0[k] + alpha * (m->th1[k] - m->th0[k]);
-}
-
 /* R(alpha) (workpiece -> machine), row-major; R1 = Rot(e1, th1) if not NULL. */
 static void table_rotation(const swarf_motion *m, double alpha, double R[9], double R1[9]) {
-  double th[2], A[9], B[9];
-  angles(m, alpha, th);
-  rot_matrix(m->e1, th[0], A);
+  double A[9], B[9];
+  rot_matrix_sum(m->e1, m->th0[0], alpha * (m->th1[0] - m->th0[0]), A);
   if (m->e2[0] == 0.0 && m->e2[1] == 0.0 && m->e2[2] == 0.0)
     memcpy(R, A, sizeof A);
   else {
-    rot_matrix(m->e2, th[1], B);
+    rot_matrix_sum(m->e2, m->th0[1], alpha * (m->th1[1] - m->th0[1]), B);
     mat_mul(A, B, R);
   }
   if (R1 != NULL) memcpy(R1, A, sizeof A);

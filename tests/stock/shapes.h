@@ -59,7 +59,7 @@ static inline void capsule_bounds(const capsule_shape *c, double lo[3], double h
 }
 
 static inline swarf_stock_cut capsule_cut(const capsule_shape *c) {
-  swarf_stock_cut cut;
+  swarf_stock_cut cut = {0};
   capsule_bounds(c, cut.lo, cut.hi);
   cut.sdf = capsule_sdf_cb;
   cut.ctx = c;

@@ -24,7 +24,7 @@ static double box_cb(const void *ctx, double x, double y, double z) {
 static int penetrates(const swarf_stock *s, const box_shape *b, double depth, double where[3]) {
   swarf_error err;
   int hit = -1;
-  swarf_stock_cut cut = {{b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b};
+  swarf_stock_cut cut = {{b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b, NULL};
   CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, depth, &hit, where, &err) == SWARF_OK, "query: %s",
         err.message);
   return hit;

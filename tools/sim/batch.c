@@ -18,6 +18,10 @@ static double sweep_sdf(const void *ctx, double x, double y, double z) {
   return swarf_sweep_sdf((const swarf_sweep *)ctx, p, NULL);
 }
 
+static double sweep_range(const void *ctx, const double p[3], double lo, double hi) {
+  return swarf_sweep_sdf_range((const swarf_sweep *)ctx, p, lo, hi);
+}
+
 /* The cutter's sdf at p for one pose. */
 static double pose_sdf(const swarf_cutter *c, const double t[3], const double U[9], double x,
                        double y, double z) {
@@ -189,6 +193,7 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     return swarf_sim_batch_flush(s) != 0 ? 1 : swarf_sim_batch_queue(s, mv);
   c->sdf = sweep_sdf;
   c->ctx = w;
+  c->range = m->kind == SWARF_MOTION_RIGID ? sweep_range : NULL; /* rotary: pruned searches */
   /* shank, holder, fixtures: against the material as the move finds it */
   if (swarf_sim_collide_move(s, m, w, reach ? c : NULL) != 0) return 1;
   if (!reach) return 0;
@@ -196,6 +201,7 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     set_stamps(s, &s->stamps[s->n], m);
     c->sdf = stamp_sdf;
     c->ctx = &s->stamps[s->n];
+    c->range = NULL;
   }
   s->rep.cutting_moves++;
   s->cut_id[s->n] = s->cur_id;

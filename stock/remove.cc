@@ -64,7 +64,6 @@ struct Pass {
   double voxel;                     ///< mm
   float bgf;                        ///< band half-width (the background), mm
   double reach;                     ///< half diagonal of a block plus the band, mm
-  double eps;                       ///< margin (mm) of the per-voxel Lipschitz test
   float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
   double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
@@ -79,7 +78,6 @@ inline Vec3d block_point(const Pass &p, const Coord &o, double dx, double dy, do
 void init_pass(Pass &p) {
   const double v = p.voxel;
   p.reach = 3.5 * std::sqrt(3.0) * v + p.bgf;
-  p.eps = 1e-6 * v;
   for (int x = 0; x < 8; x++)
     for (int y = 0; y < 8; y++)
       for (int z = 0; z < 8; z++)
@@ -284,13 +282,26 @@ inline bool may_raise(double m, double bg, double d, double r) {
   return m < bg && !(d - r + m >= kMargin); // a NaN sdf: the voxels decide
 }
 
-/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and cut i, whose sdf
-/// at the block centre is dc and at the enclosing 4^3 octant's centre is doct
-/// (NaN: not evaluated yet; evaluated on demand into *doct). The cut's sdf is
-/// evaluated at the 2^3 cube's centre first: if it clears every voxel (deeper
-/// than the band) or keeps them all below their values, no voxel is evaluated.
+/// What a visit does with a voxel a cut may raise: the plain removal keeps
+/// max(old, -sdf) in double (PlainSink); the measured one stores each step as
+/// the grid would (float, clamped) and credits the cut with what it removed
+/// (MeasuredSink). raise(n, m, d): the cut's -sdf at voxel n is d; clear(n,
+/// m): it is deeper than the band (d > bg, not evaluated).
+struct PlainSink {
+  double bg;
+  void raise(openvdb::Index, double &m, double d) const {
+    if (d > m) m = d;
+  }
+  void clear(openvdb::Index, double &m) const { m = bg; }
+};
+
+/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut. The
+/// cut's sdf is evaluated at the 2^3 cube's centre first: if it clears every
+/// voxel (deeper than the band) or keeps them all below their values, no
+/// voxel is evaluated.
+template <class Sink>
 void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
-                BlockValues &bv) {
+                BlockValues &bv, Sink &sink) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
   const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
   const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
@@ -302,12 +313,11 @@ void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x
         double &m = bv.m[n];
         if (!may_raise(m, bg, dcube, rv)) continue;
         if (clear) {
-          m = bg;
+          sink.clear(n, m);
           continue;
         }
         const Vec3d q = block_point(p, b.origin, x, y, z);
-        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-        if (d > m) m = d;
+        sink.raise(n, m, -cut.sdf(cut.ctx, q.x(), q.y(), q.z()));
       }
 }
 
@@ -315,8 +325,9 @@ void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x
 /// centre: dc): the sdf at the octant's centre decides for its 2^3 cubes
 /// (none of their voxels can be raised: passed over; all cleared: cleared);
 /// the others are visited cube by cube.
+template <class Sink>
 void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc, int x0,
-                  int y0, int z0, BlockValues &bv) {
+                  int y0, int z0, BlockValues &bv, Sink &sink) {
   const double bg = p.bgf, v = p.voxel, rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
   bool any = false;
   for (int x = x0; x < x0 + 4 && !any; x++)
@@ -340,27 +351,27 @@ void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, dou
               const openvdb::Index n = (x << 6) | (y << 3) | z;
               if (!may_raise(bv.m[n], bg, doct, p.roct[n])) continue;
               if (clear)
-                bv.m[n] = bg;
+                sink.clear(n, bv.m[n]);
               else
                 need = true;
             }
-        if (need) visit_cube(p, b, cut, sx, sy, sz, bv);
+        if (need) visit_cube(p, b, cut, sx, sy, sz, bv, sink);
       }
 }
 
 /// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the
 /// reference the tests compare with): every voxel the block centre's bound
 /// cannot decide is evaluated.
+template <class Sink>
 void visit_flat(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc,
-                BlockValues &bv) {
+                BlockValues &bv, Sink &sink) {
   for (int x = 0; x < 8; x++)
     for (int y = 0; y < 8; y++)
       for (int z = 0; z < 8; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         if (!may_raise(bv.m[n], p.bgf, dc, p.radius[n])) continue;
         const Vec3d q = block_point(p, b.origin, x, y, z);
-        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-        if (d > bv.m[n]) bv.m[n] = d;
+        sink.raise(n, bv.m[n], -cut.sdf(cut.ctx, q.x(), q.y(), q.z()));
       }
 }
 
@@ -384,12 +395,12 @@ inline void collapse_if_uniform(const Leaf &leaf, Block &b) {
   b.tile = data[0];
 }
 
-/// Pass 4 for one leaf: max over the cuts, clamp, band state. Each cut is
-/// applied to the block top down (8^3 block centre, 4^3 octants, 2^3 cubes,
-/// voxels; the sdf is 1-Lipschitz): a voxel's sdf is evaluated only where the
-/// bound from the nearest centre above it cannot decide. Marks the block
-/// kCollapse (with its tile value) if no voxel is left in the band.
-void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
+/// Pass 4 for one leaf: the block's cuts in order, each applied top down
+/// (8^3 block centre, 4^3 octants, 2^3 cubes, voxels; the sdf is
+/// 1-Lipschitz): a voxel's sdf is evaluated only where the bound from the
+/// nearest centre above it cannot decide. Then clamp and band state; marks
+/// the block kCollapse (with its tile value) if no voxel is left in the band.
+template <class Sink> void visit_block(const Pass &p, Leaf &leaf, Block &b, Sink &sink) {
   const RemoveScratch &w = p.s.scratch;
   const float bgf = p.bgf;
   const float *data = leaf.buffer().data();
@@ -398,13 +409,15 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
     bv.m[n] = data[n];
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+    sink.begin(i);
     if (p.flat)
-      visit_flat(p, b, cut, w.centre_sdf[i], bv);
+      visit_flat(p, b, cut, w.centre_sdf[i], bv, sink);
     else
       for (int x = 0; x < 8; x += 4)
         for (int y = 0; y < 8; y += 4)
           for (int z = 0; z < 8; z += 4)
-            visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
+            visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv, sink);
+    sink.end(i);
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];
@@ -415,55 +428,77 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
   collapse_if_uniform(leaf, b);
 }
 
+struct PlainVisit : PlainSink {
+  void begin(uint32_t) const {}
+  void end(uint32_t) const {}
+};
+
 /// A voxel's value as stored: float, clamped to the band.
 inline float stored(double m, float bgf) {
   const float v = float(m);
   return v >= bgf ? bgf : v <= -bgf ? -bgf : v;
 }
 
-/// Pass 4, measured: the block's cuts in their order on each voxel; each one
-/// that raises the value is credited with the inside fraction it removed and
-/// checked for a gouge (material before it, inside it, into the design).
+/// Measured visit: each raise steps the voxel to its stored value and
+/// credits the cut with the inside fraction it removed; where material
+/// inside the design is removed, the cut's gouge there (the depth below the
+/// design's surface, vouched by the removed material) is kept if deepest.
+/// Every voxel sees the same steps, in the same order, as a cut-by-cut
+/// evaluation of every voxel would give: the hierarchy passes over only
+/// voxels a cut cannot raise.
+struct MeasuredSink {
+  const Pass &p;
+  RemoveScratch &w;
+  const Block &b;
+  GridProbe *design;
+  double removed = 0.0; ///< the current cut's, voxels
+  uint32_t pair = 0;
+  double dq[Leaf::SIZE]; ///< design value at each voxel (NaN: not probed yet)
+
+  MeasuredSink(const Pass &pass, const Block &block, GridProbe *d)
+      : p(pass), w(pass.s.scratch), b(block), design(d) {
+    for (double &x : dq)
+      x = std::numeric_limits<double>::quiet_NaN();
+  }
+  void begin(uint32_t i) { pair = i, removed = 0.0; }
+  void end(uint32_t i) { w.removed[i] += removed; }
+  void step(openvdb::Index n, double &m, double d, float nv) {
+    const double v = m; // a stored (float) value
+    removed += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+    if (design && v < 0.0 && d > 0.0) gouge(n, v, d);
+    m = nv;
+  }
+  void raise(openvdb::Index n, double &m, double d) {
+    const float nv = stored(d, p.bgf);
+    if (nv > m) step(n, m, d, nv);
+  }
+  void clear(openvdb::Index n, double &m) {
+    step(n, m, std::numeric_limits<double>::infinity(), p.bgf);
+  }
+  void gouge(openvdb::Index n, double v, double d) {
+    const Coord l = Leaf::offsetToLocalCoord(n);
+    const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
+    if (std::isnan(dq[n])) {
+      double at = design->at(q);
+      // Beyond the band of a design read from a mesh: its exact depth.
+      const swarf_stock &ds = *p.measure->design;
+      if (ds.surface && at <= -double(ds.background) * (1.0 - 1e-6)) at = -surface_distance(ds, q);
+      dq[n] = at;
+    }
+    const double depth = -dq[n] + vouched_radius(std::min(d, -v), p.voxel);
+    if (depth > p.measure->tolerance && depth > w.gouge[pair])
+      w.gouge[pair] = depth, w.gouge_at[pair] = q;
+  }
+};
+
+void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
+  PlainVisit sink{{p.bgf}};
+  visit_block(p, leaf, b, sink);
+}
+
 void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
-  RemoveScratch &w = p.s.scratch;
-  const float bgf = p.bgf;
-  const double tol = p.measure->tolerance;
-  const float *data = leaf.buffer().data();
-  for (int x = 0; x < 8; x++)
-    for (int y = 0; y < 8; y++)
-      for (int z = 0; z < 8; z++) {
-        const openvdb::Index n = (x << 6) | (y << 3) | z;
-        const float old = data[n];
-        if (!(old < bgf)) continue; // outside stays outside
-        const Vec3d q = block_point(p, b.origin, x, y, z);
-        float v = old;
-        double dq = 0.0;
-        bool have_dq = false;
-        for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-          if (w.centre_sdf[i] - p.radius[n] + v >= p.eps) continue; // cannot raise v
-          const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-          const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-          const float nv = stored(d, bgf);
-          if (!(nv > v)) continue;
-          w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
-          if (design && v < 0.0f && d > 0.0) {
-            if (!have_dq) {
-              dq = design->at(q), have_dq = true;
-              // Beyond the band of a design read from a mesh: its exact depth.
-              const swarf_stock &ds = *p.measure->design;
-              if (ds.surface && dq <= -double(ds.background) * (1.0 - 1e-6))
-                dq = -surface_distance(ds, q);
-            }
-            const double depth = -dq + vouched_radius(std::min(d, -double(v)), p.voxel);
-            if (depth > tol && depth > w.gouge[i]) w.gouge[i] = depth, w.gouge_at[i] = q;
-          }
-          v = nv;
-          if (v >= bgf) break;
-        }
-        if (!(v > old)) continue;
-        put_value(leaf, n, v, bgf);
-      }
-  collapse_if_uniform(leaf, b);
+  MeasuredSink sink(p, b, design);
+  visit_block(p, leaf, b, sink);
 }
 
 /// Measured: the pairs' findings added up per cut, in pair order (deterministic).
@@ -635,7 +670,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
                     size_t nclear, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -649,7 +684,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -664,7 +699,7 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
 /// Deepest gouge of the cut into the design where the stock has material (see stock.h).
 double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
                  double tolerance, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   double best = 0.0;
@@ -705,7 +740,7 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
     const char *e = std::getenv("SWARF_REMOVE_FLAT");
     return e != nullptr && e[0] == '1';
   }();
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat};
+  Pass p{s, cuts, s.voxel, s.background, 0.0, {}, {}, measure, flat};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);

@@ -282,6 +282,16 @@ inline bool may_raise(double m, double bg, double d, double r) {
   return m < bg && !(d - r + m >= kMargin); // a NaN sdf: the voxels decide
 }
 
+/// The depth of a gouge at a voxel whose design value is dq, with r mm of
+/// removed material vouched beyond its centre. A design without triangles
+/// (a .vdb) knows only its band: where dq is at the band's edge the gouge
+/// reads as the band's depth (the reach; the summary says "or more").
+inline double gouge_depth(const swarf_stock &design, double dq, double r, double voxel) {
+  const double bg = design.background;
+  if (!design.surface && dq <= -bg * (1.0 - 1e-6)) return bg;
+  return -dq + vouched_radius(r, voxel);
+}
+
 /// What a visit does with a voxel a cut may raise: the plain removal keeps
 /// max(old, -sdf) in double (PlainSink); the measured one stores each step as
 /// the grid would (float, clamped) and credits the cut with what it removed
@@ -485,7 +495,7 @@ struct MeasuredSink {
       if (ds.surface && at <= -double(ds.background) * (1.0 - 1e-6)) at = -surface_distance(ds, q);
       dq[n] = at;
     }
-    const double depth = -dq[n] + vouched_radius(std::min(d, -v), p.voxel);
+    const double depth = gouge_depth(*p.measure->design, dq[n], std::min(d, -v), p.voxel);
     if (depth > p.measure->tolerance && depth > w.gouge[pair])
       w.gouge[pair] = depth, w.gouge_at[pair] = q;
   }
@@ -727,7 +737,7 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
           double dq = probe.at(q);
           if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6))
             dq = -surface_distance(design, q);
-          const double depth = -dq + vouched_radius(std::min(d, -v), p.voxel);
+          const double depth = gouge_depth(design, dq, std::min(d, -v), p.voxel);
           if (depth > tolerance && depth > best) best = depth, where = q;
         }
       }

@@ -13,14 +13,23 @@ and checked against the part's known geometry.
   excess). The floor is blue (gouge) or red (excess), the untouched top
   green; the legend's bar is red at its top, blue at its bottom, so the
   floor's colour matches the legend's half of its sign.
+- Meshes by extension (--mesh .stl, .obj, .ply), read back here: each
+  encloses the box less the pocket (analytic, the tool's rounded corners
+  included); with a design the PLY's floor vertices carry -1 mm and blue.
+- swarf compare against a .vdb design (the uncut box): the pocket is a
+  gouge of its area x (depth - tolerance), "or more" deep (beyond the
+  design's band), the same volume as --design; each line's warning says
+  "or more" too.
 - Bad view names: exit 2, no picture.
 """
+import math
 import os
 import struct
 import subprocess
 import sys
 import zlib
 
+import stock_check
 import verifykit as vk
 
 swarf = sys.argv[1]
@@ -95,6 +104,16 @@ def silhouette(img):
     return (min(xs), min(ys), max(xs), max(ys)) if xs else None
 
 
+def enclosed(pts, tris):
+    """Volume enclosed by oriented triangles (divergence theorem)."""
+    v = 0.0
+    for t in tris:
+        a, b, c = (pts[i] for i in t)
+        v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+              a[2] * (b[0] * c[1] - b[1] * c[0]))
+    return v / 6.0
+
+
 def simulate(program, out):
     r = vk.Run(swarf, program, ["--stock", "box:0,0,-10,40,30,0", "--tool", "T1=flat,D6,L20",
                                 "--voxel", "0.2"], d, report=False)
@@ -105,7 +124,8 @@ def simulate(program, out):
 
 
 # The pocket: a D6 tool's centre over X9..15 Y9..11 at Z-3 clears X6..18 Y6..14.
-pocket = simulate("G21 G90\nG0 Z5\nG0 X9 Y9\nG1 Z-3 F300\nG1 X15\nG1 Y11\nG1 X9\nG1 Y9\nG0 Z5\nM30\n", "pocket.vdb")
+program_pocket = "G21 G90\nG0 Z5\nG0 X9 Y9\nG1 Z-3 F300\nG1 X15\nG1 Y11\nG1 X9\nG1 Y9\nG0 Z5\nM30\n"
+pocket = simulate(program_pocket, "pocket.vdb")
 plain = simulate("G21 G90\nG0 Z5\nG0 X50 Y50\nM30\n", "b.vdb")  # cuts nothing
 
 # ---- views: silhouettes with each face's aspect -----------------------------
@@ -180,9 +200,55 @@ for floor, sign in ((-2, "blue"), (-4, "red")):
              "the legend's bar: red (excess) above blue (gouge): red rows %s, blue rows %s" %
              (red and (min(red), max(red)), blue and (min(blue), max(blue))))
 
+# ---- meshes by extension, and swarf compare -------------------------------
+# The pocket's volume: 12 x 8 mm less the D6 tool's rounded corners, 3 deep.
+POCKET_AREA = 12 * 8 - (4 - math.pi) * 9
+box_less_pocket = 40 * 30 * 10 - 3 * POCKET_AREA
+meshes = {}
+for ext in ("stl", "obj", "ply"):
+    path = os.path.join(d, "pocket." + ext)
+    r = vk.Run(swarf, program_pocket, ["--stock", "box:0,0,-10,40,30,0", "--tool", "T1=flat,D6,L20",
+                                       "--voxel", "0.2", "--mesh", path], d, report=False)
+    if vk.check(r.status == 0 and os.path.exists(path), "--mesh pocket.%s written" % ext):
+        pts, tris, verts = stock_check.read_ply(path) if ext == "ply" else \
+            stock_check.read_obj(path) if ext == "obj" else stock_check.read_stl(path)
+        meshes[ext] = (len(tris), enclosed(pts, tris))
+for ext, (n, vol) in meshes.items():
+    vk.near(vol, box_less_pocket, 0.002 * box_less_pocket,
+            "%s: %d triangles enclose the box less the pocket (mm^3)" % (ext, n))
+vk.check(len(set(n for n, _ in meshes.values())) == 1, "the three formats hold the same triangles: %s" % meshes)
+ply = os.path.join(d, "dev.ply")
+r = vk.Run(swarf, program_pocket, ["--stock", "box:0,0,-10,40,30,0", "--tool", "T1=flat,D6,L20",
+                                   "--voxel", "0.2", "--mesh", ply, "--design", os.path.join(d, "design2.stl")],
+           d, report=False)
+if vk.check(r.status == 0 and os.path.exists(ply), "--mesh dev.ply with a design (floor 1 mm above the cut)"):
+    _, _, verts = stock_check.read_ply(ply)
+    floor = [v for v in verts if abs(v["z"] + 3) < 0.05 and 9 <= v["x"] <= 15 and 8 <= v["y"] <= 12]
+    vk.check(len(floor) > 0 and all(abs(v["deviation"] + 1) < 0.02 for v in floor),
+             "the floor's vertices: deviation -1 mm (a gouge), %d of them" % len(floor))
+    vk.check(all(hue((v["red"], v["green"], v["blue"])) == "blue" for v in floor), "and blue, as in the picture")
+# swarf compare against a .vdb design (the uncut box): the pocket is a gouge,
+# its volume below the tolerance (0.1 mm) analytic, the same as --design's.
+p = subprocess.run([swarf, "compare", pocket, plain], capture_output=True, text=True, timeout=300)
+got = dict(l.split("=", 1) for l in p.stdout.splitlines() if "=" in l)
+vk.check(p.returncode == 0 and "gouge_mm3" in got, "swarf compare pocket.vdb box.vdb: exit %d" % p.returncode)
+if "gouge_mm3" in got:
+    vk.near(float(got["gouge_mm3"]), POCKET_AREA * (3 - 0.1), 0.01 * POCKET_AREA * 3,
+            "compare: gouge volume = pocket area x (3 mm - tolerance)")
+    vk.check(got["gouge_depth_mm"].endswith("(or more)"), "compare: the depth beyond a .vdb design's band says so: %s" %
+             got["gouge_depth_mm"])
+    vk.near(float(got["excess_mm3"]), 0.0, 1e-9, "compare: no excess")
+    r = vk.Run(swarf, program_pocket, ["--stock", "box:0,0,-10,40,30,0", "--tool", "T1=flat,D6,L20",
+                                       "--voxel", "0.2", "--design", plain], d)
+    dev = r.report["summary"]["design"] if r.report else None
+    vk.near(dev and dev["gouge_mm3"], float(got["gouge_mm3"]), 1e-3, "--design box.vdb: the same gouge volume")
+    vk.check(len(r.warnings("mm or more into the design")) == 4,
+             "--design box.vdb: each line's gouge at the band says \"or more\"")
+
 # ---- bad input ----------------------------------------------------------------
 bad = os.path.join(d, "bad.png")
 p = subprocess.run([swarf, "render", pocket, "--image", bad, "--view", "sideways"], capture_output=True, text=True)
 vk.check(p.returncode == 2 and not os.path.exists(bad) and "iso" in p.stderr,
          "--view sideways: exit 2 naming the views, no picture (%d: %s)" % (p.returncode, p.stderr.strip()))
+vk.check(not stock_check.failures, "the mesh readers' own checks: %s" % stock_check.failures)
 sys.exit(vk.done())

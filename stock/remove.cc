@@ -272,9 +272,18 @@ void change_topology(Pass &p) {
 /// or clear ends exactly as if its sdf had been evaluated.
 constexpr double kMargin = 1e-5;
 
-/// Voxel values of a block while its cuts are applied one after another.
+/// Voxel values of a block while its cuts are applied one after another, with
+/// the summaries that let a cut pass over an octant or a cube without looking
+/// at its voxels: omin[o] = min over the octant's voxels n still below the band
+/// (m < bg) of m - radius[n], cmin[c] = the same over a cube's voxels with
+/// roct[n] (+inf when every voxel is outside). A cut whose sdf is d at the block
+/// centre can raise a voxel of octant o only if d + omin[o] < kMargin (the test
+/// may_raise makes voxel by voxel, taken at once), likewise per cube with its
+/// sdf at the octant's centre. The summaries are lower bounds kept exact.
 struct BlockValues {
   double m[Leaf::SIZE]; ///< max(old, -sdf) over the cuts applied so far
+  double omin[8];       ///< per 4^3 octant, index (x >> 2) << 2 | (y >> 2) << 1 | z >> 2
+  double cmin[64];      ///< per 2^3 cube, index (x >> 1) << 4 | (y >> 1) << 2 | z >> 1
 };
 
 /// Whether voxel n (value m, at distance r from a point where the cut's sdf is
@@ -284,17 +293,46 @@ inline bool may_raise(double m, double bg, double d, double r) {
   return m < bg && !(d - r + m >= kMargin); // a NaN sdf: the voxels decide
 }
 
-/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and cut i, whose sdf
-/// at the block centre is dc and at the enclosing 4^3 octant's centre is doct
-/// (NaN: not evaluated yet; evaluated on demand into *doct). The cut's sdf is
-/// evaluated at the 2^3 cube's centre first: if it clears every voxel (deeper
-/// than the band) or keeps them all below their values, no voxel is evaluated.
-void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
+/// Summary value of voxel n: m - r, or +inf if it is outside (cannot be raised).
+inline double summary(double m, double bg, double r) {
+  return m < bg ? m - r : std::numeric_limits<double>::infinity();
+}
+
+/// Recompute cmin for the cube at (x0, y0, z0) (even coordinates).
+inline void cube_summary(const Pass &p, BlockValues &bv, int x0, int y0, int z0) {
+  double lo = std::numeric_limits<double>::infinity();
+  for (int x = x0; x < x0 + 2; x++)
+    for (int y = y0; y < y0 + 2; y++)
+      for (int z = z0; z < z0 + 2; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        lo = std::min(lo, summary(bv.m[n], p.bgf, p.roct[n]));
+      }
+  bv.cmin[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = lo;
+}
+
+/// Recompute omin for the octant at (x0, y0, z0) (multiples of 4).
+inline void octant_summary(const Pass &p, BlockValues &bv, int x0, int y0, int z0) {
+  double lo = std::numeric_limits<double>::infinity();
+  for (int x = x0; x < x0 + 4; x++)
+    for (int y = y0; y < y0 + 4; y++)
+      for (int z = z0; z < z0 + 4; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        lo = std::min(lo, summary(bv.m[n], p.bgf, p.radius[n]));
+      }
+  bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = lo;
+}
+
+/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut. The
+/// cut's sdf is evaluated at the cube's centre first: if it clears every voxel
+/// (deeper than the band) or keeps them all below their values, no voxel is
+/// evaluated. True if a voxel changed.
+bool visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
                 BlockValues &bv) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
   const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
   const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
   const bool clear = dcube + rv <= -bg - kMargin;
+  bool changed = false;
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
@@ -302,50 +340,49 @@ void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x
         double &m = bv.m[n];
         if (!may_raise(m, bg, dcube, rv)) continue;
         if (clear) {
-          m = bg;
+          m = bg, changed = true;
           continue;
         }
         const Vec3d q = block_point(p, b.origin, x, y, z);
         const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-        if (d > m) m = d;
+        if (d > m) m = d, changed = true;
       }
+  return changed;
 }
 
-/// Pass 4 for the 4^3 octant at (x0, y0, z0) and one cut (its sdf at the block
-/// centre: dc): the sdf at the octant's centre decides for its 2^3 cubes
-/// (none of their voxels can be raised: passed over; all cleared: cleared);
-/// the others are visited cube by cube.
-void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc, int x0,
-                  int y0, int z0, BlockValues &bv) {
+/// Pass 4 for the 4^3 octant at (x0, y0, z0) and one cut, once its summary
+/// says a voxel may be raised: the sdf at the octant's centre decides for its
+/// 2^3 cubes (none of their voxels can be raised: passed over; all cleared:
+/// cleared); the others are visited cube by cube. Summaries kept up to date.
+void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
+                  BlockValues &bv) {
   const double bg = p.bgf, v = p.voxel, rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
-  bool any = false;
-  for (int x = x0; x < x0 + 4 && !any; x++)
-    for (int y = y0; y < y0 + 4 && !any; y++)
-      for (int z = z0; z < z0 + 4 && !any; z++) {
-        const openvdb::Index n = (x << 6) | (y << 3) | z;
-        any = may_raise(bv.m[n], bg, dc, p.radius[n]);
-      }
-  if (!any) return;
   const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
   const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
   const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
+  const bool clear = doct + rcube + rv <= -bg - kMargin;
+  bool changed = false;
   for (int sx = x0; sx < x0 + 4; sx += 2)
     for (int sy = y0; sy < y0 + 4; sy += 2)
       for (int sz = z0; sz < z0 + 4; sz += 2) {
-        const bool clear = doct + rcube + rv <= -bg - kMargin;
-        bool need = false;
+        if (doct + bv.cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] >= kMargin) continue;
+        bool need = false, cleared = false;
         for (int x = sx; x < sx + 2; x++)
           for (int y = sy; y < sy + 2; y++)
             for (int z = sz; z < sz + 2; z++) {
               const openvdb::Index n = (x << 6) | (y << 3) | z;
               if (!may_raise(bv.m[n], bg, doct, p.roct[n])) continue;
               if (clear)
-                bv.m[n] = bg;
+                bv.m[n] = bg, cleared = true;
               else
                 need = true;
             }
-        if (need) visit_cube(p, b, cut, sx, sy, sz, bv);
+        if ((need && visit_cube(p, b, cut, sx, sy, sz, bv)) || cleared) {
+          cube_summary(p, bv, sx, sy, sz);
+          changed = true;
+        }
       }
+  if (changed) octant_summary(p, bv, x0, y0, z0);
 }
 
 /// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the
@@ -387,8 +424,10 @@ inline void collapse_if_uniform(const Leaf &leaf, Block &b) {
 /// Pass 4 for one leaf: max over the cuts, clamp, band state. Each cut is
 /// applied to the block top down (8^3 block centre, 4^3 octants, 2^3 cubes,
 /// voxels; the sdf is 1-Lipschitz): a voxel's sdf is evaluated only where the
-/// bound from the nearest centre above it cannot decide. Marks the block
-/// kCollapse (with its tile value) if no voxel is left in the band.
+/// bound from the nearest centre above it cannot decide, and an octant or a
+/// cube is looked at only where its summary (BlockValues) says a voxel may be
+/// raised. Marks the block kCollapse (with its tile value) if no voxel is left
+/// in the band.
 void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
   const RemoveScratch &w = p.s.scratch;
   const float bgf = p.bgf;
@@ -396,15 +435,26 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
   BlockValues bv;
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
     bv.m[n] = data[n];
+  if (!p.flat)
+    for (int x = 0; x < 8; x += 2)
+      for (int y = 0; y < 8; y += 2)
+        for (int z = 0; z < 8; z += 2)
+          cube_summary(p, bv, x, y, z);
+  if (!p.flat)
+    for (int x = 0; x < 8; x += 4)
+      for (int y = 0; y < 8; y += 4)
+        for (int z = 0; z < 8; z += 4)
+          octant_summary(p, bv, x, y, z);
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    if (p.flat)
-      visit_flat(p, b, cut, w.centre_sdf[i], bv);
-    else
-      for (int x = 0; x < 8; x += 4)
-        for (int y = 0; y < 8; y += 4)
-          for (int z = 0; z < 8; z += 4)
-            visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
+    const double dc = w.centre_sdf[i];
+    if (p.flat) {
+      visit_flat(p, b, cut, dc, bv);
+      continue;
+    }
+    for (int o = 0; o < 8; o++)
+      if (!(dc + bv.omin[o] >= kMargin)) // a NaN sdf: visited
+        visit_octant(p, b, cut, (o >> 2) << 2, ((o >> 1) & 1) << 2, (o & 1) << 2, bv);
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];

@@ -18,12 +18,17 @@
 ///     are skipped; the others are classified from their cuts' centre values.
 ///  3. serial topology: cleared blocks become outside tiles, tiles to visit
 ///     become leaves (densified from the tile value).
-///  4. visit (parallel, one leaf per task, no topology change), each cut top
-///     down: its sdf at the block centre, then at the 4^3 octants' and 2^3
-///     cubes' centres where the voxels below them may change, and at a voxel
-///     only where the bound from its cube's centre cannot decide (1.4x fewer
-///     sdf calls on the impeller; a cut whose cube centre lies deeper than
-///     the band plus a margin clears the cube's voxels without evaluation).
+///  4. visit (parallel, one leaf per task, no topology change), top down:
+///     each cut's sdf at the block centre, then, octant by octant and cube by
+///     cube with all their cuts, at the 4^3 octants' and 2^3 cubes' centres
+///     where the voxels below them may change, and at a voxel only where the
+///     bound from its cube's centre cannot decide (1.4x fewer sdf calls on the
+///     impeller; a cut whose cube centre lies deeper than the band plus a
+///     margin clears the cube's voxels without evaluation). Per-octant and
+///     per-cube summaries of the values (min of value - distance to the
+///     centre) decide for a cut without looking at the voxels, and a cube's
+///     cuts are applied deepest first, so that the others mostly find the
+///     voxels already above their bound (tiger.nc: 2x fewer raised voxels).
 ///  5. serial: visited leaves left without any band collapse back into tiles.
 ///
 /// Voxel values stay in [-w, w]; a voxel is active iff |value| < w, inactive
@@ -305,84 +310,122 @@ inline void cube_summary(const Pass &p, BlockValues &bv, int x0, int y0, int z0)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
-        lo = std::min(lo, summary(bv.m[n], p.bgf, p.roct[n]));
+        const double s = summary(bv.m[n], p.bgf, p.roct[n]);
+        lo = s < lo ? s : lo;
       }
   bv.cmin[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = lo;
 }
 
-/// Recompute omin for the octant at (x0, y0, z0) (multiples of 4).
-inline void octant_summary(const Pass &p, BlockValues &bv, int x0, int y0, int z0) {
-  double lo = std::numeric_limits<double>::infinity();
-  for (int x = x0; x < x0 + 4; x++)
-    for (int y = y0; y < y0 + 4; y++)
-      for (int z = z0; z < z0 + 4; z++) {
-        const openvdb::Index n = (x << 6) | (y << 3) | z;
-        lo = std::min(lo, summary(bv.m[n], p.bgf, p.radius[n]));
+/// All the summaries of a block, octant by octant and cube by cube.
+void leaf_summaries(const Pass &p, BlockValues &bv) {
+  const double inf = std::numeric_limits<double>::infinity(), bg = p.bgf;
+  for (int x0 = 0; x0 < 8; x0 += 4)
+    for (int y0 = 0; y0 < 8; y0 += 4)
+      for (int z0 = 0; z0 < 8; z0 += 4) {
+        double olo = inf;
+        for (int sx = x0; sx < x0 + 4; sx += 2)
+          for (int sy = y0; sy < y0 + 4; sy += 2)
+            for (int sz = z0; sz < z0 + 4; sz += 2) {
+              double clo = inf;
+              for (int x = sx; x < sx + 2; x++)
+                for (int y = sy; y < sy + 2; y++)
+                  for (int z = sz; z < sz + 2; z++) {
+                    const openvdb::Index n = (x << 6) | (y << 3) | z;
+                    const double m = bv.m[n];
+                    const double c = m < bg ? m - p.roct[n] : inf;
+                    const double o = m < bg ? m - double(p.radius[n]) : inf;
+                    clo = c < clo ? c : clo;
+                    olo = o < olo ? o : olo;
+                  }
+              bv.cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] = clo;
+            }
+        bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = olo;
       }
-  bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = lo;
 }
 
-/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut. The
-/// cut's sdf is evaluated at the cube's centre first: if it clears every voxel
-/// (deeper than the band) or keeps them all below their values, no voxel is
-/// evaluated. True if a voxel changed.
-bool visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
+/// A cut and its sdf (mm) at the centre of the octant or cube being visited.
+struct CutAt {
+  double d;
+  const swarf_stock_cut *cut;
+};
+
+/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut whose
+/// sdf at the cube's centre is dcube: a voxel is evaluated unless the bound
+/// from the centre keeps it below its value; all are cleared when the cube lies
+/// deeper than the band.
+void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, int z0,
                 BlockValues &bv) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
-  const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
-  const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-  const bool clear = dcube + rv <= -bg - kMargin;
-  bool changed = false;
+  const bool clear = c.d + rv <= -bg - kMargin;
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         double &m = bv.m[n];
-        if (!may_raise(m, bg, dcube, rv)) continue;
+        if (!may_raise(m, bg, c.d, rv)) continue;
         if (clear) {
-          m = bg, changed = true;
+          m = bg;
           continue;
         }
         const Vec3d q = block_point(p, b.origin, x, y, z);
-        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-        if (d > m) m = d, changed = true;
+        const double d = -c.cut->sdf(c.cut->ctx, q.x(), q.y(), q.z());
+        if (d > m) m = d;
       }
-  return changed;
 }
 
-/// Pass 4 for the 4^3 octant at (x0, y0, z0) and one cut, once its summary
-/// says a voxel may be raised: the sdf at the octant's centre decides for its
-/// 2^3 cubes (none of their voxels can be raised: passed over; all cleared:
-/// cleared); the others are visited cube by cube. Summaries kept up to date.
-void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
-                  BlockValues &bv) {
+/// Pass 4 for the 2^3 cube at (x0, y0, z0) and the cuts of its octant (their
+/// sdf at the octant's centre, in oct): those the cube's summary lets through
+/// are cleared from the octant's value when it lies deeper than the band, or
+/// have their sdf taken at the cube's centre; these are applied deepest
+/// first, so that the later ones mostly find their bound below the voxels'
+/// values and evaluate nothing (the maximum does not depend on the order).
+void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t noct, int x0, int y0,
+                     int z0, BlockValues &bv, CutAt *cube) {
   const double bg = p.bgf, v = p.voxel, rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
+  const double rv = 0.5 * std::sqrt(3.0) * v;                       // voxel -> its cube's centre
+  const int ci = ((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1);
+  const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
+  uint32_t n = 0;
+  for (uint32_t i = 0; i < noct; i++) {
+    const CutAt &o = oct[i];
+    if (o.d + bv.cmin[ci] >= kMargin) continue; // no voxel of the cube can be raised
+    if (o.d + rcube + rv <= -bg - kMargin) {    // every voxel lies deeper than the band
+      for (int x = x0; x < x0 + 2; x++)
+        for (int y = y0; y < y0 + 2; y++)
+          for (int z = z0; z < z0 + 2; z++) {
+            const openvdb::Index n = (x << 6) | (y << 3) | z;
+            if (may_raise(bv.m[n], bg, o.d, p.roct[n])) bv.m[n] = bg;
+          }
+      cube_summary(p, bv, x0, y0, z0);
+      continue;
+    }
+    cube[n++] = {o.cut->sdf(o.cut->ctx, c.x(), c.y(), c.z()), o.cut};
+  }
+  std::sort(cube, cube + n, [](const CutAt &a, const CutAt &b) { return a.d < b.d; });
+  for (uint32_t i = 0; i < n; i++)
+    visit_cube(p, b, cube[i], x0, y0, z0, bv);
+}
+
+/// Pass 4 for the 4^3 octant at (x0, y0, z0) and the block's cuts: each cut
+/// whose bound from the block centre (its summary) may raise a voxel of the
+/// octant has its sdf taken at the octant's centre; the octant's eight cubes
+/// are then visited one after another with all of them.
+void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockValues &bv,
+                  CutAt *oct, CutAt *cube) {
+  const RemoveScratch &w = p.s.scratch;
+  const double omin = bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)];
   const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
-  const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-  const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
-  const bool clear = doct + rcube + rv <= -bg - kMargin;
-  bool changed = false;
+  uint32_t n = 0;
+  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
+    if (w.centre_sdf[i] + omin >= kMargin) continue; // a NaN sdf: visited
+    const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+    oct[n++] = {cut.sdf(cut.ctx, c.x(), c.y(), c.z()), &cut};
+  }
+  if (n == 0) return;
   for (int sx = x0; sx < x0 + 4; sx += 2)
     for (int sy = y0; sy < y0 + 4; sy += 2)
-      for (int sz = z0; sz < z0 + 4; sz += 2) {
-        if (doct + bv.cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] >= kMargin) continue;
-        bool need = false, cleared = false;
-        for (int x = sx; x < sx + 2; x++)
-          for (int y = sy; y < sy + 2; y++)
-            for (int z = sz; z < sz + 2; z++) {
-              const openvdb::Index n = (x << 6) | (y << 3) | z;
-              if (!may_raise(bv.m[n], bg, doct, p.roct[n])) continue;
-              if (clear)
-                bv.m[n] = bg, cleared = true;
-              else
-                need = true;
-            }
-        if ((need && visit_cube(p, b, cut, sx, sy, sz, bv)) || cleared) {
-          cube_summary(p, bv, sx, sy, sz);
-          changed = true;
-        }
-      }
-  if (changed) octant_summary(p, bv, x0, y0, z0);
+      for (int sz = z0; sz < z0 + 4; sz += 2)
+        visit_cube_cuts(p, b, oct, n, sx, sy, sz, bv, cube);
 }
 
 /// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the
@@ -421,8 +464,9 @@ inline void collapse_if_uniform(const Leaf &leaf, Block &b) {
   b.tile = data[0];
 }
 
-/// Pass 4 for one leaf: max over the cuts, clamp, band state. Each cut is
-/// applied to the block top down (8^3 block centre, 4^3 octants, 2^3 cubes,
+/// Pass 4 for one leaf: max over the cuts, clamp, band state. The block is
+/// visited octant by octant and cube by cube (their voxels are independent),
+/// each with all its cuts, top down (8^3 block centre, 4^3 octants, 2^3 cubes,
 /// voxels; the sdf is 1-Lipschitz): a voxel's sdf is evaluated only where the
 /// bound from the nearest centre above it cannot decide, and an octant or a
 /// cube is looked at only where its summary (BlockValues) says a voxel may be
@@ -435,26 +479,17 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
   BlockValues bv;
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
     bv.m[n] = data[n];
-  if (!p.flat)
-    for (int x = 0; x < 8; x += 2)
-      for (int y = 0; y < 8; y += 2)
-        for (int z = 0; z < 8; z += 2)
-          cube_summary(p, bv, x, y, z);
-  if (!p.flat)
+  if (p.flat) {
+    for (uint32_t i = b.begin; i < b.begin + b.count; i++)
+      visit_flat(p, b, p.cuts[w.pairs[i].cut], w.centre_sdf[i], bv);
+  } else {
+    thread_local std::vector<CutAt> oct, cube;
+    if (oct.size() < b.count) oct.resize(b.count), cube.resize(b.count);
+    leaf_summaries(p, bv);
     for (int x = 0; x < 8; x += 4)
       for (int y = 0; y < 8; y += 4)
         for (int z = 0; z < 8; z += 4)
-          octant_summary(p, bv, x, y, z);
-  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-    const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    const double dc = w.centre_sdf[i];
-    if (p.flat) {
-      visit_flat(p, b, cut, dc, bv);
-      continue;
-    }
-    for (int o = 0; o < 8; o++)
-      if (!(dc + bv.omin[o] >= kMargin)) // a NaN sdf: visited
-        visit_octant(p, b, cut, (o >> 2) << 2, ((o >> 1) & 1) << 2, (o & 1) << 2, bv);
+          visit_octant(p, b, x, y, z, bv, oct.data(), cube.data());
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];

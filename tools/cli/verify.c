@@ -183,9 +183,11 @@ void swarf_verify_warn(swarf_verify *v, const char *program, const swarf_sim_rep
             "%s:%ld:%d: warning: this move comes before any G20/G21: the program is read in "
             "mm (say which with --units mm|in)\n",
             program, r->units_missing_line, r->units_missing_column);
+  /* a .vdb design's band ends at its reach: a gouge that reaches it may be deeper */
+  const double reach = r->has_deviation ? r->deviation.reach : INFINITY;
   for (size_t i = 0; i < n; i++)
-    fprintf(stderr, "%s:%ld:%d: warning: gouge %.3f mm into the design\n", program, g[i].line,
-            g[i].column, g[i].depth);
+    fprintf(stderr, "%s:%ld:%d: warning: gouge %.3f mm%s into the design\n", program, g[i].line,
+            g[i].column, g[i].depth, g[i].depth >= reach * (1 - 1e-9) ? " or more" : "");
 }
 
 static void print_point(const double p[3]) {

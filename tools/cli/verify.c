@@ -236,8 +236,8 @@ void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r) {
   if (peak > 0) printf("  peak removal rate %.1f mm^3/min at line %ld (T%d)\n", rate, peak, tool);
 }
 
-static int write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
-                        const swarf_sim_report *r) {
+int swarf_verify_write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
+                              const swarf_sim_report *r) {
   swarf_report_inputs in = {program,
                             v->stock_spec,
                             v->machine_spec,
@@ -252,6 +252,7 @@ static int write_report(swarf_verify *v, const char *program, const swarf_sim_co
                             v->start_set ? v->start : NULL};
   swarf_error err;
   char msg[1024];
+  if (v->report_path == NULL) return 0;
   swarf_error_init(&err);
   if (swarf_report_write(v->report, r, &in, v->report_path, &err) == SWARF_OK) return 0;
   swarf_error_format(&err, msg, sizeof msg);
@@ -259,9 +260,7 @@ static int write_report(swarf_verify *v, const char *program, const swarf_sim_co
   return 1;
 }
 
-int swarf_verify_finish(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
-                        const swarf_sim_report *r) {
-  if (v->report_path != NULL && write_report(v, program, cfg, r)) return 1;
+int swarf_verify_finish(const swarf_verify *v, const swarf_sim_report *r) {
   return v->fail_on_gouge && r->alarm_count[SWARF_ALARM_GOUGE] > 0 ? 4 : 0;
 }
 

@@ -289,6 +289,7 @@ struct BlockValues {
   double m[Leaf::SIZE]; ///< max(old, -sdf) over the cuts applied so far
   double omin[8];       ///< per 4^3 octant, index (x >> 2) << 2 | (y >> 2) << 1 | z >> 2
   double cmin[64];      ///< per 2^3 cube, index (x >> 1) << 4 | (y >> 1) << 2 | z >> 1
+  double mlo[64];       ///< per 2^3 cube: min of m over its voxels with m < bg (+inf if none)
 };
 
 /// Whether voxel n (value m, at distance r from a point where the cut's sdf is
@@ -305,15 +306,17 @@ inline double summary(double m, double bg, double r) {
 
 /// Recompute cmin for the cube at (x0, y0, z0) (even coordinates).
 inline void cube_summary(const Pass &p, BlockValues &bv, int x0, int y0, int z0) {
-  double lo = std::numeric_limits<double>::infinity();
+  double lo = std::numeric_limits<double>::infinity(), mlo = lo;
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
-        const double s = summary(bv.m[n], p.bgf, p.roct[n]);
+        const double s = summary(bv.m[n], p.bgf, p.roct[n]), m = summary(bv.m[n], p.bgf, 0.0);
         lo = s < lo ? s : lo;
+        mlo = m < mlo ? m : mlo;
       }
   bv.cmin[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = lo;
+  bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = mlo;
 }
 
 /// All the summaries of a block, octant by octant and cube by cube.
@@ -326,7 +329,7 @@ void leaf_summaries(const Pass &p, BlockValues &bv) {
         for (int sx = x0; sx < x0 + 4; sx += 2)
           for (int sy = y0; sy < y0 + 4; sy += 2)
             for (int sz = z0; sz < z0 + 4; sz += 2) {
-              double clo = inf;
+              double clo = inf, mlo = inf;
               for (int x = sx; x < sx + 2; x++)
                 for (int y = sy; y < sy + 2; y++)
                   for (int z = sz; z < sz + 2; z++) {
@@ -334,10 +337,13 @@ void leaf_summaries(const Pass &p, BlockValues &bv) {
                     const double m = bv.m[n];
                     const double c = m < bg ? m - p.roct[n] : inf;
                     const double o = m < bg ? m - double(p.radius[n]) : inf;
+                    const double l = m < bg ? m : inf;
                     clo = c < clo ? c : clo;
+                    mlo = l < mlo ? l : mlo;
                     olo = o < olo ? o : olo;
                   }
               bv.cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] = clo;
+              bv.mlo[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] = mlo;
             }
         bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = olo;
       }
@@ -357,20 +363,25 @@ void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, i
                 BlockValues &bv) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
   const bool clear = c.d + rv <= -bg - kMargin;
+  double mlo = std::numeric_limits<double>::infinity();
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         double &m = bv.m[n];
-        if (!may_raise(m, bg, c.d, rv)) continue;
-        if (clear) {
-          m = bg;
-          continue;
+        if (may_raise(m, bg, c.d, rv)) {
+          if (clear) {
+            m = bg;
+          } else {
+            const Vec3d q = block_point(p, b.origin, x, y, z);
+            const double d = -c.cut->sdf(c.cut->ctx, q.x(), q.y(), q.z());
+            if (d > m) m = d;
+          }
         }
-        const Vec3d q = block_point(p, b.origin, x, y, z);
-        const double d = -c.cut->sdf(c.cut->ctx, q.x(), q.y(), q.z());
-        if (d > m) m = d;
+        const double l = summary(m, bg, 0.0);
+        mlo = l < mlo ? l : mlo;
       }
+  bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = mlo;
 }
 
 /// Pass 4 for the 2^3 cube at (x0, y0, z0) and the cuts of its octant (their
@@ -401,9 +412,15 @@ void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t n
     }
     cube[n++] = {o.cut->sdf(o.cut->ctx, c.x(), c.y(), c.z()), o.cut};
   }
-  std::sort(cube, cube + n, [](const CutAt &a, const CutAt &b) { return a.d < b.d; });
-  for (uint32_t i = 0; i < n; i++)
+  std::sort(cube, cube + n, [](const CutAt &a, const CutAt &b) { // a NaN sdf first
+    return (std::isnan(a.d) ? -HUGE_VAL : a.d) < (std::isnan(b.d) ? -HUGE_VAL : b.d);
+  });
+  for (uint32_t i = 0; i < n; i++) {
+    // may_raise for the cube's lowest value: false, and false for the
+    // remaining (shallower) cuts too: none of them can raise a voxel
+    if (cube[i].d - rv + bv.mlo[ci] >= kMargin) break;
     visit_cube(p, b, cube[i], x0, y0, z0, bv);
+  }
 }
 
 /// Pass 4 for the 4^3 octant at (x0, y0, z0) and the block's cuts: each cut

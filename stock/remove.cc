@@ -74,6 +74,7 @@ struct Pass {
   double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
   bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
+  const swarf_stock_support_fn *support = nullptr; ///< per cut, may be null (stock.h)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -349,10 +350,13 @@ void leaf_summaries(const Pass &p, BlockValues &bv) {
       }
 }
 
-/// A cut and its sdf (mm) at the centre of the octant or cube being visited.
+/// A cut and its sdf (mm) at the centre of the octant or cube being visited,
+/// with, at a cube's centre, the supporting plane's normal when it has one.
 struct CutAt {
   double d;
   const swarf_stock_cut *cut;
+  bool plane = false; ///< sdf(q) >= d + g.(q - centre) for every q
+  double g[3];
 };
 
 /// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut whose
@@ -363,13 +367,19 @@ void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, i
                 BlockValues &bv) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
   const bool clear = c.d + rv <= -bg - kMargin;
+  // The bound at each voxel: d - rv, or with a plane d + g.(voxel - centre)
+  // (>= d - rv), the voxel's offset from the centre being +-voxel/2 per axis.
+  const double h = 0.5 * p.voxel;
+  const double gx = c.plane ? h * c.g[0] : 0.0, gy = c.plane ? h * c.g[1] : 0.0,
+               gz = c.plane ? h * c.g[2] : 0.0, r = c.plane ? 0.0 : rv;
   double mlo = std::numeric_limits<double>::infinity();
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         double &m = bv.m[n];
-        if (may_raise(m, bg, c.d, rv)) {
+        const double bound = c.d + (x > x0 ? gx : -gx) + (y > y0 ? gy : -gy) + (z > z0 ? gz : -gz);
+        if (may_raise(m, bg, bound, r)) {
           if (clear) {
             m = bg;
           } else {
@@ -410,7 +420,11 @@ void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t n
       cube_summary(p, bv, x0, y0, z0);
       continue;
     }
-    cube[n++] = {o.cut->sdf(o.cut->ctx, c.x(), c.y(), c.z()), o.cut};
+    CutAt &k = cube[n++];
+    const swarf_stock_support_fn f = p.support ? p.support[o.cut - p.cuts] : nullptr;
+    k.cut = o.cut;
+    k.plane = f != nullptr && f(o.cut->ctx, c.x(), c.y(), c.z(), &k.d, k.g) == 1;
+    if (f == nullptr) k.d = o.cut->sdf(o.cut->ctx, c.x(), c.y(), c.z());
   }
   std::sort(cube, cube + n, [](const CutAt &a, const CutAt &b) { // a NaN sdf first
     return (std::isnan(a.d) ? -HUGE_VAL : a.d) < (std::isnan(b.d) ? -HUGE_VAL : b.d);
@@ -436,7 +450,7 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     if (w.centre_sdf[i] + omin >= kMargin) continue; // a NaN sdf: visited
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    oct[n++] = {cut.sdf(cut.ctx, c.x(), c.y(), c.z()), &cut};
+    oct[n++] = {cut.sdf(cut.ctx, c.x(), c.y(), c.z()), &cut, false, {}};
   }
   if (n == 0) return;
   for (int sx = x0; sx < x0 + 4; sx += 2)
@@ -801,13 +815,13 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
   return best;
 }
 
-void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
-                 const Measure *measure) {
+void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, const Measure *measure,
+                 const swarf_stock_support_fn *support) {
   static const bool flat = [] {
     const char *e = std::getenv("SWARF_REMOVE_FLAT");
     return e != nullptr && e[0] == '1';
   }();
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat};
+  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat, support};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);
@@ -947,6 +961,21 @@ extern "C" swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stoc
     if (*depth > 0.0 && where != nullptr)
       for (int k = 0; k < 3; k++)
         where[k] = q[k];
+  });
+}
+
+extern "C" swarf_status swarf_stock_remove_batch_support(swarf_stock *s,
+                                                         const swarf_stock_cut *cuts,
+                                                         const swarf_stock_support_fn *support,
+                                                         size_t ncuts, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
+    if (ncuts == 0) return;
+    if (cuts == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts is NULL");
+    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
+    for (size_t i = 0; i < ncuts; i++)
+      check_cut(cuts[i], i);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, nullptr, support); });
   });
 }
 

@@ -319,7 +319,7 @@ SWARF_API swarf_status swarf_stock_resample(const swarf_stock *s, double voxel, 
  * Deviations are measured up to its band (its "reach", mm, = half_width *
  * voxel): beyond it a deviation reads as the reach (the *_clamped flags say
  * so). SWARF_STOCK_DESIGN_BAND is the band the readers below give a design. */
-#define SWARF_STOCK_DESIGN_BAND 3 /* voxels */
+#define SWARF_STOCK_DESIGN_BAND 2 /* voxels */
 
 /* A design from FILE.stl (a closed mesh, as swarf_stock_read_stl, with
  * SWARF_STOCK_DESIGN_BAND voxels of band) or FILE.vdb (as swarf_stock_read_vdb:

@@ -391,9 +391,10 @@ static int check_size(const swarf_sim_config *cfg) {
   return usage_error(what);
 }
 
-/* The .vdb, mesh and picture: all or none (held unnamed, published
- * together once all are written; stock_output.h). */
-static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
+/* The .vdb, mesh, picture and report: all or none (held unnamed,
+ * published together once all are written; stock_output.h). */
+static int write_outputs(sim_options *o, const swarf_stock *stock, const swarf_sim_report *rep,
+                         size_t *ntri) {
   swarf_error err;
   int rc;
   swarf_error_init(&err);
@@ -405,6 +406,7 @@ static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t 
   }
   rc = swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
                              o->verify.tolerance, o->stock.view, ntri);
+  if (rc == 0) rc = swarf_verify_write_report(&o->verify, o->program, &o->cfg, rep);
   if (rc != 0) {
     swarf_stock_outputs_abort();
     return rc;
@@ -608,12 +610,12 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   print_alarms(&o, &clients.alarms, &rep);
   free(clients.alarms.a);
   swarf_verify_warn(&o.verify, o.program, &rep);
-  rc = write_outputs(&o, stock, &ntri);
+  rc = write_outputs(&o, stock, &rep, &ntri);
   if (rc == 0 && !o.quiet) {
     print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
     swarf_verify_summary(&o.verify, &rep);
   }
-  if (rc == 0) rc = swarf_verify_finish(&o.verify, o.program, &o.cfg, &rep);
+  if (rc == 0) rc = swarf_verify_finish(&o.verify, &rep);
   if (rc == 0 && o.fail_on_collision && rep.collisions > 0) {
     fprintf(stderr, "%s: %ld collisions (--fail-on collision): exit status 4\n", o.program,
             rep.collisions);

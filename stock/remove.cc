@@ -532,11 +532,40 @@ struct Measured {
   double dq[Leaf::SIZE]; ///< design value at each voxel (NaN: not probed yet)
   double removed = 0.0;  ///< the current cut's, voxels
   uint32_t pair = 0;     ///< the current cut's pair
+  /// Summaries as BlockValues' (lower bounds, recomputed where voxels rise):
+  /// per cube min of m - roct and of m - radius, per octant the latter's min.
+  double cmin[64], cminr[64], omin[8];
 
   Measured(const Pass &pass, const Block &block, GridProbe *d, const float *data)
       : p(pass), w(pass.s.scratch), b(block), design(d) {
     for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
       m[n] = data[n], dq[n] = std::numeric_limits<double>::quiet_NaN();
+    for (int x0 = 0; x0 < 8; x0 += 2)
+      for (int y0 = 0; y0 < 8; y0 += 2)
+        for (int z0 = 0; z0 < 8; z0 += 2)
+          cube_sums(x0, y0, z0);
+    for (int o = 0; o < 8; o++)
+      octant_sum(o & 4, (o & 2) << 1, (o & 1) << 2);
+  }
+  void cube_sums(int x0, int y0, int z0) {
+    double lo = std::numeric_limits<double>::infinity(), lor = lo;
+    for (int x = x0; x < x0 + 2; x++)
+      for (int y = y0; y < y0 + 2; y++)
+        for (int z = z0; z < z0 + 2; z++) {
+          const openvdb::Index n = (x << 6) | (y << 3) | z;
+          lo = std::min(lo, summary(m[n], p.bgf, p.roct[n]));
+          lor = std::min(lor, summary(m[n], p.bgf, p.radius[n]));
+        }
+    const int c = ((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1);
+    cmin[c] = lo, cminr[c] = lor;
+  }
+  void octant_sum(int x0, int y0, int z0) {
+    double lo = std::numeric_limits<double>::infinity();
+    for (int sx = x0; sx < x0 + 4; sx += 2)
+      for (int sy = y0; sy < y0 + 4; sy += 2)
+        for (int sz = z0; sz < z0 + 4; sz += 2)
+          lo = std::min(lo, cminr[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)]);
+    omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = lo;
   }
   /// Voxel n goes from m[n] to the stored nv; d is the cut's -sdf there.
   void step(openvdb::Index n, double d, float nv) {
@@ -591,34 +620,32 @@ struct Measured {
   void octant(const swarf_stock_cut &cut, double dc, int x0, int y0, int z0) {
     const double bg = p.bgf, v = p.voxel,
                  rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
-    bool any = false;
-    for (int x = x0; x < x0 + 4 && !any; x++)
-      for (int y = y0; y < y0 + 4 && !any; y++)
-        for (int z = z0; z < z0 + 4 && !any; z++) {
-          const openvdb::Index n = (x << 6) | (y << 3) | z;
-          any = may_raise(m[n], bg, dc, p.radius[n]);
-        }
-    if (!any) return;
+    // no voxel may be raised (may_raise's test, taken at once: as the plain visit)
+    if (dc + omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] >= kMargin) return;
     const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
     const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
     const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
     const bool deep = doct + rcube + rv <= -bg - kMargin;
+    bool changed = false;
     for (int sx = x0; sx < x0 + 4; sx += 2)
       for (int sy = y0; sy < y0 + 4; sy += 2)
         for (int sz = z0; sz < z0 + 4; sz += 2) {
-          bool need = false;
+          if (doct + cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] >= kMargin) continue;
+          bool need = false, cleared = false;
           for (int x = sx; x < sx + 2; x++)
             for (int y = sy; y < sy + 2; y++)
               for (int z = sz; z < sz + 2; z++) {
                 const openvdb::Index n = (x << 6) | (y << 3) | z;
                 if (!may_raise(m[n], bg, doct, p.roct[n])) continue;
                 if (deep)
-                  clear(n);
+                  clear(n), cleared = true;
                 else
                   need = true;
               }
           if (need) cube(cut, sx, sy, sz);
+          if (need || cleared) cube_sums(sx, sy, sz), changed = true;
         }
+    if (changed) octant_sum(x0, y0, z0);
   }
   /// One cut without the hierarchy (SWARF_REMOVE_FLAT=1).
   void flat(const swarf_stock_cut &cut, double dc) {

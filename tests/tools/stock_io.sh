@@ -4,7 +4,8 @@
 # reader (stock_check.py: pyopenvdb, numpy):
 #  - an STL box stock (written by the test) = the box stock, voxel by voxel;
 #  - a .vdb stock: run A, then program B on A's output = one run of A + B
-#    (1e-6 mm);
+#    (1e-6 mm), also when another tool wrote it (the first float level set,
+#    not named "stock", after a fog volume);
 #  - a second setup: A's output flipped (rx=180,tz=-10): the slot is on the
 #    bottom face, the volume is the box less the slot (analytic);
 #  - swarf info calls every output valid at voxel sizes that rounded badly
@@ -45,6 +46,12 @@ sim "$dir/b.ngc" --stock "vdb:$dir/a.vdb" $tool --out "$dir/a_b.vdb"
 ok "B on A's output runs" '[ $? -eq 0 ] && [ -s "$dir/a_b.vdb" ]'
 sim "$dir/ab.ngc" --stock $box $tool --out "$dir/ab.vdb"
 ok "A then B = one run of A + B (1e-6 mm)" '$check same "$dir/a_b.vdb" "$dir/ab.vdb" 1e-6'
+# another tool's .vdb: the first float level set (here "part", after a fog
+# volume) is the stock
+$check other-vdb "$dir/a.vdb" "$dir/other.vdb"
+sim "$dir/b.ngc" --stock "vdb:$dir/other.vdb" $tool --out "$dir/o_b.vdb"
+ok "B on another tool's .vdb (level set \"part\" after a fog volume) = A + B" \
+  '[ -s "$dir/o_b.vdb" ] && $check same "$dir/o_b.vdb" "$dir/ab.vdb" 1e-6'
 
 # second setup: flipped about X and lowered 10: the slot (y 7..13, z -2..0)
 # is now at y -13..-7, z -10..-8; a face pass of B at the new top cuts 1 mm

@@ -169,6 +169,19 @@ void block_pairs(const Tri &t, uint32_t k, double w, std::vector<Pair> &out) {
           out.push_back({x, y, z, k});
 }
 
+/// floor and ceil of a double within the int range (index coordinates are
+/// below 2^29), without the library call (generic x86-64 has no rounding
+/// instruction; these are most of the band's inner loop otherwise).
+inline int ifloor(double v) {
+  const int i = int(v);
+  return i - (v < double(i));
+}
+
+inline int iceil(double v) {
+  const int i = int(v);
+  return i + (v > double(i));
+}
+
 /// Squared distance from p to the box [lo, hi].
 double box_dist2(const double lo[3], const double hi[3], const Vec3d &p) {
   double d2 = 0.0;
@@ -182,8 +195,8 @@ double box_dist2(const double lo[3], const double hi[3], const Vec3d &p) {
 /// The voxel range (block-local, inclusive) of t's bounding box grown by g.
 inline bool local_range(const Tri &t, const Coord &o, double g, int lo[3], int hi[3]) {
   for (int a = 0; a < 3; a++) {
-    lo[a] = std::max(0, int(std::ceil(t.lo[a] - g)) - o[a]);
-    hi[a] = std::min(7, int(std::floor(t.hi[a] + g)) - o[a]);
+    lo[a] = std::max(0, iceil(t.lo[a] - g) - o[a]);
+    hi[a] = std::min(7, ifloor(t.hi[a] + g) - o[a]);
     if (lo[a] > hi[a]) return false;
   }
   return true;
@@ -215,8 +228,8 @@ void block_distances(const Coord &o, const Pair *p, size_t n, const std::vector<
           const double r2 = g2 - ex * ex - ey * ey;
           if (!(r2 > 0.0)) continue;
           const double r = std::sqrt(r2);
-          const int zlo = std::max(lo[2], int(std::ceil(t.lo[2] - r)) - o[2]);
-          const int zhi = std::min(hi[2], int(std::floor(t.hi[2] + r)) - o[2]);
+          const int zlo = std::max(lo[2], iceil(t.lo[2] - r) - o[2]);
+          const int zhi = std::min(hi[2], ifloor(t.hi[2] + r) - o[2]);
           for (int z = zlo; z <= zhi; z++) {
             const openvdb::Index v = openvdb::Index((x << 6) | (y << 3) | z);
             const Vec3d pt(o[0] + x, o[1] + y, o[2] + z);

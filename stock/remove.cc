@@ -45,6 +45,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <memory>
 
@@ -545,145 +546,51 @@ inline double gouge_depth(const swarf_stock &design, double dq, double r, double
   return -dq + vouched_radius(r, voxel);
 }
 
-/// Pass 4, measured: the block's cuts in their order, each applied top down
-/// (block centre, octants, cubes, voxels; as visit_flat's cut by cut, with
-/// the bounds of visit_cube): each step of a voxel is stored as the grid
-/// would (float, clamped), and the cut that raises a voxel is credited with
-/// the inside fraction it removed and checked for a gouge (material before
-/// it, inside it, into the design). Every voxel sees the same steps in the
-/// same order as if every cut were evaluated at every voxel: the bounds pass
-/// over only voxels a cut cannot raise. (The plain visit's cuts sorted by
-/// depth would give the same grid but credit the wrong cuts.)
-struct Measured {
-  const Pass &p;
-  RemoveScratch &w;
-  const Block &b;
-  GridProbe *design;
-  double m[Leaf::SIZE];  ///< stored value so far
-  double dq[Leaf::SIZE]; ///< design value at each voxel (NaN: not probed yet)
-  double removed = 0.0;  ///< the current cut's, voxels
-  uint32_t pair = 0;     ///< the current cut's pair
-
-  Measured(const Pass &pass, const Block &block, GridProbe *d, const float *data)
-      : p(pass), w(pass.s.scratch), b(block), design(d) {
-    for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
-      m[n] = data[n], dq[n] = std::numeric_limits<double>::quiet_NaN();
-  }
-  /// Voxel n goes from m[n] to the stored nv; d is the cut's -sdf there.
-  void step(openvdb::Index n, double d, float nv) {
-    const double v = m[n];
-    removed += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
-    if (design && v < 0.0 && d > 0.0) gouge(n, v, d);
-    m[n] = nv;
-  }
-  void raise(openvdb::Index n, double d) {
-    const float nv = stored(d, p.bgf);
-    if (nv > m[n]) step(n, d, nv);
-  }
-  void clear(openvdb::Index n) { step(n, std::numeric_limits<double>::infinity(), p.bgf); }
-  void gouge(openvdb::Index n, double v, double d) {
+/// Pass 4, measured: the block's final values by the plain visit (the
+/// maximum does not depend on the cuts' order), then each cut credited, in
+/// program order, with the inside fraction it removed, and checked for a
+/// gouge (material before it, inside it, into the design). Only the steps a
+/// voxel takes between inside fractions 1 and 0 count (|value| < half a
+/// voxel), so each voxel whose fraction changed is replayed cut by cut from
+/// its old value until it is empty (every later step credits nothing and
+/// finds no material to gouge); the others not at all. Steps are stored as
+/// the grid would (float, clamped), so every credit is the one a cut by cut
+/// evaluation of every voxel gives.
+void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
+  RemoveScratch &w = p.s.scratch;
+  const float *data = leaf.buffer().data();
+  float old[Leaf::SIZE];
+  std::memcpy(old, data, sizeof old);
+  visit_leaf(p, leaf, b);
+  const double half = 0.5 * p.voxel, bg = p.bgf;
+  const swarf_stock *ds = p.measure->design;
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+    const float o = old[n], fin = data[n];
+    if (!(fin > o) || !(o < half) || !(fin > -half)) continue; // no fraction changed
     const Coord l = Leaf::offsetToLocalCoord(n);
     const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
-    const swarf_stock &ds = *p.measure->design;
-    if (std::isnan(dq[n])) {
-      double at = design->at(q);
-      // Beyond the band of a design read from a mesh: its exact depth.
-      if (ds.surface && at <= -double(ds.background) * (1.0 - 1e-6)) at = -surface_distance(ds, q);
-      dq[n] = at;
-    }
-    const double depth = gouge_depth(ds, dq[n], std::min(d, -v), p.voxel);
-    if (depth > p.measure->tolerance && depth > w.gouge[pair])
-      w.gouge[pair] = depth, w.gouge_at[pair] = q;
-  }
-
-  /// The 2^3 cube at (x0, y0, z0) and one cut: bounded by its sdf at the
-  /// cube's centre; all cleared when the cube lies deeper than the band.
-  void cube(const swarf_stock_cut &cut, int x0, int y0, int z0) {
-    const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
-    const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
-    const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-    const bool deep = dcube + rv <= -bg - kMargin;
-    for (int x = x0; x < x0 + 2; x++)
-      for (int y = y0; y < y0 + 2; y++)
-        for (int z = z0; z < z0 + 2; z++) {
-          const openvdb::Index n = (x << 6) | (y << 3) | z;
-          if (!may_raise(m[n], bg, dcube, rv)) continue;
-          if (deep) {
-            clear(n);
-            continue;
-          }
-          const Vec3d q = block_point(p, b.origin, x, y, z);
-          raise(n, -cut.sdf(cut.ctx, q.x(), q.y(), q.z()));
+    double v = o, dq = std::numeric_limits<double>::quiet_NaN();
+    for (uint32_t i = b.begin; i < b.begin + b.count && v < half; i++) {
+      if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n])) continue;
+      const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+      const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+      const float nv = stored(d, p.bgf);
+      if (!(nv > v)) continue;
+      w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+      if (design && v < 0.0 && d > 0.0) {
+        if (std::isnan(dq)) {
+          dq = design->at(q);
+          // Beyond the band of a design read from a mesh: its exact depth.
+          if (ds->surface && dq <= -double(ds->background) * (1.0 - 1e-6))
+            dq = -surface_distance(*ds, q);
         }
-  }
-  /// The 4^3 octant at (x0, y0, z0) and one cut (its sdf at the block
-  /// centre: dc): passed over if no voxel may be raised, else bounded by the
-  /// sdf at its centre, cube by cube.
-  void octant(const swarf_stock_cut &cut, double dc, int x0, int y0, int z0) {
-    const double bg = p.bgf, v = p.voxel,
-                 rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
-    bool any = false;
-    for (int x = x0; x < x0 + 4 && !any; x++)
-      for (int y = y0; y < y0 + 4 && !any; y++)
-        for (int z = z0; z < z0 + 4 && !any; z++) {
-          const openvdb::Index n = (x << 6) | (y << 3) | z;
-          any = may_raise(m[n], bg, dc, p.radius[n]);
-        }
-    if (!any) return;
-    const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
-    const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-    const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
-    const bool deep = doct + rcube + rv <= -bg - kMargin;
-    for (int sx = x0; sx < x0 + 4; sx += 2)
-      for (int sy = y0; sy < y0 + 4; sy += 2)
-        for (int sz = z0; sz < z0 + 4; sz += 2) {
-          bool need = false;
-          for (int x = sx; x < sx + 2; x++)
-            for (int y = sy; y < sy + 2; y++)
-              for (int z = sz; z < sz + 2; z++) {
-                const openvdb::Index n = (x << 6) | (y << 3) | z;
-                if (!may_raise(m[n], bg, doct, p.roct[n])) continue;
-                if (deep)
-                  clear(n);
-                else
-                  need = true;
-              }
-          if (need) cube(cut, sx, sy, sz);
-        }
-  }
-  /// One cut without the hierarchy (SWARF_REMOVE_FLAT=1).
-  void flat(const swarf_stock_cut &cut, double dc) {
-    for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-      if (!may_raise(m[n], p.bgf, dc, p.radius[n])) continue;
-      const Coord l = Leaf::offsetToLocalCoord(n);
-      const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
-      raise(n, -cut.sdf(cut.ctx, q.x(), q.y(), q.z()));
+        const double depth = gouge_depth(*ds, dq, std::min(d, -v), p.voxel);
+        if (depth > p.measure->tolerance && depth > w.gouge[i])
+          w.gouge[i] = depth, w.gouge_at[i] = q;
+      }
+      v = nv;
     }
   }
-};
-
-void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
-  const float bgf = p.bgf;
-  const float *data = leaf.buffer().data();
-  std::unique_ptr<Measured> mv(new Measured(p, b, design, data)); // 8 kB: off the stack
-  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-    const swarf_stock_cut &cut = p.cuts[p.s.scratch.pairs[i].cut];
-    mv->pair = i, mv->removed = 0.0;
-    if (p.flat)
-      mv->flat(cut, p.s.scratch.centre_sdf[i]);
-    else
-      for (int x = 0; x < 8; x += 4)
-        for (int y = 0; y < 8; y += 4)
-          for (int z = 0; z < 8; z += 4)
-            mv->octant(cut, p.s.scratch.centre_sdf[i], x, y, z);
-    mv->w.removed[i] += mv->removed;
-  }
-  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-    const float old = data[n];
-    if (!(old < bgf) || !(mv->m[n] > old)) continue;
-    put_value(leaf, n, float(mv->m[n]), bgf);
-  }
-  collapse_if_uniform(leaf, b);
 }
 
 /// Measured: the pairs' findings added up per cut, in pair order (deterministic).

@@ -382,6 +382,13 @@ static int check_size(const swarf_sim_config *cfg) {
   bytes = voxels * BYTES_PER_VOXEL;
   budget = memory_budget();
   if (bytes <= budget) return 0;
+  if (cfg->voxel * sqrt(bytes / budget) * 1.05 > smallest) { /* no voxel fits: the stock's fault */
+    snprintf(what, sizeof what,
+             "--stock: %g x %g x %g mm: its surface needs more than the %.3g GB this machine can "
+             "give at any voxel up to its smallest side (%g mm); give a smaller stock",
+             d[0], d[1], d[2], budget / 1e9, smallest);
+    return usage_error(what);
+  }
   snprintf(
       what, sizeof what,
       "--voxel %g: the stock's surface alone would need ~%.3g GB (%.3g M voxels at %.0f bytes), "

@@ -199,6 +199,8 @@ static double ramp_depth(const ramp_point *rp, double *ubest) {
   n += ramp_cross(rp, rp->zp - rp->hh, -rp->k, cand + n);
   n += ramp_cross(rp, -rp->zp - rp->hh, rp->k, cand + n);
   for (int i = 0; i < n; i++) {
+    /* A candidate beyond an end is that end, already tried (and kept on a tie). */
+    if (i >= 2 && !(cand[i] > 0.0 && cand[i] < rp->U)) continue;
     double u = clamp(cand[i], 0.0, rp->U), m = ramp_m(rp, u);
     if (m < best) {
       best = m;

@@ -45,6 +45,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <memory>
 
@@ -74,6 +75,7 @@ struct Pass {
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
   bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
   bool plain = false;               ///< SWARF_REMOVE_PLAIN=1: no range functions (tests)
+  const swarf_stock_support_fn *support = nullptr; ///< per cut, may be null (stock.h)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -300,6 +302,7 @@ struct BlockValues {
   double m[Leaf::SIZE]; ///< max(old, -sdf) over the cuts applied so far
   double omin[8];       ///< per 4^3 octant, index (x >> 2) << 2 | (y >> 2) << 1 | z >> 2
   double cmin[64];      ///< per 2^3 cube, index (x >> 1) << 4 | (y >> 1) << 2 | z >> 1
+  double mlo[64];       ///< per 2^3 cube: min of m over its voxels with m < bg (+inf if none)
 };
 
 /// Whether voxel n (value m, at distance r from a point where the cut's sdf is
@@ -322,15 +325,17 @@ inline double summary(double m, double bg, double r) {
 
 /// Recompute cmin for the cube at (x0, y0, z0) (even coordinates).
 inline void cube_summary(const Pass &p, BlockValues &bv, int x0, int y0, int z0) {
-  double lo = std::numeric_limits<double>::infinity();
+  double lo = std::numeric_limits<double>::infinity(), mlo = lo;
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
-        const double s = summary(bv.m[n], p.bgf, p.roct[n]);
+        const double s = summary(bv.m[n], p.bgf, p.roct[n]), m = summary(bv.m[n], p.bgf, 0.0);
         lo = s < lo ? s : lo;
+        mlo = m < mlo ? m : mlo;
       }
   bv.cmin[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = lo;
+  bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = mlo;
 }
 
 /// All the summaries of a block, octant by octant and cube by cube.
@@ -343,7 +348,7 @@ void leaf_summaries(const Pass &p, BlockValues &bv) {
         for (int sx = x0; sx < x0 + 4; sx += 2)
           for (int sy = y0; sy < y0 + 4; sy += 2)
             for (int sz = z0; sz < z0 + 4; sz += 2) {
-              double clo = inf;
+              double clo = inf, mlo = inf;
               for (int x = sx; x < sx + 2; x++)
                 for (int y = sy; y < sy + 2; y++)
                   for (int z = sz; z < sz + 2; z++) {
@@ -351,19 +356,25 @@ void leaf_summaries(const Pass &p, BlockValues &bv) {
                     const double m = bv.m[n];
                     const double c = m < bg ? m - p.roct[n] : inf;
                     const double o = m < bg ? m - double(p.radius[n]) : inf;
+                    const double l = m < bg ? m : inf;
                     clo = c < clo ? c : clo;
+                    mlo = l < mlo ? l : mlo;
                     olo = o < olo ? o : olo;
                   }
               bv.cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] = clo;
+              bv.mlo[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] = mlo;
             }
         bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = olo;
       }
 }
 
-/// A cut and its sdf (mm) at the centre of the octant or cube being visited.
+/// A cut and its sdf (mm) at the centre of the octant or cube being visited,
+/// with, at a cube's centre, the supporting plane's normal when it has one.
 struct CutAt {
   double d;
   const swarf_stock_cut *cut;
+  bool plane = false; ///< sdf(q) >= d + g.(q - centre) for every q
+  double g[3];
 };
 
 /// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut whose
@@ -374,19 +385,30 @@ void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, i
                 BlockValues &bv) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
   const bool clear = c.d + rv <= -bg - kMargin;
+  // The bound at each voxel: d - rv, or with a plane d + g.(voxel - centre)
+  // (>= d - rv), the voxel's offset from the centre being +-voxel/2 per axis.
+  const double h = 0.5 * p.voxel;
+  const double gx = c.plane ? h * c.g[0] : 0.0, gy = c.plane ? h * c.g[1] : 0.0,
+               gz = c.plane ? h * c.g[2] : 0.0, r = c.plane ? 0.0 : rv;
+  double mlo = std::numeric_limits<double>::infinity();
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         double &m = bv.m[n];
-        if (!may_raise(m, bg, c.d, rv)) continue;
-        if (clear) {
-          m = bg;
-          continue;
+        const double bound = c.d + (x > x0 ? gx : -gx) + (y > y0 ? gy : -gy) + (z > z0 ? gz : -gz);
+        if (may_raise(m, bg, bound, r)) {
+          if (clear) {
+            m = bg;
+          } else {
+            const double d = -voxel_sdf(p, *c.cut, block_point(p, b.origin, x, y, z), m);
+            if (d > m) m = d;
+          }
         }
-        const double d = -voxel_sdf(p, *c.cut, block_point(p, b.origin, x, y, z), m);
-        if (d > m) m = d;
+        const double l = summary(m, bg, 0.0);
+        mlo = l < mlo ? l : mlo;
       }
+  bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = mlo;
 }
 
 /// Pass 4 for the 2^3 cube at (x0, y0, z0) and the cuts of its octant (their
@@ -426,11 +448,21 @@ void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t n
       cube_summary(p, bv, x0, y0, z0);
       continue;
     }
-    cube[n++] = {cut_value(p, *o.cut, c, cube_lo, cube_hi), o.cut};
+    CutAt &k = cube[n++];
+    const swarf_stock_support_fn f = p.support ? p.support[o.cut - p.cuts] : nullptr;
+    k.cut = o.cut;
+    k.plane = f != nullptr && f(o.cut->ctx, c.x(), c.y(), c.z(), &k.d, k.g) == 1;
+    if (f == nullptr) k.d = cut_value(p, *o.cut, c, cube_lo, cube_hi);
   }
-  std::sort(cube, cube + n, [](const CutAt &a, const CutAt &b) { return a.d < b.d; });
-  for (uint32_t i = 0; i < n; i++)
+  std::sort(cube, cube + n, [](const CutAt &a, const CutAt &b) { // a NaN sdf first
+    return (std::isnan(a.d) ? -HUGE_VAL : a.d) < (std::isnan(b.d) ? -HUGE_VAL : b.d);
+  });
+  for (uint32_t i = 0; i < n; i++) {
+    // may_raise for the cube's lowest value: false, and false for the
+    // remaining (shallower) cuts too: none of them can raise a voxel
+    if (cube[i].d - rv + bv.mlo[ci] >= kMargin) break;
     visit_cube(p, b, cube[i], x0, y0, z0, bv);
+  }
 }
 
 /// Pass 4 for the 4^3 octant at (x0, y0, z0) and the block's cuts: each cut
@@ -456,7 +488,7 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     if (w.centre_sdf[i] + omin >= kMargin) continue; // a NaN sdf: visited
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    oct[n++] = {cut_value(p, cut, c, oct_lo, oct_hi), &cut};
+    oct[n++] = {cut_value(p, cut, c, oct_lo, oct_hi), &cut, false, {}};
   }
   if (n == 0) return;
   for (int sx = x0; sx < x0 + 4; sx += 2)
@@ -552,172 +584,51 @@ inline double gouge_depth(const swarf_stock &design, double dq, double r, double
   return -dq + vouched_radius(r, voxel);
 }
 
-/// Pass 4, measured: the block's cuts in their order, each applied top down
-/// (block centre, octants, cubes, voxels; as visit_flat's cut by cut, with
-/// the bounds of visit_cube): each step of a voxel is stored as the grid
-/// would (float, clamped), and the cut that raises a voxel is credited with
-/// the inside fraction it removed and checked for a gouge (material before
-/// it, inside it, into the design). Every voxel sees the same steps in the
-/// same order as if every cut were evaluated at every voxel: the bounds pass
-/// over only voxels a cut cannot raise. (The plain visit's cuts sorted by
-/// depth would give the same grid but credit the wrong cuts.)
-struct Measured {
-  const Pass &p;
-  RemoveScratch &w;
-  const Block &b;
-  GridProbe *design;
-  double m[Leaf::SIZE];  ///< stored value so far
-  double dq[Leaf::SIZE]; ///< design value at each voxel (NaN: not probed yet)
-  double removed = 0.0;  ///< the current cut's, voxels
-  uint32_t pair = 0;     ///< the current cut's pair
-  /// Summaries as BlockValues' (lower bounds, recomputed where voxels rise):
-  /// per cube min of m - roct and of m - radius, per octant the latter's min.
-  double cmin[64], cminr[64], omin[8];
-
-  Measured(const Pass &pass, const Block &block, GridProbe *d, const float *data)
-      : p(pass), w(pass.s.scratch), b(block), design(d) {
-    for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
-      m[n] = data[n], dq[n] = std::numeric_limits<double>::quiet_NaN();
-    for (int x0 = 0; x0 < 8; x0 += 2)
-      for (int y0 = 0; y0 < 8; y0 += 2)
-        for (int z0 = 0; z0 < 8; z0 += 2)
-          cube_sums(x0, y0, z0);
-    for (int o = 0; o < 8; o++)
-      octant_sum(o & 4, (o & 2) << 1, (o & 1) << 2);
-  }
-  void cube_sums(int x0, int y0, int z0) {
-    double lo = std::numeric_limits<double>::infinity(), lor = lo;
-    for (int x = x0; x < x0 + 2; x++)
-      for (int y = y0; y < y0 + 2; y++)
-        for (int z = z0; z < z0 + 2; z++) {
-          const openvdb::Index n = (x << 6) | (y << 3) | z;
-          lo = std::min(lo, summary(m[n], p.bgf, p.roct[n]));
-          lor = std::min(lor, summary(m[n], p.bgf, p.radius[n]));
-        }
-    const int c = ((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1);
-    cmin[c] = lo, cminr[c] = lor;
-  }
-  void octant_sum(int x0, int y0, int z0) {
-    double lo = std::numeric_limits<double>::infinity();
-    for (int sx = x0; sx < x0 + 4; sx += 2)
-      for (int sy = y0; sy < y0 + 4; sy += 2)
-        for (int sz = z0; sz < z0 + 4; sz += 2)
-          lo = std::min(lo, cminr[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)]);
-    omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = lo;
-  }
-  /// Voxel n goes from m[n] to the stored nv; d is the cut's -sdf there.
-  void step(openvdb::Index n, double d, float nv) {
-    const double v = m[n];
-    removed += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
-    if (design && v < 0.0 && d > 0.0) gouge(n, v, d);
-    m[n] = nv;
-  }
-  void raise(openvdb::Index n, double d) {
-    const float nv = stored(d, p.bgf);
-    if (nv > m[n]) step(n, d, nv);
-  }
-  void clear(openvdb::Index n) { step(n, std::numeric_limits<double>::infinity(), p.bgf); }
-  void gouge(openvdb::Index n, double v, double d) {
+/// Pass 4, measured: the block's final values by the plain visit (the
+/// maximum does not depend on the cuts' order), then each cut credited, in
+/// program order, with the inside fraction it removed, and checked for a
+/// gouge (material before it, inside it, into the design). Only the steps a
+/// voxel takes between inside fractions 1 and 0 count (|value| < half a
+/// voxel), so each voxel whose fraction changed is replayed cut by cut from
+/// its old value until it is empty (every later step credits nothing and
+/// finds no material to gouge); the others not at all. Steps are stored as
+/// the grid would (float, clamped), so every credit is the one a cut by cut
+/// evaluation of every voxel gives.
+void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
+  RemoveScratch &w = p.s.scratch;
+  const float *data = leaf.buffer().data();
+  float old[Leaf::SIZE];
+  std::memcpy(old, data, sizeof old);
+  visit_leaf(p, leaf, b);
+  const double half = 0.5 * p.voxel, bg = p.bgf;
+  const swarf_stock *ds = p.measure->design;
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+    const float o = old[n], fin = data[n];
+    if (!(fin > o) || !(o < half) || !(fin > -half)) continue; // no fraction changed
     const Coord l = Leaf::offsetToLocalCoord(n);
     const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
-    const swarf_stock &ds = *p.measure->design;
-    if (std::isnan(dq[n])) {
-      double at = design->at(q);
-      // Beyond the band of a design read from a mesh: its exact depth.
-      if (ds.surface && at <= -double(ds.background) * (1.0 - 1e-6)) at = -surface_distance(ds, q);
-      dq[n] = at;
-    }
-    const double depth = gouge_depth(ds, dq[n], std::min(d, -v), p.voxel);
-    if (depth > p.measure->tolerance && depth > w.gouge[pair])
-      w.gouge[pair] = depth, w.gouge_at[pair] = q;
-  }
-
-  /// The 2^3 cube at (x0, y0, z0) and one cut: bounded by its sdf at the
-  /// cube's centre; all cleared when the cube lies deeper than the band.
-  void cube(const swarf_stock_cut &cut, int x0, int y0, int z0) {
-    const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
-    const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
-    const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-    const bool deep = dcube + rv <= -bg - kMargin;
-    for (int x = x0; x < x0 + 2; x++)
-      for (int y = y0; y < y0 + 2; y++)
-        for (int z = z0; z < z0 + 2; z++) {
-          const openvdb::Index n = (x << 6) | (y << 3) | z;
-          if (!may_raise(m[n], bg, dcube, rv)) continue;
-          if (deep) {
-            clear(n);
-            continue;
-          }
-          const Vec3d q = block_point(p, b.origin, x, y, z);
-          raise(n, -cut.sdf(cut.ctx, q.x(), q.y(), q.z()));
+    double v = o, dq = std::numeric_limits<double>::quiet_NaN();
+    for (uint32_t i = b.begin; i < b.begin + b.count && v < half; i++) {
+      if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n])) continue;
+      const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+      const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+      const float nv = stored(d, p.bgf);
+      if (!(nv > v)) continue;
+      w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+      if (design && v < 0.0 && d > 0.0) {
+        if (std::isnan(dq)) {
+          dq = design->at(q);
+          // Beyond the band of a design read from a mesh: its exact depth.
+          if (ds->surface && dq <= -double(ds->background) * (1.0 - 1e-6))
+            dq = -surface_distance(*ds, q);
         }
-  }
-  /// The 4^3 octant at (x0, y0, z0) and one cut (its sdf at the block
-  /// centre: dc): passed over if no voxel may be raised, else bounded by the
-  /// sdf at its centre, cube by cube.
-  void octant(const swarf_stock_cut &cut, double dc, int x0, int y0, int z0) {
-    const double bg = p.bgf, v = p.voxel,
-                 rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
-    // no voxel may be raised (may_raise's test, taken at once: as the plain visit)
-    if (dc + omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] >= kMargin) return;
-    const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
-    const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-    const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
-    const bool deep = doct + rcube + rv <= -bg - kMargin;
-    bool changed = false;
-    for (int sx = x0; sx < x0 + 4; sx += 2)
-      for (int sy = y0; sy < y0 + 4; sy += 2)
-        for (int sz = z0; sz < z0 + 4; sz += 2) {
-          if (doct + cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] >= kMargin) continue;
-          bool need = false, cleared = false;
-          for (int x = sx; x < sx + 2; x++)
-            for (int y = sy; y < sy + 2; y++)
-              for (int z = sz; z < sz + 2; z++) {
-                const openvdb::Index n = (x << 6) | (y << 3) | z;
-                if (!may_raise(m[n], bg, doct, p.roct[n])) continue;
-                if (deep)
-                  clear(n), cleared = true;
-                else
-                  need = true;
-              }
-          if (need) cube(cut, sx, sy, sz);
-          if (need || cleared) cube_sums(sx, sy, sz), changed = true;
-        }
-    if (changed) octant_sum(x0, y0, z0);
-  }
-  /// One cut without the hierarchy (SWARF_REMOVE_FLAT=1).
-  void flat(const swarf_stock_cut &cut, double dc) {
-    for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-      if (!may_raise(m[n], p.bgf, dc, p.radius[n])) continue;
-      const Coord l = Leaf::offsetToLocalCoord(n);
-      const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
-      raise(n, -cut.sdf(cut.ctx, q.x(), q.y(), q.z()));
+        const double depth = gouge_depth(*ds, dq, std::min(d, -v), p.voxel);
+        if (depth > p.measure->tolerance && depth > w.gouge[i])
+          w.gouge[i] = depth, w.gouge_at[i] = q;
+      }
+      v = nv;
     }
   }
-};
-
-void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
-  const float bgf = p.bgf;
-  const float *data = leaf.buffer().data();
-  std::unique_ptr<Measured> mv(new Measured(p, b, design, data)); // 8 kB: off the stack
-  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-    const swarf_stock_cut &cut = p.cuts[p.s.scratch.pairs[i].cut];
-    mv->pair = i, mv->removed = 0.0;
-    if (p.flat)
-      mv->flat(cut, p.s.scratch.centre_sdf[i]);
-    else
-      for (int x = 0; x < 8; x += 4)
-        for (int y = 0; y < 8; y += 4)
-          for (int z = 0; z < 8; z += 4)
-            mv->octant(cut, p.s.scratch.centre_sdf[i], x, y, z);
-    mv->w.removed[i] += mv->removed;
-  }
-  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-    const float old = data[n];
-    if (!(old < bgf) || !(mv->m[n] > old)) continue;
-    put_value(leaf, n, float(mv->m[n]), bgf);
-  }
-  collapse_if_uniform(leaf, b);
 }
 
 /// Measured: the pairs' findings added up per cut, in pair order (deterministic).
@@ -953,8 +864,8 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
   return best;
 }
 
-void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
-                 const Measure *measure) {
+void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, const Measure *measure,
+                 const swarf_stock_support_fn *support) {
   static const bool plain = [] {
     const char *e = std::getenv("SWARF_REMOVE_PLAIN");
     return e != nullptr && e[0] == '1';
@@ -963,7 +874,7 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
     const char *e = std::getenv("SWARF_REMOVE_FLAT");
     return e != nullptr && e[0] == '1';
   }();
-  Pass p{s, cuts, s.voxel, s.background, 0.0, {}, {}, measure, flat, plain};
+  Pass p{s, cuts, s.voxel, s.background, 0.0, {}, {}, measure, flat, plain, support};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);
@@ -1103,6 +1014,21 @@ extern "C" swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stoc
     if (*depth > 0.0 && where != nullptr)
       for (int k = 0; k < 3; k++)
         where[k] = q[k];
+  });
+}
+
+extern "C" swarf_status swarf_stock_remove_batch_support(swarf_stock *s,
+                                                         const swarf_stock_cut *cuts,
+                                                         const swarf_stock_support_fn *support,
+                                                         size_t ncuts, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
+    if (ncuts == 0) return;
+    if (cuts == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts is NULL");
+    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
+    for (size_t i = 0; i < ncuts; i++)
+      check_cut(cuts[i], i);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, nullptr, support); });
   });
 }
 

@@ -10,7 +10,7 @@
 #    bottom face, the volume is the box less the slot (analytic);
 #  - swarf info calls every output valid at voxel sizes that rounded badly
 #    in float (0.3 mm);
-#  - a design 1 mm off (beyond its 3-voxel band): the PLY's deviations and
+#  - a design 1 mm off (beyond its 2-voxel band): the PLY's deviations and
 #    swarf compare measure it exactly; an unknown mesh extension is refused;
 #  - bad input: open, non-manifold and empty STLs, a .vdb without a level
 #    set, a bad transform: exit 2, a message, nothing written.
@@ -75,7 +75,7 @@ ok "swarf info: an STL stock's 0.3 mm output is valid" '"$swarf" info "$dir/v.vd
 sim "$dir/b.ngc" --stock "vdb:$dir/a.vdb" $tool --voxel 0.3 --out "$dir/v.vdb"
 ok "swarf info: a resampled stock's 0.3 mm output is valid" '"$swarf" info "$dir/v.vdb" | grep -q "level_set valid"'
 
-# a design 1 mm below the top (3 band widths): the PLY's deviation there is
+# a design 1 mm below the top (beyond the 2-voxel band): the PLY's deviation there is
 # 1.0 (measured on the design's triangles beyond its band); swarf compare
 # gives the same largest excess and deepest gouge (the slot is 1 mm deep in
 # it); a mesh of unknown extension is refused before the run

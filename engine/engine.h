@@ -359,6 +359,14 @@ SWARF_API void swarf_sweep_bounds(const swarf_sweep *s, double lo[3], double hi[
  * not NULL it receives the time of the nearest cutter instance. */
 SWARF_API double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 
+/* The sdf at p (*d) and, when it returns 1, a supporting plane there: a unit
+ * vector g with sdf(q) >= *d + g.(q - p) for every q. Given where the volume
+ * is convex (a straight move of a flat, ball or bull end mill: the fast
+ * cutters) and p lies outside it: g is then the gradient, the direction from
+ * the nearest point of the volume (on the nearest instance) to p. Otherwise
+ * returns 0 and leaves g alone. For the removal's per-voxel bounds. */
+SWARF_API int swarf_sweep_support(const swarf_sweep *s, const double p[3], double *d, double g[3]);
+
 /* The characteristic curve of the sweep at time alpha in [0, 1]: the cutter
  * at the pose of the motion, moving with its velocity d/dalpha (for the xyz
  * machine U = I, omega = 0 and v = dt/dalpha). The union over alpha of these

@@ -322,12 +322,14 @@ typedef struct {
 } swarf_sweep_arc;
 
 /* HELIX: t(alpha) = c + radius (cos(angle alpha) e1 + sin(angle alpha) e2)
- * + alpha rise axis; n samples `step` mm apart along the path of length len. */
+ * + alpha rise axis; n samples `step` mm apart along the path of length len.
+ * A helix of more than two turns about a vertical axis is searched turn by
+ * turn (sweep_sampled.c), tn samples a turn (0: not turn by turn). */
 typedef struct {
   double c[3], e1[3], e2[3];
   double radius, angle, rise;
   double step, len;
-  int n;
+  int n, tn;
 } swarf_sweep_helix;
 
 /* RIGID: bounds lo, hi of the volume; n time steps; v, w bounds of |v|,

@@ -10,7 +10,8 @@
  *   range; a full circle whose radius is at most the core radius is a solid
  *   cylinder and exact everywhere.
  * helix: any other helix (rise != 0, or a horizontal axis as for G18/G19):
- *   sampling and certified refinement, in sweep_sampled.c.
+ *   sampling and certified refinement, in sweep_sampled.c; turn by turn
+ *   when it makes more than two turns about a vertical axis.
  * The per-method data (engine_private.h) is set by swarf_sweep_helix_init.
  */
 #include <math.h>
@@ -42,7 +43,8 @@ static void arc_init(swarf_sweep *s, const double e1[3], const double e2[3]) {
 /* Sample spacing along the path, mm: a fraction of the cutter, finer on tight
  * helices (whose curvature makes g non-convex over shorter spans). */
 static double helix_step(const swarf_cutter *c, double radius) {
-  double d = 0.125 * (c->fast ? c->diameter : fmin(c->diameter, c->length - c->zmin)), bend = fmax(0.25 * radius, 0.02 * c->diameter);
+  double d = 0.125 * (c->fast ? c->diameter : fmin(c->diameter, c->length - c->zmin)),
+         bend = fmax(0.25 * radius, 0.02 * c->diameter);
   d = fmin(d, bend);
   return fmin(d, 0.5);
 }
@@ -62,6 +64,12 @@ static void helix_frame_init(swarf_sweep *s, const double e1[3], const double e2
   x->angle = m->angle;
   x->rise = m->rise;
   n = ceil(len / helix_step(s->cutter, m->radius));
+  x->tn = 0;
+  if (m->axis[0] == 0.0 && m->axis[1] == 0.0 && m->angle > 2.0 * two_pi) {
+    /* turn by turn (sweep_sampled.c): the samples of one turn */
+    double tn = ceil(n * two_pi / m->angle);
+    x->tn = tn < 2.0 ? 2 : tn > 1e6 ? 1000000 : (int)tn;
+  }
   n = n < 2.0 ? 2.0 : n > 1e6 ? 1e6 : n;
   x->n = (int)n;
   x->step = len / n;
@@ -75,7 +83,8 @@ void swarf_sweep_helix_init(swarf_sweep *s) {
     swarf_sweep_line_init(s, m->p0, m->p1);
     return;
   }
-  for (int k = 0; k < 3; k++) e1[k] = (m->p0[k] - m->center[k]) / r;
+  for (int k = 0; k < 3; k++)
+    e1[k] = (m->p0[k] - m->center[k]) / r;
   e2[0] = m->axis[1] * e1[2] - m->axis[2] * e1[1];
   e2[1] = m->axis[2] * e1[0] - m->axis[0] * e1[2];
   e2[2] = m->axis[0] * e1[1] - m->axis[1] * e1[0];

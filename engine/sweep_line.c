@@ -16,7 +16,17 @@
 
 #include "engine_private.h"
 
-static double clamp(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
+static double clamp(double x, double lo, double hi) {
+  return x < lo ? lo : x > hi ? hi : x;
+}
+
+/* fmin and fmax for numbers (no NaN reaches them): inline, where libm's are calls. */
+static double min2(double a, double b) {
+  return b < a ? b : a;
+}
+static double max2(double a, double b) {
+  return b > a ? b : a;
+}
 
 static void plunge_init(swarf_sweep *s, const double p0[3], const double p1[3]) {
   const swarf_cutter *c = s->cutter;
@@ -123,9 +133,9 @@ double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double
   double cand[3], best = INFINITY, ubest = 0.0, w;
   ramp_frame(s, p, &rp);
   w = swarf_sweep_cdata(s)->u.ramp.w;
-  cand[0] = rp.xi;                                    /* inside the height band */
-  cand[1] = (rp.xi + rp.k * (rp.zp - rp.hh)) * w;     /* above it */
-  cand[2] = (rp.xi + rp.k * (rp.zp + rp.hh)) * w;     /* below it */
+  cand[0] = rp.xi;                                /* inside the height band */
+  cand[1] = (rp.xi + rp.k * (rp.zp - rp.hh)) * w; /* above it */
+  cand[2] = (rp.xi + rp.k * (rp.zp + rp.hh)) * w; /* below it */
   for (int i = 0; i < 3; i++) {
     double u = clamp(cand[i], 0.0, rp.U), q = ball_q(&rp, u);
     if (q < best) {
@@ -143,12 +153,12 @@ static int ramp_inside(const ramp_point *rp) {
   double lo = 0.0, hi = rp->U, s2 = rp->a * rp->a - rp->eta * rp->eta, b0, b1;
   if (s2 < 0.0) return 0;
   s2 = sqrt(s2);
-  lo = fmax(lo, rp->xi - s2);
-  hi = fmin(hi, rp->xi + s2);
+  lo = max2(lo, rp->xi - s2);
+  hi = min2(hi, rp->xi + s2);
   b0 = (rp->zp - rp->hh) / rp->k;
   b1 = (rp->zp + rp->hh) / rp->k;
-  lo = fmax(lo, fmin(b0, b1));
-  hi = fmin(hi, fmax(b0, b1));
+  lo = max2(lo, min2(b0, b1));
+  hi = min2(hi, max2(b0, b1));
   return lo <= hi;
 }
 
@@ -189,6 +199,8 @@ static double ramp_depth(const ramp_point *rp, double *ubest) {
   n += ramp_cross(rp, rp->zp - rp->hh, -rp->k, cand + n);
   n += ramp_cross(rp, -rp->zp - rp->hh, rp->k, cand + n);
   for (int i = 0; i < n; i++) {
+    /* A candidate beyond an end is that end, already tried (and kept on a tie). */
+    if (i >= 2 && !(cand[i] > 0.0 && cand[i] < rp->U)) continue;
     double u = clamp(cand[i], 0.0, rp->U), m = ramp_m(rp, u);
     if (m < best) {
       best = m;

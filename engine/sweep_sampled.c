@@ -23,11 +23,13 @@
  */
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "engine_private.h"
 
-#define EPS 1e-9      /* certified accuracy, mm */
-#define CACHE 63      /* samples kept between the two steps (bit masks) */
+#define EPS 1e-9  /* certified accuracy, mm */
+#define CACHE 511 /* samples kept between the two steps (bit masks) */
+#define WORDS ((CACHE + 64) / 64)
 #define HEAP 96       /* intervals waiting in step 2 */
 #define MAX_DEPTH 40  /* splits of one sample interval */
 #define MAX_EVALS 600 /* evaluations of g per call */
@@ -41,11 +43,12 @@ typedef struct {
   const void *body_ctx;
   const double *p;
   double K, len, step;
+  double a0, a1; /* the times searched: samples a0 + i (a1 - a0) / n, i = 0 .. n */
   int n, evals;
   sample best;
   double best_slope;
   sample cache[CACHE + 1], split[CACHE];
-  uint64_t cached, has_split; /* bit i: cache[i], split[i] valid */
+  uint64_t cached[WORDS], has_split[WORDS]; /* bit i: cache[i], split[i] valid */
   span heap[HEAP];
   int nheap;
 } hctx;
@@ -76,11 +79,15 @@ static sample eval(hctx *h, double a) {
   return r;
 }
 
+static double time_of(const hctx *h, int i) {
+  return i == h->n ? h->a1 : h->a0 + (h->a1 - h->a0) * ((double)i / h->n);
+}
+
 static sample at(hctx *h, int i) {
-  if (h->n > CACHE) return eval(h, (double)i / h->n);
-  if (!(h->cached >> i & 1u)) {
-    h->cache[i] = eval(h, (double)i / h->n);
-    h->cached |= (uint64_t)1 << i;
+  if (h->n > CACHE) return eval(h, time_of(h, i));
+  if (!(h->cached[i >> 6] >> (i & 63) & 1u)) {
+    h->cache[i] = eval(h, time_of(h, i));
+    h->cached[i >> 6] |= (uint64_t)1 << (i & 63);
   }
   return h->cache[i];
 }
@@ -156,7 +163,7 @@ static void find(hctx *h) {
       sample m = refine(h, si, s1);
       if (n <= CACHE && m.a > si.a && m.a < s1.a) {
         h->split[i] = m;
-        h->has_split |= (uint64_t)1 << i;
+        h->has_split[i >> 6] |= (uint64_t)1 << (i & 63);
       }
     }
     i++;
@@ -171,7 +178,7 @@ static void queue_intervals(hctx *h) {
   sample si = at(h, 0);
   while ((i = next_candidate(h, i, EPS, &si)) < n) {
     sample s1 = at(h, i + 1);
-    if (n <= CACHE && (h->has_split >> i & 1u)) {
+    if (n <= CACHE && (h->has_split[i >> 6] >> (i & 63) & 1u)) {
       push(h, si, h->split[i], 1);
       push(h, h->split[i], s1, 1);
     } else {
@@ -206,6 +213,145 @@ static double cutter_body(const void *ctx, const double q[3], double grad[3]) {
   return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
 }
 
+/* Searches [a0, a1] with n samples (steps 1 and 2), keeping h->best. */
+static void search(hctx *h, double a0, double a1, int n) {
+  h->a0 = a0;
+  h->a1 = a1;
+  h->n = n;
+  h->step = h->len * (a1 - a0) / n;
+  h->evals = 0;
+  h->nheap = 0;
+  memset(h->cached, 0, sizeof h->cached);
+  memset(h->has_split, 0, sizeof h->has_split);
+  find(h);
+  certify(h);
+}
+
+/* ---- Turn by turn: a helix of many turns about a vertical axis ----------
+ *
+ * The body is of revolution about the vertical axis and convex, so its sdf
+ * at horizontal distance r and height z above the tip, f(r, z), grows with r
+ * and is convex in z. Every instance of the helix lies at horizontal
+ * distance >= r0 = |rho - radius| from p (rho: p's distance to the axis), so
+ * over turn k (tip heights Z_k) g >= W_k = min over Z_k of f(r0, pz - z):
+ * W_k, a convex function's minimum over consecutive windows, does not
+ * decrease away from the turn k0 that holds its minimiser (found by
+ * bisection on the slope at the turns' ends). Turn k0 is searched, then the
+ * turns outward on each side while their lower bound (the tangent lines at
+ * the window's ends) is below the best value: a turn costs what a one-turn
+ * helix costs, and only the few turns near p's height are searched. Past
+ * MAX_TURNS searched turns, a turn's bound stands for its minimum (the
+ * volume then errs on the large side, by less than the rise of a turn). */
+
+#define MAX_TURNS 48
+
+typedef struct {
+  double s, F, dF; /* a turn coordinate s = alpha * turns, f there and dF/ds */
+} tpoint;
+
+typedef struct {
+  hctx *h;
+  double r0, turns, dz; /* dz: tip rise per turn */
+  int nturn;            /* turns, the last one partial: ceil(turns) */
+} tctx;
+
+static tpoint tpoint_at(const tctx *t, double s) {
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(t->h->s)->u.helix;
+  const double z = t->h->p[2] - (x->c[2] + s * t->dz), q[3] = {t->r0, 0.0, z};
+  double g[3];
+  tpoint r = {s, 0.0, 0.0};
+  r.F = t->h->body(t->h->body_ctx, q, g);
+  r.dF = -g[2] * t->dz;
+  return r;
+}
+
+static double turn_end(const tctx *t, int k) {
+  return k >= t->nturn ? t->turns : (double)k;
+}
+
+/* The turn k0 whose window holds a minimiser of F. */
+static int lowest_turn(const tctx *t) {
+  int lo = 0, hi = t->nturn; /* dF < 0 at lo's end, >= 0 at hi's */
+  if (tpoint_at(t, 0.0).dF >= 0.0) return 0;
+  if (tpoint_at(t, t->turns).dF < 0.0) return t->nturn - 1;
+  while (hi - lo > 1) {
+    int mid = lo + (hi - lo) / 2;
+    if (tpoint_at(t, turn_end(t, mid)).dF < 0.0)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/* Lower bound of g over turn k from its ends' samples. */
+static double turn_bound(const tpoint *A, const tpoint *B) {
+  return swarf_semiconvex_bound(A->F, A->dF, B->F, B->dF, B->s - A->s, 0.0);
+}
+
+/* Turn k: searched while fewer than MAX_TURNS are, else its bound stands. */
+static void take_turn(tctx *t, int k, double lb, int *searched) {
+  hctx *h = t->h;
+  if (++*searched <= MAX_TURNS) {
+    const swarf_sweep_helix *x = &swarf_sweep_cdata(h->s)->u.helix;
+    search(h, turn_end(t, k) / t->turns, turn_end(t, k + 1) / t->turns, x->tn);
+  } else if (lb < h->best.g) {
+    h->best.g = lb;
+    h->best.a = 0.5 * (turn_end(t, k) + turn_end(t, k + 1)) / t->turns;
+  }
+}
+
+/* Turns k0 + dir, k0 + 2 dir, ... while their bounds are below the best. */
+static void outward(tctx *t, int k0, int dir, int *searched) {
+  int k = k0 + dir;
+  tpoint near = tpoint_at(t, turn_end(t, dir > 0 ? k : k + 1));
+  for (; k >= 0 && k < t->nturn; k += dir) {
+    tpoint far = tpoint_at(t, turn_end(t, dir > 0 ? k + 1 : k));
+    double lb = dir > 0 ? turn_bound(&near, &far) : turn_bound(&far, &near);
+    if (lb >= t->h->best.g - EPS) return;
+    take_turn(t, k, lb, searched);
+    near = far;
+  }
+}
+
+/* The instance of turn k at p's own phase (the nearest one horizontally):
+ * a good first best, so that the turn's samples far from it are skipped. */
+static void seed(tctx *t, int k) {
+  hctx *h = t->h;
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(h->s)->u.helix;
+  const double two_pi = 6.28318530717958647692;
+  double q[2] = {h->p[0] - x->c[0], h->p[1] - x->c[1]}, s;
+  double phase = atan2(q[0] * x->e2[0] + q[1] * x->e2[1], q[0] * x->e1[0] + q[1] * x->e1[1]);
+  if (phase < 0.0) phase += two_pi;
+  s = k + phase / two_pi;
+  if (s > t->turns) s = t->turns;
+  eval(h, s / t->turns);
+}
+
+static void by_turns(hctx *h) {
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(h->s)->u.helix;
+  const double *ax = h->s->motion->axis, two_pi = 6.28318530717958647692;
+  tctx t;
+  int k0, searched = 0;
+  double nturn;
+  t.h = h;
+  t.r0 = fabs(hypot(h->p[0] - x->c[0], h->p[1] - x->c[1]) - x->radius);
+  t.turns = x->angle / two_pi;
+  t.dz = x->rise * ax[2] / t.turns;
+  nturn = ceil(t.turns - 1e-9);
+  t.nturn = nturn < 1.0 ? 1 : nturn > 1e9 ? 1000000000 : (int)nturn;
+  k0 = lowest_turn(&t);
+  seed(&t, k0);
+  {
+    tpoint A = tpoint_at(&t, turn_end(&t, k0)), B = tpoint_at(&t, turn_end(&t, k0 + 1));
+    double lb = turn_bound(&A, &B);
+    if (lb >= h->best.g - EPS) return; /* nothing below the caller's upper bound */
+    take_turn(&t, k0, lb, &searched);
+  }
+  outward(&t, k0, 1, &searched);
+  outward(&t, k0, -1, &searched);
+}
+
 double swarf_sweep_helix_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
                                   const double p[3], double upper, double *alpha) {
   hctx h;
@@ -216,17 +362,14 @@ double swarf_sweep_helix_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, 
   h.p = p;
   h.K = x->radius * x->angle * x->angle;
   h.len = x->len;
-  h.step = x->step;
-  h.n = x->n;
-  h.evals = 0;
   h.best.a = 0.0;
   h.best.g = upper;
   h.best.dg = 0.0;
   h.best_slope = INFINITY;
-  h.nheap = 0;
-  h.cached = h.has_split = 0;
-  find(&h);
-  certify(&h);
+  if (x->tn > 0)
+    by_turns(&h);
+  else
+    search(&h, 0.0, 1.0, x->n);
   if (alpha != NULL) *alpha = h.best.a;
   return h.best.g;
 }

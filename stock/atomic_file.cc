@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -94,7 +95,7 @@ void sweep_stale(const char *path) {
     char *end = nullptr;
     const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
     if (pid <= 0 || *end != '\0' || pid == long(::getpid())) continue;
-    if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+    if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue; // alive, or not ours to judge
     ::unlink((folder + "/" + name).c_str());
   }
   ::closedir(d);
@@ -116,10 +117,15 @@ Pending open_pending(const char *path) {
   p.path = path;
   p.fd = ::open(folder_of(p.path).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
   if (p.fd >= 0) {
-    ::fchmod(p.fd, 0666 & ~[] { mode_t m = ::umask(0); ::umask(m); return m; }());
+    ::fchmod(
+        p.fd, 0666 & ~[] {
+          mode_t m = ::umask(0);
+          ::umask(m);
+          return m;
+        }());
     return p;
   }
-  p.named_tmp = temp_name(path);  // no O_TMPFILE here: a name, removed on signals
+  p.named_tmp = temp_name(path); // no O_TMPFILE here: a name, removed on signals
   p.slot = remember(p.named_tmp);
   p.fd = ::open(p.named_tmp.c_str(), O_CREAT | O_TRUNC | O_WRONLY | O_CLOEXEC | O_NOFOLLOW, 0666);
   if (p.fd < 0) {
@@ -143,7 +149,7 @@ void publish(Pending &p) {
     const std::string proc = "/proc/self/fd/" + std::to_string(p.fd);
     p.named_tmp = temp_name(p.path.c_str());
     p.slot = remember(p.named_tmp);
-    ::unlink(p.named_tmp.c_str());  // our own leftover, if any
+    ::unlink(p.named_tmp.c_str()); // our own leftover, if any
     if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, p.named_tmp.c_str(), AT_SYMLINK_FOLLOW) != 0) {
       const int err = errno;
       forget(p.slot);
@@ -159,8 +165,7 @@ void publish(Pending &p) {
   p.fd = -1;
 }
 
-void write_body(int fd, const std::string &shown,
-                const std::function<void(std::ostream &)> &body) {
+void write_body(int fd, const std::string &shown, const std::function<void(std::ostream &)> &body) {
   std::ofstream out;
   errno = 0;
   out.open("/proc/self/fd/" + std::to_string(fd), std::ios::binary | std::ios::trunc);
@@ -192,7 +197,7 @@ const char *refused_kind(mode_t m) {
   return nullptr;
 }
 
-}  // namespace
+} // namespace
 
 void write_atomic(const char *path, const std::function<void(std::ostream &)> &body) {
   check_path(path);
@@ -218,7 +223,7 @@ void write_atomic(const char *path, const std::function<void(std::ostream &)> &b
   }
 }
 
-}  // namespace swarf
+} // namespace swarf
 
 extern "C" void swarf_stock_outputs_begin(void) {
   swarf_stock_outputs_abort();
@@ -246,7 +251,28 @@ extern "C" swarf_status swarf_stock_outputs_commit(swarf_error *err) {
 }
 
 extern "C" void swarf_stock_outputs_abort(void) {
-  for (swarf::Pending &p : swarf::group) swarf::drop(p);
+  for (swarf::Pending &p : swarf::group)
+    swarf::drop(p);
   swarf::group.clear();
   swarf::group_open = false;
+}
+
+extern "C" swarf_status swarf_stock_output_write(const char *path, const void *data, size_t len,
+                                                 swarf_error *err) {
+  if (path == nullptr || (data == nullptr && len > 0))
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_stock_output_write: path or data is NULL");
+  try {
+    swarf::write_atomic(path, [&](std::ostream &os) {
+      os.write(static_cast<const char *>(data), std::streamsize(len));
+    });
+    return SWARF_OK;
+  } catch (const swarf::Error &e) {
+    return swarf_error_set(err, e.status, "%s", e.what());
+  } catch (const std::bad_alloc &) {
+    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
+  } catch (const std::exception &e) {
+    return swarf_error_set(err, SWARF_ERR_INTERNAL, "internal error: %s", e.what());
+  } catch (...) {
+    return swarf_error_set(err, SWARF_ERR_INTERNAL, "internal error: unknown exception");
+  }
 }

@@ -12,7 +12,6 @@
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/VolumeToMesh.h>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -20,16 +19,17 @@
 #include <atomic>
 #include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
-#include <sstream>
 #include <memory>
+#include <sstream>
 
 #include "atomic_file.h"
 #include "isolate.h"
 #include "legend.h"
 #include "mesh_file.h"
+#include "mesh_tets.h"
 #include "stock_private.h"
 
 namespace swarf {
@@ -83,7 +83,8 @@ openvdb::FloatGrid::Ptr read_open_file(openvdb::io::File &file, const std::strin
 /// of 2^20 root tiles or two voxels 5e8 mm apart is refused, not walked.
 constexpr size_t kMaxRootEntries = size_t(1) << 16;
 constexpr long long kMaxExtentVoxels = 1LL << 20;
-constexpr openvdb::Index64 kMaxActiveTiles = 4096;  // a level set has none; OpenVDB walks them slowly
+constexpr openvdb::Index64 kMaxActiveTiles =
+    4096; // a level set has none; OpenVDB walks them slowly
 
 void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &path) {
   const size_t root = grid.tree().root().getTableSize();
@@ -91,12 +92,11 @@ void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &path) {
     throw Error(SWARF_ERR_LIMIT, path + ": " + std::to_string(root) +
                                      " root nodes and tiles, more than the " +
                                      std::to_string(kMaxRootEntries) + " a stock may have");
-  const openvdb::Index64 tiles = grid.tree().activeTileCount();  // linear in the nodes
+  const openvdb::Index64 tiles = grid.tree().activeTileCount(); // linear in the nodes
   if (tiles > kMaxActiveTiles)
-    throw Error(SWARF_ERR_LIMIT, path + ": " + std::to_string(tiles) +
-                                     " active tiles, more than the " +
-                                     std::to_string(kMaxActiveTiles) +
-                                     " accepted (a level-set stock has none)");
+    throw Error(SWARF_ERR_LIMIT,
+                path + ": " + std::to_string(tiles) + " active tiles, more than the " +
+                    std::to_string(kMaxActiveTiles) + " accepted (a level-set stock has none)");
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
   if (box.empty()) return;
   for (int k = 0; k < 3; k++) {
@@ -139,8 +139,8 @@ openvdb::FloatGrid::Ptr read_grid_checked(const std::string &path) {
 
 /// Address space (bytes) for the reading child: what the process maps now
 /// plus room for the grid (256 MB and 64 times the file: a damaged 20 kB
-/// file that makes OpenVDB allocate gigabytes is stopped at 256 MB); 0 (no limit) under AddressSanitizer, which maps
-/// terabytes of shadow memory.
+/// file that makes OpenVDB allocate gigabytes is stopped at 256 MB); 0 (no limit) under
+/// AddressSanitizer, which maps terabytes of shadow memory.
 size_t reader_address_space(const std::string &path) {
 #if defined(__SANITIZE_ADDRESS__)
   return 0;
@@ -171,8 +171,7 @@ bool isolate_reads() {
   return env == nullptr || std::strcmp(env, "0") != 0;
 }
 
-
-}  // namespace
+} // namespace
 
 /// Throw Error(SWARF_ERR_OPEN) unless `path` names an existing regular file.
 void check_readable(const char *path) {
@@ -189,17 +188,20 @@ openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   if (!isolate_reads()) return read_grid_here(path);
   const IsolateLimits limits = {60, reader_address_space(path)};
   std::string bytes;
-  run_isolated("reading " + path, limits, [&] {
-    std::ostringstream os(std::ios::binary);
-    openvdb::io::Stream(os).write(openvdb::GridCPtrVec{read_grid_here(path)});
-    return os.str();
-  }, bytes);
+  run_isolated(
+      "reading " + path, limits,
+      [&] {
+        std::ostringstream os(std::ios::binary);
+        openvdb::io::Stream(os).write(openvdb::GridCPtrVec{read_grid_here(path)});
+        return os.str();
+      },
+      bytes);
   std::istringstream is(bytes, std::ios::binary);
   openvdb::GridPtrVecPtr grids = openvdb::io::Stream(is).getGrids();
   openvdb::FloatGrid::Ptr grid;
   if (grids && grids->size() == 1) grid = openvdb::gridPtrCast<openvdb::FloatGrid>(grids->front());
   if (!grid) throw Error(SWARF_ERR_INTERNAL, path + ": the reader's copy did not arrive whole");
-  check_stock_grid(*grid, path);  // the parent trusts nothing it did not check
+  check_stock_grid(*grid, path); // the parent trusts nothing it did not check
   return grid;
 }
 
@@ -218,47 +220,19 @@ openvdb::FloatGrid::Ptr grid_for_output(const swarf_stock &s) {
   return g;
 }
 
-/// The zero isosurface as triangles (quads split along their 0-2 diagonal),
-/// ordered so that the right-hand normal points out of the material.
-/// volumeToMesh collapses a quad's corners onto one point where the surface
-/// pinches; the degenerate triangles that gives (two equal corners) are left
-/// out, which keeps every edge matched by its reverse.
-struct Mesh {
-  std::vector<openvdb::Vec3s> points;
-  std::vector<openvdb::Vec3I> triangles;
-  std::vector<openvdb::Vec4I> quads;
-  std::vector<openvdb::Vec3I> out;  ///< the triangles written, outward order
-
-  void add(unsigned i, unsigned j, unsigned k) {
-    const openvdb::Vec3s &a = points[i], &b = points[j], &c = points[k];
-    if (a == b || b == c || a == c) return;
-    out.emplace_back(k, j, i);
-  }
-  /// volumeToMesh orders the vertices of its polygons clockwise seen from
-  /// outside (the right-hand normal points into the material): each triangle
-  /// is reversed (checked by tests/stock/test_stl.c).
-  void triangulate() {
-    out.clear();
-    out.reserve(triangles.size() + 2 * quads.size());
-    for (const openvdb::Vec3I &t : triangles) add(t[0], t[1], t[2]);
-    for (const openvdb::Vec4I &q : quads) add(q[0], q[1], q[2]), add(q[0], q[2], q[3]);
-  }
-  size_t count() const { return out.size(); }
-};
-
 /// Write the zero isosurface in `format`, with deviation colours when opt has
 /// a design and the format holds them (see stock.h).
 size_t write_mesh_file(const swarf_stock &s, const char *path, const swarf_stock_output &opt,
                        MeshFormat format) {
   double tol = 0.0, range = 0.0;
   output_scale(s, opt, tol, range);
-  Mesh m;
-  openvdb::tools::volumeToMesh(*s.grid, m.points, m.triangles, m.quads, 0.0, 0.0);
-  m.triangulate();
+  IsoMesh m; // closed: every edge shared by two triangles (mesh_tets.h)
+  iso_mesh(*s.grid, m);
   std::vector<unsigned char> rgb;
   std::vector<float> dev;
   if (opt.design && format == MeshFormat::kPly) {
-    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*opt.design->grid);
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(
+        *opt.design->grid);
     rgb.resize(3 * m.points.size());
     dev.resize(m.points.size());
     for (size_t i = 0; i < m.points.size(); i++) {
@@ -269,20 +243,25 @@ size_t write_mesh_file(const swarf_stock &s, const char *path, const swarf_stock
       dev[i] = float(d);
       float c[3];
       deviation_colour(dev[i], tol, range, c);
-      for (int k = 0; k < 3; k++) rgb[3 * i + k] = (unsigned char)std::lround(255.0f * c[k]);
+      for (int k = 0; k < 3; k++)
+        rgb[3 * i + k] = (unsigned char)std::lround(255.0f * c[k]);
     }
   }
-  static_assert(sizeof(openvdb::Vec3s) == 3 * sizeof(float) && sizeof(openvdb::Vec3I) == 3 * sizeof(uint32_t),
+  static_assert(sizeof(openvdb::Vec3s) == 3 * sizeof(float) &&
+                    sizeof(openvdb::Vec3I) == 3 * sizeof(uint32_t),
                 "packed vectors");
-  const MeshView view{reinterpret_cast<const float *>(m.points.data()), m.points.size(),
-                      reinterpret_cast<const uint32_t *>(m.out.data()), m.out.size(),
-                      rgb.empty() ? nullptr : rgb.data(), dev.empty() ? nullptr : dev.data()};
+  const MeshView view{reinterpret_cast<const float *>(m.points.data()),
+                      m.points.size(),
+                      reinterpret_cast<const uint32_t *>(m.triangles.data()),
+                      m.triangles.size(),
+                      rgb.empty() ? nullptr : rgb.data(),
+                      dev.empty() ? nullptr : dev.data()};
   write_atomic(path, [&](std::ostream &os) { write_mesh(os, view, format); });
-  return m.count();
+  return m.triangles.size();
 }
 
-}  // namespace
-}  // namespace swarf
+} // namespace
+} // namespace swarf
 
 using swarf::Error;
 
@@ -297,9 +276,13 @@ extern "C" swarf_status swarf_stock_read(const char *path, swarf_stock **out, sw
   });
 }
 
-extern "C" void swarf_stock_set_read_isolation(int on) { swarf::read_isolation.store(on ? 1 : 0); }
+extern "C" void swarf_stock_set_read_isolation(int on) {
+  swarf::read_isolation.store(on ? 1 : 0);
+}
 
-extern "C" int swarf_stock_read_isolation(void) { return swarf::isolate_reads() ? 1 : 0; }
+extern "C" int swarf_stock_read_isolation(void) {
+  return swarf::isolate_reads() ? 1 : 0;
+}
 
 extern "C" swarf_status swarf_stock_write_vdb(const swarf_stock *s, const char *path,
                                               swarf_error *err) {
@@ -307,7 +290,8 @@ extern "C" swarf_status swarf_stock_write_vdb(const swarf_stock *s, const char *
     if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
     swarf::check_path(path);
     const openvdb::GridCPtrVec grids{swarf::grid_for_output(*s)};
-    swarf::write_atomic(path, [&](std::ostream &os) { swarf::StreamArchive().write_to(os, grids); });
+    swarf::write_atomic(path,
+                        [&](std::ostream &os) { swarf::StreamArchive().write_to(os, grids); });
   });
 }
 
@@ -316,7 +300,8 @@ extern "C" swarf_status swarf_stock_write_stl(const swarf_stock *s, const char *
   if (ntri) *ntri = 0;
   return swarf::guard(err, path, [&] {
     if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
-    const size_t n = swarf::write_mesh_file(*s, path, swarf_stock_output{}, swarf::MeshFormat::kStl);
+    const size_t n =
+        swarf::write_mesh_file(*s, path, swarf_stock_output{}, swarf::MeshFormat::kStl);
     if (ntri) *ntri = n;
   });
 }
@@ -327,7 +312,8 @@ extern "C" swarf_status swarf_stock_write_mesh(const swarf_stock *s, const char 
   if (ntri) *ntri = 0;
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
-    const size_t n = swarf::write_mesh_file(*s, path, opt ? *opt : swarf_stock_output{}, swarf::mesh_format(path));
+    const size_t n = swarf::write_mesh_file(*s, path, opt ? *opt : swarf_stock_output{},
+                                            swarf::mesh_format(path));
     if (ntri) *ntri = n;
   });
 }

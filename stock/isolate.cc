@@ -93,7 +93,7 @@ std::string error_reply(int status, const std::string &message) {
 }
 
 /// The child's side: run body, send its result or its error, exit.
-[[noreturn]] void child_main(int fd, const IsolateLimits &limits,
+[[noreturn]] void child_main(int fd, const std::string &what, const IsolateLimits &limits,
                              const std::function<std::string()> &body) {
   apply_limits(limits);
   quiet_sanitizer_reports();
@@ -103,7 +103,9 @@ std::string error_reply(int status, const std::string &message) {
   } catch (const Error &e) {
     reply = error_reply(e.status, e.what());
   } catch (const std::bad_alloc &) {
-    reply = error_reply(SWARF_ERR_FORMAT, "reading it needs more memory than allowed");
+    reply = error_reply(SWARF_ERR_FORMAT, what + ": needs more memory than allowed (" +
+                                              std::to_string(limits.address_space >> 20) +
+                                              " MB): not a readable stock");
   } catch (const std::exception &e) {
     reply = error_reply(SWARF_ERR_FORMAT, e.what());
   } catch (...) {
@@ -137,7 +139,7 @@ void run_isolated(const std::string &what, const IsolateLimits &limits,
   }
   if (pid == 0) {
     ::close(fds[0]);
-    child_main(fds[1], limits, body);
+    child_main(fds[1], what, limits, body);
   }
   ::close(fds[1]);
   std::string reply = read_all(fds[0]);

@@ -169,6 +169,19 @@ void block_pairs(const Tri &t, uint32_t k, double w, std::vector<Pair> &out) {
           out.push_back({x, y, z, k});
 }
 
+/// floor and ceil of a double within the int range (index coordinates are
+/// below 2^29), without the library call (generic x86-64 has no rounding
+/// instruction; these are most of the band's inner loop otherwise).
+inline int ifloor(double v) {
+  const int i = int(v);
+  return i - (v < double(i));
+}
+
+inline int iceil(double v) {
+  const int i = int(v);
+  return i + (v > double(i));
+}
+
 /// Squared distance from p to the box [lo, hi].
 double box_dist2(const double lo[3], const double hi[3], const Vec3d &p) {
   double d2 = 0.0;
@@ -182,8 +195,8 @@ double box_dist2(const double lo[3], const double hi[3], const Vec3d &p) {
 /// The voxel range (block-local, inclusive) of t's bounding box grown by g.
 inline bool local_range(const Tri &t, const Coord &o, double g, int lo[3], int hi[3]) {
   for (int a = 0; a < 3; a++) {
-    lo[a] = std::max(0, int(std::ceil(t.lo[a] - g)) - o[a]);
-    hi[a] = std::min(7, int(std::floor(t.hi[a] + g)) - o[a]);
+    lo[a] = std::max(0, iceil(t.lo[a] - g) - o[a]);
+    hi[a] = std::min(7, ifloor(t.hi[a] + g) - o[a]);
     if (lo[a] > hi[a]) return false;
   }
   return true;
@@ -215,8 +228,8 @@ void block_distances(const Coord &o, const Pair *p, size_t n, const std::vector<
           const double r2 = g2 - ex * ex - ey * ey;
           if (!(r2 > 0.0)) continue;
           const double r = std::sqrt(r2);
-          const int zlo = std::max(lo[2], int(std::ceil(t.lo[2] - r)) - o[2]);
-          const int zhi = std::min(hi[2], int(std::floor(t.hi[2] + r)) - o[2]);
+          const int zlo = std::max(lo[2], iceil(t.lo[2] - r) - o[2]);
+          const int zhi = std::min(hi[2], ifloor(t.hi[2] + r) - o[2]);
           for (int z = zlo; z <= zhi; z++) {
             const openvdb::Index v = openvdb::Index((x << 6) | (y << 3) | z);
             const Vec3d pt(o[0] + x, o[1] + y, o[2] + z);
@@ -232,19 +245,28 @@ void block_distances(const Coord &o, const Pair *p, size_t n, const std::vector<
     }
 }
 
-/// Winding numbers of the block's voxels from the sorted crossings.
+/// Winding numbers of the block's voxels from the sorted crossings: one
+/// search a row of columns (x fixed, y along the block), whose crossings
+/// follow one another in the sorted list.
 void block_signs(const Coord &o, const std::vector<Crossing> &cross, int8_t *inside) {
-  for (int x = 0; x < 8; x++)
+  for (int x = 0; x < 8; x++) {
+    const Crossing key{o[0] + x, o[1], 0.0f, 0};
+    auto c = std::lower_bound(cross.begin(), cross.end(), key, column_less);
     for (int y = 0; y < 8; y++) {
-      const Crossing key{o[0] + x, o[1] + y, 0.0f, 0};
-      auto r = std::equal_range(cross.begin(), cross.end(), key, column_less);
+      while (c != cross.end() && c->i == o[0] + x && c->j < o[1] + y)
+        ++c;
+      auto e = c;
+      while (e != cross.end() && e->i == o[0] + x && e->j == o[1] + y)
+        ++e;
       for (int z = 0; z < 8; z++) {
         int wn = 0;
-        for (auto c = r.first; c != r.second; ++c)
-          if (double(c->z) > double(o[2] + z)) wn += c->s;
+        for (auto k = c; k != e; ++k)
+          if (double(k->z) > double(o[2] + z)) wn += k->s;
         inside[(x << 6) | (y << 3) | z] = wn > 0;
       }
+      c = e;
     }
+  }
 }
 
 std::vector<Tri> index_triangles(const std::vector<openvdb::Vec3s> &pts,
@@ -296,6 +318,58 @@ template <typename T, typename Fn> std::vector<T> gather(size_t n, Fn fn) {
   for (const auto &v : local)
     all.insert(all.end(), v.begin(), v.end());
   return all;
+}
+
+/// The (block, triangle) pairs sorted by block, then triangle: made in
+/// chunks of triangles (in parallel), then a counting sort by block over the
+/// blocks' bounding box, chunk by chunk in triangle order (a comparison sort
+/// when that box is too large).
+std::vector<Pair> sorted_pairs(const std::vector<Tri> &t, double w) {
+  constexpr size_t kTris = 8192;
+  std::vector<std::vector<Pair>> parts((t.size() + kTris - 1) / kTris);
+  tbb::parallel_for(size_t(0), parts.size(), [&](size_t c) {
+    for (size_t k = c * kTris; k < std::min(t.size(), (c + 1) * kTris); k++)
+      block_pairs(t[k], uint32_t(k), w, parts[c]);
+  });
+  int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+  size_t total = 0;
+  for (const auto &part : parts) {
+    total += part.size();
+    for (const Pair &q : part) {
+      const int32_t c[3] = {q.x, q.y, q.z};
+      for (int a = 0; a < 3; a++)
+        lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    }
+  }
+  std::vector<Pair> out;
+  out.reserve(total);
+  if (total == 0) return out;
+  uint64_t n[3], bins = 1;
+  for (int a = 0; a < 3; a++)
+    n[a] = uint64_t(int64_t(hi[a]) - lo[a] + 1),
+    bins *= std::min<uint64_t>(n[a], uint64_t(1) << 30);
+  if (bins > (uint64_t(1) << 26)) { // sparse: sort
+    for (const auto &part : parts)
+      out.insert(out.end(), part.begin(), part.end());
+    tbb::parallel_sort(out.begin(), out.end(), pair_less);
+    return out;
+  }
+  auto bin = [&](const Pair &q) {
+    return (uint64_t(q.x - lo[0]) * n[1] + uint64_t(q.y - lo[1])) * n[2] + uint64_t(q.z - lo[2]);
+  };
+  std::vector<uint32_t> at(bins + 1, 0);
+  for (const auto &part : parts)
+    for (const Pair &q : part)
+      at[bin(q) + 1]++;
+  for (size_t b = 0; b < bins; b++)
+    at[b + 1] += at[b];
+  out.resize(total);
+  for (auto &part : parts) {
+    for (const Pair &q : part)
+      out[at[bin(q)]++] = q;
+    std::vector<Pair>().swap(part);
+  }
+  return out;
 }
 
 /// Spread the low 21 bits of v three apart (Morton codes).
@@ -381,9 +455,7 @@ openvdb::FloatGrid::Ptr mesh_band(const std::vector<openvdb::Vec3s> &pts,
         column_crossings(pts[tris[k][0]], pts[tris[k][1]], pts[tris[k][2]], out);
       });
   tbb::parallel_sort(cross.begin(), cross.end(), column_less);
-  std::vector<Pair> pairs = gather<Pair>(
-      t.size(), [&](size_t k, std::vector<Pair> &out) { block_pairs(t[k], uint32_t(k), w, out); });
-  tbb::parallel_sort(pairs.begin(), pairs.end(), pair_less);
+  std::vector<Pair> pairs = sorted_pairs(t, w);
   std::vector<size_t> starts;
   for (size_t i = 0; i < pairs.size(); i++)
     if (i == 0 || pairs[i].x != pairs[i - 1].x || pairs[i].y != pairs[i - 1].y ||

@@ -18,12 +18,17 @@
 ///     are skipped; the others are classified from their cuts' centre values.
 ///  3. serial topology: cleared blocks become outside tiles, tiles to visit
 ///     become leaves (densified from the tile value).
-///  4. visit (parallel, one leaf per task, no topology change), each cut top
-///     down: its sdf at the block centre, then at the 4^3 octants' and 2^3
-///     cubes' centres where the voxels below them may change, and at a voxel
-///     only where the bound from its cube's centre cannot decide (1.4x fewer
-///     sdf calls on the impeller; a cut whose cube centre lies deeper than
-///     the band plus a margin clears the cube's voxels without evaluation).
+///  4. visit (parallel, one leaf per task, no topology change), top down:
+///     each cut's sdf at the block centre, then, octant by octant and cube by
+///     cube with all their cuts, at the 4^3 octants' and 2^3 cubes' centres
+///     where the voxels below them may change, and at a voxel only where the
+///     bound from its cube's centre cannot decide (1.4x fewer sdf calls on the
+///     impeller; a cut whose cube centre lies deeper than the band plus a
+///     margin clears the cube's voxels without evaluation). Per-octant and
+///     per-cube summaries of the values (min of value - distance to the
+///     centre) decide for a cut without looking at the voxels, and a cube's
+///     cuts are applied deepest first, so that the others mostly find the
+///     voxels already above their bound (tiger.nc: 2x fewer raised voxels).
 ///  5. serial: visited leaves left without any band collapse back into tiles.
 ///
 /// Voxel values stay in [-w, w]; a voxel is active iff |value| < w, inactive
@@ -40,6 +45,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <memory>
 
@@ -64,11 +70,11 @@ struct Pass {
   double voxel;                     ///< mm
   float bgf;                        ///< band half-width (the background), mm
   double reach;                     ///< half diagonal of a block plus the band, mm
-  double eps;                       ///< margin (mm) of the per-voxel Lipschitz test
   float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
   double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
   bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
+  const swarf_stock_support_fn *support = nullptr; ///< per cut, may be null (stock.h)
 };
 
 /// World position (mm) of the point at (fractional) offset d from block origin o.
@@ -79,7 +85,6 @@ inline Vec3d block_point(const Pass &p, const Coord &o, double dx, double dy, do
 void init_pass(Pass &p) {
   const double v = p.voxel;
   p.reach = 3.5 * std::sqrt(3.0) * v + p.bgf;
-  p.eps = 1e-6 * v;
   for (int x = 0; x < 8; x++)
     for (int y = 0; y < 8; y++)
       for (int z = 0; z < 8; z++)
@@ -272,9 +277,19 @@ void change_topology(Pass &p) {
 /// or clear ends exactly as if its sdf had been evaluated.
 constexpr double kMargin = 1e-5;
 
-/// Voxel values of a block while its cuts are applied one after another.
+/// Voxel values of a block while its cuts are applied one after another, with
+/// the summaries that let a cut pass over an octant or a cube without looking
+/// at its voxels: omin[o] = min over the octant's voxels n still below the band
+/// (m < bg) of m - radius[n], cmin[c] = the same over a cube's voxels with
+/// roct[n] (+inf when every voxel is outside). A cut whose sdf is d at the block
+/// centre can raise a voxel of octant o only if d + omin[o] < kMargin (the test
+/// may_raise makes voxel by voxel, taken at once), likewise per cube with its
+/// sdf at the octant's centre. The summaries are lower bounds kept exact.
 struct BlockValues {
   double m[Leaf::SIZE]; ///< max(old, -sdf) over the cuts applied so far
+  double omin[8];       ///< per 4^3 octant, index (x >> 2) << 2 | (y >> 2) << 1 | z >> 2
+  double cmin[64];      ///< per 2^3 cube, index (x >> 1) << 4 | (y >> 1) << 2 | z >> 1
+  double mlo[64];       ///< per 2^3 cube: min of m over its voxels with m < bg (+inf if none)
 };
 
 /// Whether voxel n (value m, at distance r from a point where the cut's sdf is
@@ -284,68 +299,163 @@ inline bool may_raise(double m, double bg, double d, double r) {
   return m < bg && !(d - r + m >= kMargin); // a NaN sdf: the voxels decide
 }
 
-/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and cut i, whose sdf
-/// at the block centre is dc and at the enclosing 4^3 octant's centre is doct
-/// (NaN: not evaluated yet; evaluated on demand into *doct). The cut's sdf is
-/// evaluated at the 2^3 cube's centre first: if it clears every voxel (deeper
-/// than the band) or keeps them all below their values, no voxel is evaluated.
-void visit_cube(const Pass &p, const Block &b, const swarf_stock_cut &cut, int x0, int y0, int z0,
+/// Summary value of voxel n: m - r, or +inf if it is outside (cannot be raised).
+inline double summary(double m, double bg, double r) {
+  return m < bg ? m - r : std::numeric_limits<double>::infinity();
+}
+
+/// Recompute cmin for the cube at (x0, y0, z0) (even coordinates).
+inline void cube_summary(const Pass &p, BlockValues &bv, int x0, int y0, int z0) {
+  double lo = std::numeric_limits<double>::infinity(), mlo = lo;
+  for (int x = x0; x < x0 + 2; x++)
+    for (int y = y0; y < y0 + 2; y++)
+      for (int z = z0; z < z0 + 2; z++) {
+        const openvdb::Index n = (x << 6) | (y << 3) | z;
+        const double s = summary(bv.m[n], p.bgf, p.roct[n]), m = summary(bv.m[n], p.bgf, 0.0);
+        lo = s < lo ? s : lo;
+        mlo = m < mlo ? m : mlo;
+      }
+  bv.cmin[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = lo;
+  bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = mlo;
+}
+
+/// All the summaries of a block, octant by octant and cube by cube.
+void leaf_summaries(const Pass &p, BlockValues &bv) {
+  const double inf = std::numeric_limits<double>::infinity(), bg = p.bgf;
+  for (int x0 = 0; x0 < 8; x0 += 4)
+    for (int y0 = 0; y0 < 8; y0 += 4)
+      for (int z0 = 0; z0 < 8; z0 += 4) {
+        double olo = inf;
+        for (int sx = x0; sx < x0 + 4; sx += 2)
+          for (int sy = y0; sy < y0 + 4; sy += 2)
+            for (int sz = z0; sz < z0 + 4; sz += 2) {
+              double clo = inf, mlo = inf;
+              for (int x = sx; x < sx + 2; x++)
+                for (int y = sy; y < sy + 2; y++)
+                  for (int z = sz; z < sz + 2; z++) {
+                    const openvdb::Index n = (x << 6) | (y << 3) | z;
+                    const double m = bv.m[n];
+                    const double c = m < bg ? m - p.roct[n] : inf;
+                    const double o = m < bg ? m - double(p.radius[n]) : inf;
+                    const double l = m < bg ? m : inf;
+                    clo = c < clo ? c : clo;
+                    mlo = l < mlo ? l : mlo;
+                    olo = o < olo ? o : olo;
+                  }
+              bv.cmin[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] = clo;
+              bv.mlo[((sx >> 1) << 4) | ((sy >> 1) << 2) | (sz >> 1)] = mlo;
+            }
+        bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)] = olo;
+      }
+}
+
+/// A cut and its sdf (mm) at the centre of the octant or cube being visited,
+/// with, at a cube's centre, the supporting plane's normal when it has one.
+struct CutAt {
+  double d;
+  const swarf_stock_cut *cut;
+  bool plane = false; ///< sdf(q) >= d + g.(q - centre) for every q
+  double g[3];
+};
+
+/// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut whose
+/// sdf at the cube's centre is dcube: a voxel is evaluated unless the bound
+/// from the centre keeps it below its value; all are cleared when the cube lies
+/// deeper than the band.
+void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, int z0,
                 BlockValues &bv) {
   const double bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel; // voxel -> cube centre
-  const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
-  const double dcube = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-  const bool clear = dcube + rv <= -bg - kMargin;
+  const bool clear = c.d + rv <= -bg - kMargin;
+  // The bound at each voxel: d - rv, or with a plane d + g.(voxel - centre)
+  // (>= d - rv), the voxel's offset from the centre being +-voxel/2 per axis.
+  const double h = 0.5 * p.voxel;
+  const double gx = c.plane ? h * c.g[0] : 0.0, gy = c.plane ? h * c.g[1] : 0.0,
+               gz = c.plane ? h * c.g[2] : 0.0, r = c.plane ? 0.0 : rv;
+  double mlo = std::numeric_limits<double>::infinity();
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         double &m = bv.m[n];
-        if (!may_raise(m, bg, dcube, rv)) continue;
-        if (clear) {
-          m = bg;
-          continue;
+        const double bound = c.d + (x > x0 ? gx : -gx) + (y > y0 ? gy : -gy) + (z > z0 ? gz : -gz);
+        if (may_raise(m, bg, bound, r)) {
+          if (clear) {
+            m = bg;
+          } else {
+            const Vec3d q = block_point(p, b.origin, x, y, z);
+            const double d = -c.cut->sdf(c.cut->ctx, q.x(), q.y(), q.z());
+            if (d > m) m = d;
+          }
         }
-        const Vec3d q = block_point(p, b.origin, x, y, z);
-        const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-        if (d > m) m = d;
+        const double l = summary(m, bg, 0.0);
+        mlo = l < mlo ? l : mlo;
       }
+  bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] = mlo;
 }
 
-/// Pass 4 for the 4^3 octant at (x0, y0, z0) and one cut (its sdf at the block
-/// centre: dc): the sdf at the octant's centre decides for its 2^3 cubes
-/// (none of their voxels can be raised: passed over; all cleared: cleared);
-/// the others are visited cube by cube.
-void visit_octant(const Pass &p, const Block &b, const swarf_stock_cut &cut, double dc, int x0,
-                  int y0, int z0, BlockValues &bv) {
+/// Pass 4 for the 2^3 cube at (x0, y0, z0) and the cuts of its octant (their
+/// sdf at the octant's centre, in oct): those the cube's summary lets through
+/// are cleared from the octant's value when it lies deeper than the band, or
+/// have their sdf taken at the cube's centre; these are applied deepest
+/// first, so that the later ones mostly find their bound below the voxels'
+/// values and evaluate nothing (the maximum does not depend on the order).
+void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t noct, int x0, int y0,
+                     int z0, BlockValues &bv, CutAt *cube) {
   const double bg = p.bgf, v = p.voxel, rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
-  bool any = false;
-  for (int x = x0; x < x0 + 4 && !any; x++)
-    for (int y = y0; y < y0 + 4 && !any; y++)
-      for (int z = z0; z < z0 + 4 && !any; z++) {
-        const openvdb::Index n = (x << 6) | (y << 3) | z;
-        any = may_raise(bv.m[n], bg, dc, p.radius[n]);
-      }
-  if (!any) return;
+  const double rv = 0.5 * std::sqrt(3.0) * v;                       // voxel -> its cube's centre
+  const int ci = ((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1);
+  const Vec3d c = block_point(p, b.origin, x0 + 0.5, y0 + 0.5, z0 + 0.5);
+  uint32_t n = 0;
+  for (uint32_t i = 0; i < noct; i++) {
+    const CutAt &o = oct[i];
+    if (o.d + bv.cmin[ci] >= kMargin) continue; // no voxel of the cube can be raised
+    if (o.d + rcube + rv <= -bg - kMargin) {    // every voxel lies deeper than the band
+      for (int x = x0; x < x0 + 2; x++)
+        for (int y = y0; y < y0 + 2; y++)
+          for (int z = z0; z < z0 + 2; z++) {
+            const openvdb::Index n = (x << 6) | (y << 3) | z;
+            if (may_raise(bv.m[n], bg, o.d, p.roct[n])) bv.m[n] = bg;
+          }
+      cube_summary(p, bv, x0, y0, z0);
+      continue;
+    }
+    CutAt &k = cube[n++];
+    const swarf_stock_support_fn f = p.support ? p.support[o.cut - p.cuts] : nullptr;
+    k.cut = o.cut;
+    k.plane = f != nullptr && f(o.cut->ctx, c.x(), c.y(), c.z(), &k.d, k.g) == 1;
+    if (f == nullptr) k.d = o.cut->sdf(o.cut->ctx, c.x(), c.y(), c.z());
+  }
+  std::sort(cube, cube + n, [](const CutAt &a, const CutAt &b) { // a NaN sdf first
+    return (std::isnan(a.d) ? -HUGE_VAL : a.d) < (std::isnan(b.d) ? -HUGE_VAL : b.d);
+  });
+  for (uint32_t i = 0; i < n; i++) {
+    // may_raise for the cube's lowest value: false, and false for the
+    // remaining (shallower) cuts too: none of them can raise a voxel
+    if (cube[i].d - rv + bv.mlo[ci] >= kMargin) break;
+    visit_cube(p, b, cube[i], x0, y0, z0, bv);
+  }
+}
+
+/// Pass 4 for the 4^3 octant at (x0, y0, z0) and the block's cuts: each cut
+/// whose bound from the block centre (its summary) may raise a voxel of the
+/// octant has its sdf taken at the octant's centre; the octant's eight cubes
+/// are then visited one after another with all of them.
+void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockValues &bv,
+                  CutAt *oct, CutAt *cube) {
+  const RemoveScratch &w = p.s.scratch;
+  const double omin = bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)];
   const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
-  const double doct = cut.sdf(cut.ctx, c.x(), c.y(), c.z());
-  const double rv = 0.5 * std::sqrt(3.0) * v; // voxel -> its cube's centre
+  uint32_t n = 0;
+  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
+    if (w.centre_sdf[i] + omin >= kMargin) continue; // a NaN sdf: visited
+    const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+    oct[n++] = {cut.sdf(cut.ctx, c.x(), c.y(), c.z()), &cut, false, {}};
+  }
+  if (n == 0) return;
   for (int sx = x0; sx < x0 + 4; sx += 2)
     for (int sy = y0; sy < y0 + 4; sy += 2)
-      for (int sz = z0; sz < z0 + 4; sz += 2) {
-        const bool clear = doct + rcube + rv <= -bg - kMargin;
-        bool need = false;
-        for (int x = sx; x < sx + 2; x++)
-          for (int y = sy; y < sy + 2; y++)
-            for (int z = sz; z < sz + 2; z++) {
-              const openvdb::Index n = (x << 6) | (y << 3) | z;
-              if (!may_raise(bv.m[n], bg, doct, p.roct[n])) continue;
-              if (clear)
-                bv.m[n] = bg;
-              else
-                need = true;
-            }
-        if (need) visit_cube(p, b, cut, sx, sy, sz, bv);
-      }
+      for (int sz = z0; sz < z0 + 4; sz += 2)
+        visit_cube_cuts(p, b, oct, n, sx, sy, sz, bv, cube);
 }
 
 /// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the
@@ -384,11 +494,14 @@ inline void collapse_if_uniform(const Leaf &leaf, Block &b) {
   b.tile = data[0];
 }
 
-/// Pass 4 for one leaf: max over the cuts, clamp, band state. Each cut is
-/// applied to the block top down (8^3 block centre, 4^3 octants, 2^3 cubes,
+/// Pass 4 for one leaf: max over the cuts, clamp, band state. The block is
+/// visited octant by octant and cube by cube (their voxels are independent),
+/// each with all its cuts, top down (8^3 block centre, 4^3 octants, 2^3 cubes,
 /// voxels; the sdf is 1-Lipschitz): a voxel's sdf is evaluated only where the
-/// bound from the nearest centre above it cannot decide. Marks the block
-/// kCollapse (with its tile value) if no voxel is left in the band.
+/// bound from the nearest centre above it cannot decide, and an octant or a
+/// cube is looked at only where its summary (BlockValues) says a voxel may be
+/// raised. Marks the block kCollapse (with its tile value) if no voxel is left
+/// in the band.
 void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
   const RemoveScratch &w = p.s.scratch;
   const float bgf = p.bgf;
@@ -396,15 +509,17 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
   BlockValues bv;
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
     bv.m[n] = data[n];
-  for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-    const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    if (p.flat)
-      visit_flat(p, b, cut, w.centre_sdf[i], bv);
-    else
-      for (int x = 0; x < 8; x += 4)
-        for (int y = 0; y < 8; y += 4)
-          for (int z = 0; z < 8; z += 4)
-            visit_octant(p, b, cut, w.centre_sdf[i], x, y, z, bv);
+  if (p.flat) {
+    for (uint32_t i = b.begin; i < b.begin + b.count; i++)
+      visit_flat(p, b, p.cuts[w.pairs[i].cut], w.centre_sdf[i], bv);
+  } else {
+    thread_local std::vector<CutAt> oct, cube;
+    if (oct.size() < b.count) oct.resize(b.count), cube.resize(b.count);
+    leaf_summaries(p, bv);
+    for (int x = 0; x < 8; x += 4)
+      for (int y = 0; y < 8; y += 4)
+        for (int z = 0; z < 8; z += 4)
+          visit_octant(p, b, x, y, z, bv, oct.data(), cube.data());
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];
@@ -421,49 +536,61 @@ inline float stored(double m, float bgf) {
   return v >= bgf ? bgf : v <= -bgf ? -bgf : v;
 }
 
-/// Pass 4, measured: the block's cuts in their order on each voxel; each one
-/// that raises the value is credited with the inside fraction it removed and
-/// checked for a gouge (material before it, inside it, into the design).
+/// The depth of a gouge at a voxel whose design value is dq, with r mm of
+/// removed material vouched beyond its centre. A design without triangles
+/// (a .vdb) knows only its band: where dq is at the band's edge the gouge
+/// reads as the band's depth (the reach; the summary says "or more").
+inline double gouge_depth(const swarf_stock &design, double dq, double r, double voxel) {
+  const double bg = design.background;
+  if (!design.surface && dq <= -bg * (1.0 - 1e-6)) return bg;
+  return -dq + vouched_radius(r, voxel);
+}
+
+/// Pass 4, measured: the block's final values by the plain visit (the
+/// maximum does not depend on the cuts' order), then each cut credited, in
+/// program order, with the inside fraction it removed, and checked for a
+/// gouge (material before it, inside it, into the design). Only the steps a
+/// voxel takes between inside fractions 1 and 0 count (|value| < half a
+/// voxel), so each voxel whose fraction changed is replayed cut by cut from
+/// its old value until it is empty (every later step credits nothing and
+/// finds no material to gouge); the others not at all. Steps are stored as
+/// the grid would (float, clamped), so every credit is the one a cut by cut
+/// evaluation of every voxel gives.
 void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
   RemoveScratch &w = p.s.scratch;
-  const float bgf = p.bgf;
-  const double tol = p.measure->tolerance;
   const float *data = leaf.buffer().data();
-  for (int x = 0; x < 8; x++)
-    for (int y = 0; y < 8; y++)
-      for (int z = 0; z < 8; z++) {
-        const openvdb::Index n = (x << 6) | (y << 3) | z;
-        const float old = data[n];
-        if (!(old < bgf)) continue; // outside stays outside
-        const Vec3d q = block_point(p, b.origin, x, y, z);
-        float v = old;
-        double dq = 0.0;
-        bool have_dq = false;
-        for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-          if (w.centre_sdf[i] - p.radius[n] + v >= p.eps) continue; // cannot raise v
-          const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-          const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-          const float nv = stored(d, bgf);
-          if (!(nv > v)) continue;
-          w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
-          if (design && v < 0.0f && d > 0.0) {
-            if (!have_dq) {
-              dq = design->at(q), have_dq = true;
-              // Beyond the band of a design read from a mesh: its exact depth.
-              const swarf_stock &ds = *p.measure->design;
-              if (ds.surface && dq <= -double(ds.background) * (1.0 - 1e-6))
-                dq = -surface_distance(ds, q);
-            }
-            const double depth = -dq + vouched_radius(std::min(d, -double(v)), p.voxel);
-            if (depth > tol && depth > w.gouge[i]) w.gouge[i] = depth, w.gouge_at[i] = q;
-          }
-          v = nv;
-          if (v >= bgf) break;
+  float old[Leaf::SIZE];
+  std::memcpy(old, data, sizeof old);
+  visit_leaf(p, leaf, b);
+  const double half = 0.5 * p.voxel, bg = p.bgf;
+  const swarf_stock *ds = p.measure->design;
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+    const float o = old[n], fin = data[n];
+    if (!(fin > o) || !(o < half) || !(fin > -half)) continue; // no fraction changed
+    const Coord l = Leaf::offsetToLocalCoord(n);
+    const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
+    double v = o, dq = std::numeric_limits<double>::quiet_NaN();
+    for (uint32_t i = b.begin; i < b.begin + b.count && v < half; i++) {
+      if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n])) continue;
+      const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+      const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+      const float nv = stored(d, p.bgf);
+      if (!(nv > v)) continue;
+      w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+      if (design && v < 0.0 && d > 0.0) {
+        if (std::isnan(dq)) {
+          dq = design->at(q);
+          // Beyond the band of a design read from a mesh: its exact depth.
+          if (ds->surface && dq <= -double(ds->background) * (1.0 - 1e-6))
+            dq = -surface_distance(*ds, q);
         }
-        if (!(v > old)) continue;
-        put_value(leaf, n, v, bgf);
+        const double depth = gouge_depth(*ds, dq, std::min(d, -v), p.voxel);
+        if (depth > p.measure->tolerance && depth > w.gouge[i])
+          w.gouge[i] = depth, w.gouge_at[i] = q;
       }
-  collapse_if_uniform(leaf, b);
+      v = nv;
+    }
+  }
 }
 
 /// Measured: the pairs' findings added up per cut, in pair order (deterministic).
@@ -635,7 +762,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
                     size_t nclear, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -649,7 +776,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -664,7 +791,7 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
 /// Deepest gouge of the cut into the design where the stock has material (see stock.h).
 double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
                  double tolerance, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
   init_pass(p);
   Coord a, b;
   double best = 0.0;
@@ -692,20 +819,20 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
           double dq = probe.at(q);
           if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6))
             dq = -surface_distance(design, q);
-          const double depth = -dq + vouched_radius(std::min(d, -v), p.voxel);
+          const double depth = gouge_depth(design, dq, std::min(d, -v), p.voxel);
           if (depth > tolerance && depth > best) best = depth, where = q;
         }
       }
   return best;
 }
 
-void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
-                 const Measure *measure) {
+void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, const Measure *measure,
+                 const swarf_stock_support_fn *support) {
   static const bool flat = [] {
     const char *e = std::getenv("SWARF_REMOVE_FLAT");
     return e != nullptr && e[0] == '1';
   }();
-  Pass p{s, cuts, s.voxel, s.background, 0.0, 0.0, {}, {}, measure, flat};
+  Pass p{s, cuts, s.voxel, s.background, 0.0, {}, {}, measure, flat, support};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);
@@ -845,6 +972,21 @@ extern "C" swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stoc
     if (*depth > 0.0 && where != nullptr)
       for (int k = 0; k < 3; k++)
         where[k] = q[k];
+  });
+}
+
+extern "C" swarf_status swarf_stock_remove_batch_support(swarf_stock *s,
+                                                         const swarf_stock_cut *cuts,
+                                                         const swarf_stock_support_fn *support,
+                                                         size_t ncuts, swarf_error *err) {
+  return swarf::guard(err, nullptr, [&] {
+    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
+    if (ncuts == 0) return;
+    if (cuts == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts is NULL");
+    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
+    for (size_t i = 0; i < ncuts; i++)
+      check_cut(cuts[i], i);
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, nullptr, support); });
   });
 }
 

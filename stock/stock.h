@@ -104,6 +104,20 @@ typedef struct {
 SWARF_API swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
                                                 size_t ncuts, swarf_error *err);
 
+/* An optional companion of a cut's sdf: the sdf at p = (x, y, z) in *d and,
+ * when it returns 1, a unit vector g with sdf(q) >= *d + g.(q - p) for every
+ * q (a supporting plane: the volume is convex and p outside it). */
+typedef int (*swarf_stock_support_fn)(const void *ctx, double x, double y, double z, double *d,
+                                      double g[3]);
+
+/* swarf_stock_remove_batch with a companion per cut (support, or support[i],
+ * may be NULL: none): the removal bounds each voxel of a 2^3 cube by the
+ * plane at the cube's centre instead of by the sdf's 1-Lipschitz bound, so it
+ * evaluates the sdf at fewer voxels; the result is the same. */
+SWARF_API swarf_status swarf_stock_remove_batch_support(swarf_stock *s, const swarf_stock_cut *cuts,
+                                                        const swarf_stock_support_fn *support,
+                                                        size_t ncuts, swarf_error *err);
+
 /* Whether the volume {sdf < 0} of `cut` overlaps the material by more than
  * `depth` mm: some voxel centre lies deeper than `depth` inside both (stock
  * value < -depth and sdf < -depth; 0 <= depth < the band half-width in mm).
@@ -305,7 +319,7 @@ SWARF_API swarf_status swarf_stock_resample(const swarf_stock *s, double voxel, 
  * Deviations are measured up to its band (its "reach", mm, = half_width *
  * voxel): beyond it a deviation reads as the reach (the *_clamped flags say
  * so). SWARF_STOCK_DESIGN_BAND is the band the readers below give a design. */
-#define SWARF_STOCK_DESIGN_BAND 3 /* voxels */
+#define SWARF_STOCK_DESIGN_BAND 2 /* voxels */
 
 /* A design from FILE.stl (a closed mesh, as swarf_stock_read_stl, with
  * SWARF_STOCK_DESIGN_BAND voxels of band) or FILE.vdb (as swarf_stock_read_vdb:

@@ -1,6 +1,7 @@
 /* stock_output.h -- how the stock module's files reach the disk (plain C).
  *
- * Every file the stock module writes (.vdb, meshes, pictures) goes through
+ * Every file the stock module writes (.vdb, meshes, pictures, and the
+ * command line's report through swarf_stock_output_write) goes through
  * one writer (atomic_file.cc) with these rules:
  *  - an existing character device or FIFO named by the user is written into
  *    (`--out /dev/null` discards); a symbolic link, folder, block device or
@@ -19,6 +20,8 @@
 #ifndef SWARF_STOCK_OUTPUT_H
 #define SWARF_STOCK_OUTPUT_H
 
+#include <stddef.h>
+
 #include "swarf_status.h"
 
 #ifdef __cplusplus
@@ -33,6 +36,12 @@ SWARF_API void swarf_stock_outputs_begin(void);
 SWARF_API swarf_status swarf_stock_outputs_commit(swarf_error *err);
 /* Drops the held files (nothing is published). */
 SWARF_API void swarf_stock_outputs_abort(void);
+/* Writes the len bytes at data as the file path by the rules above (held
+ * until the commit inside a group): for outputs made outside the stock
+ * module (the command line's JSON report). SWARF_ERR_IO (err names the file)
+ * if it cannot be written; SWARF_ERR_ARG for a NULL path or data. */
+SWARF_API swarf_status swarf_stock_output_write(const char *path, const void *data, size_t len,
+                                                swarf_error *err);
 
 #ifdef __cplusplus
 }

@@ -145,7 +145,8 @@ template <class F> void in_arena(swarf_stock &s, F &&f) {
 /// assumed checked. On an exception the stock may be partly cut but stays a
 /// valid narrow band.
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
-                 const Measure *measure = nullptr);
+                 const Measure *measure = nullptr,
+                 const swarf_stock_support_fn *support = nullptr);
 
 /// Tolerance and colour range (mm) of an output's options with the defaults
 /// of stock.h filled in (render.cc). Throws Error(ARG) for bad values.

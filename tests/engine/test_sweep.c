@@ -21,15 +21,19 @@
 #include "check.h"
 #include "testkit.h"
 
-enum { K_SLOT, K_PLUNGE, K_RAMP, K_ARC, K_RING, K_HELIX, K_G18, K_G19, K_NKINDS };
-static const char *kind_name[K_NKINDS] = {"slot", "plunge", "ramp", "arc",
-                                          "ring", "helix", "G18 arc", "G19 helix"};
+enum { K_SLOT, K_PLUNGE, K_RAMP, K_ARC, K_RING, K_HELIX, K_TURNS, K_G18, K_G19, K_NKINDS };
+static const char *kind_name[K_NKINDS] = {
+    "slot",    "plunge",   "ramp", "arc", "ring", "helix", "helix of 2-15 turns",
+    "G18 arc", "G19 helix"};
 
-static double tk_sign(tk_rng *r) { return tk_uniform(r, 0, 1) < 0.5 ? -1.0 : 1.0; }
+static double tk_sign(tk_rng *r) {
+  return tk_uniform(r, 0, 1) < 0.5 ? -1.0 : 1.0;
+}
 
 static swarf_motion random_move(tk_rng *r, int kind) {
   double p0[3], p1[3], c[3], nrm[3] = {0, 0, 0}, rad, ph, len = tk_uniform(r, 0.5, 12.0);
-  for (int k = 0; k < 3; k++) p0[k] = c[k] = tk_uniform(r, -5, 5);
+  for (int k = 0; k < 3; k++)
+    p0[k] = c[k] = tk_uniform(r, -5, 5);
   ph = tk_uniform(r, 0, 2 * tk_pi);
   rad = tk_uniform(r, 0, 1) < 0.3 ? tk_uniform(r, 0.2, 3.0) : tk_uniform(r, 3.0, 12.0);
   switch (kind) {
@@ -40,16 +44,22 @@ static swarf_motion random_move(tk_rng *r, int kind) {
     double d[3] = {kind == K_PLUNGE ? 0 : cos(ph), kind == K_PLUNGE ? 0 : sin(ph), dz};
     double m = sqrt(tk_dot(d, d));
     if (kind == K_PLUNGE) d[2] = tk_sign(r);
-    for (int k = 0; k < 3; k++) p1[k] = p0[k] + len * d[k] / m;
+    for (int k = 0; k < 3; k++)
+      p1[k] = p0[k] + len * d[k] / m;
     return tk_line(p0, p1);
   }
   case K_ARC:
   case K_RING:
   case K_HELIX:
+  case K_TURNS: /* more than two turns: searched turn by turn */
     nrm[2] = tk_sign(r);
     p0[0] = c[0] + rad * cos(ph), p0[1] = c[1] + rad * sin(ph), p0[2] = c[2];
     if (kind == K_ARC) return tk_helix(p0, c, nrm, tk_uniform(r, 0.05, 2 * tk_pi - 0.05), 0.0);
-    if (kind == K_RING) return tk_helix(p0, c, nrm, tk_uniform(r, 0, 1) < 0.7 ? 2 * tk_pi : 4 * tk_pi, 0.0);
+    if (kind == K_RING)
+      return tk_helix(p0, c, nrm, tk_uniform(r, 0, 1) < 0.7 ? 2 * tk_pi : 4 * tk_pi, 0.0);
+    if (kind == K_TURNS)
+      return tk_helix(p0, c, nrm, tk_uniform(r, 4.01 * tk_pi, 30 * tk_pi),
+                      tk_sign(r) * tk_uniform(r, 0.3, 20));
     return tk_helix(p0, c, nrm, tk_uniform(r, 0.1, 4 * tk_pi), tk_sign(r) * tk_uniform(r, 0.2, 5));
   default: {
     int ax = kind == K_G18 ? 1 : 0, o1 = kind == K_G18 ? 2 : 1, o2 = kind == K_G18 ? 0 : 2;
@@ -141,11 +151,13 @@ static void test_brute(const swarf_cutter *c, const char *cname, tk_rng *r) {
       swarf_sweep_bounds(&s, lo, hi);
       for (int i = 0; i < 40; i++) {
         double p[3], q[3], e[3];
-        for (int k = 0; k < 3; k++) p[k] = tk_uniform(r, lo[k] - 1.5, hi[k] + 1.5);
+        for (int k = 0; k < 3; k++)
+          p[k] = tk_uniform(r, lo[k] - 1.5, hi[k] + 1.5);
         if (i % 4 == 0) p[2] = tk_uniform(r, lo[2] - 1.5, lo[2] + 0.5 * c->diameter);
         compare_point(c, &m, &s, p, &st, what);
         tk_unit(r, e); /* 1-Lipschitz on a nearby pair */
-        for (int k = 0; k < 3; k++) q[k] = p[k] + 0.05 * e[k];
+        for (int k = 0; k < 3; k++)
+          q[k] = p[k] + 0.05 * e[k];
         CHECK(fabs(swarf_sweep_sdf(&s, p, NULL) - swarf_sweep_sdf(&s, q, NULL)) <= 0.05 + 1e-12,
               "%s: 1-Lipschitz", what);
       }
@@ -171,15 +183,19 @@ static void nearest_on_instance(const swarf_cutter *c, const swarf_motion *m, do
                                 const double p[3], double q[3], double n[3]) {
   double t[3], x[3], R = c->corner_radius, a = 0.5 * c->diameter - R, r, cp[3], l;
   swarf_motion_eval(m, alpha, t, NULL);
-  for (int k = 0; k < 3; k++) x[k] = p[k] - t[k];
+  for (int k = 0; k < 3; k++)
+    x[k] = p[k] - t[k];
   r = hypot(x[0], x[1]);
   cp[0] = r > a ? x[0] * a / r : x[0];
   cp[1] = r > a ? x[1] * a / r : x[1];
   cp[2] = fmin(fmax(x[2], R), c->length - R);
-  for (int k = 0; k < 3; k++) n[k] = x[k] - cp[k];
+  for (int k = 0; k < 3; k++)
+    n[k] = x[k] - cp[k];
   l = sqrt(tk_dot(n, n));
-  for (int k = 0; k < 3; k++) n[k] /= l;
-  for (int k = 0; k < 3; k++) q[k] = t[k] + cp[k] + R * n[k];
+  for (int k = 0; k < 3; k++)
+    n[k] /= l;
+  for (int k = 0; k < 3; k++)
+    q[k] = t[k] + cp[k] + R * n[k];
 }
 
 /* Where a flat face slides in its plane (n = +-e_z, v_z = 0) or the side
@@ -219,7 +235,8 @@ static void test_envelope(const swarf_cutter *c, const char *cname, tk_rng *r) {
       }
       for (int i = 0; i < 60; i++) { /* (b) */
         double p[3], alpha, d, q[3], n[3], td[3], v[3], w[3], f;
-        for (int k = 0; k < 3; k++) p[k] = tk_uniform(r, lo[k] - 2, hi[k] + 2);
+        for (int k = 0; k < 3; k++)
+          p[k] = tk_uniform(r, lo[k] - 2, hi[k] + 2);
         d = swarf_sweep_sdf(&s, p, &alpha);
         if (d < 1e-3 || alpha <= 1e-12 || alpha >= 1 - 1e-12) continue;
         nearest_on_instance(c, &m, alpha, p, q, n);
@@ -253,7 +270,9 @@ int main(void) {
   swarf_cutter_init(&cs[1], SWARF_CUTTER_BALL, 3.175, 0, 12.0, NULL);
   swarf_cutter_init(&cs[2], SWARF_CUTTER_BULL, 10.0, 2.0, 25.0, NULL);
   test_analytic();
-  for (int i = 0; i < 3; i++) test_brute(&cs[i], names[i], &r);
-  for (int i = 0; i < 3; i++) test_envelope(&cs[i], names[i], &r);
+  for (int i = 0; i < 3; i++)
+    test_brute(&cs[i], names[i], &r);
+  for (int i = 0; i < 3; i++)
+    test_envelope(&cs[i], names[i], &r);
   return check_done();
 }

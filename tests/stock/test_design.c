@@ -69,9 +69,9 @@ static void test_excess(const swarf_stock *s, const swarf_stock *d) {
          dev.excess_volume, layer, dev.excess_height, dev.reach, dev.excess_clamped, dev.gouge_volume);
   CHECK_NEAR(dev.excess_volume, layer, 1e-6 * layer, "excess volume, a 1.5 mm layer less the tolerance");
   /* A design read from a mesh keeps its triangles: deviations beyond its
-   * band (3 voxels, 0.3 mm) are measured against them exactly. */
+   * band (SWARF_STOCK_DESIGN_BAND voxels, 0.2 mm) are measured against them exactly. */
   CHECK(isinf(dev.reach), "reach: unlimited for a mesh design (%g)", dev.reach);
-  CHECK_NEAR(dev.excess_height, 1.5, 1e-4, "largest excess 1.5 mm, 5 band widths out, exact");
+  CHECK_NEAR(dev.excess_height, 1.5, 1e-4, "largest excess 1.5 mm, beyond the band, exact");
   CHECK(dev.excess_clamped == 0, "not flagged as clamped");
   CHECK(dev.gouge_volume < 1e-9 && dev.gouge_depth == 0, "no gouge: %.3g", dev.gouge_volume);
   CHECK_NEAR(dev.design_volume, 9.9 * 9.9 * 3.5, 1e-6 * 343, "design volume");

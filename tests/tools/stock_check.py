@@ -4,6 +4,8 @@
   box-stl PATH XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [good|open|nonmanifold|flipped|empty] [ascii]
       write a box as an STL (outward triangles), damaged as asked
   fog-vdb PATH     write a .vdb holding one float grid that is not a level set
+  other-vdb SRC.vdb PATH
+      write SRC's stock grid as another tool might: after a fog volume, named "part"
   same A.vdb B.vdb TOL_MM
       pyopenvdb: the two grids' values agree within TOL_MM over both narrow bands
   sample A.vdb X,Y,Z:SIGN ...
@@ -74,6 +76,19 @@ def fog_vdb(path):
     g.gridClass = vdb.GridClass.FOG_VOLUME
     g.getAccessor().setValueOn((1, 2, 3), 0.5)
     vdb.write(path, grids=[g])
+
+
+def other_tool_vdb(src, path):
+    """Write src's stock as another tool would: a fog volume named "density"
+    first, then the level set under the name "part"."""
+    import pyopenvdb as vdb
+    g = vdb.read(src, "stock")
+    g.name = "part"
+    fog = vdb.FloatGrid()
+    fog.name = "density"
+    fog.gridClass = vdb.GridClass.FOG_VOLUME
+    fog.getAccessor().setValueOn((1, 2, 3), 0.5)
+    vdb.write(path, grids=[fog, g])
 
 
 def read_grid(path):
@@ -284,6 +299,9 @@ def main(argv):
         return 0
     if cmd == "fog-vdb":
         fog_vdb(argv[2])
+        return 0
+    if cmd == "other-vdb":
+        other_tool_vdb(argv[2], argv[3])
         return 0
     if cmd == "same":
         same(argv[2], argv[3], float(argv[4]))

@@ -4,12 +4,13 @@
 # reader (stock_check.py: pyopenvdb, numpy):
 #  - an STL box stock (written by the test) = the box stock, voxel by voxel;
 #  - a .vdb stock: run A, then program B on A's output = one run of A + B
-#    (1e-6 mm);
+#    (1e-6 mm), also when another tool wrote it (the first float level set,
+#    not named "stock", after a fog volume);
 #  - a second setup: A's output flipped (rx=180,tz=-10): the slot is on the
 #    bottom face, the volume is the box less the slot (analytic);
 #  - swarf info calls every output valid at voxel sizes that rounded badly
 #    in float (0.3 mm);
-#  - a design 1 mm off (beyond its 3-voxel band): the PLY's deviations and
+#  - a design 1 mm off (beyond its 2-voxel band): the PLY's deviations and
 #    swarf compare measure it exactly; an unknown mesh extension is refused;
 #  - bad input: open, non-manifold and empty STLs, a .vdb without a level
 #    set, a bad transform: exit 2, a message, nothing written.
@@ -45,6 +46,12 @@ sim "$dir/b.ngc" --stock "vdb:$dir/a.vdb" $tool --out "$dir/a_b.vdb"
 ok "B on A's output runs" '[ $? -eq 0 ] && [ -s "$dir/a_b.vdb" ]'
 sim "$dir/ab.ngc" --stock $box $tool --out "$dir/ab.vdb"
 ok "A then B = one run of A + B (1e-6 mm)" '$check same "$dir/a_b.vdb" "$dir/ab.vdb" 1e-6'
+# another tool's .vdb: the first float level set (here "part", after a fog
+# volume) is the stock
+$check other-vdb "$dir/a.vdb" "$dir/other.vdb"
+sim "$dir/b.ngc" --stock "vdb:$dir/other.vdb" $tool --out "$dir/o_b.vdb"
+ok "B on another tool's .vdb (level set \"part\" after a fog volume) = A + B" \
+  '[ -s "$dir/o_b.vdb" ] && $check same "$dir/o_b.vdb" "$dir/ab.vdb" 1e-6'
 
 # second setup: flipped about X and lowered 10: the slot (y 7..13, z -2..0)
 # is now at y -13..-7, z -10..-8; a face pass of B at the new top cuts 1 mm
@@ -68,7 +75,7 @@ ok "swarf info: an STL stock's 0.3 mm output is valid" '"$swarf" info "$dir/v.vd
 sim "$dir/b.ngc" --stock "vdb:$dir/a.vdb" $tool --voxel 0.3 --out "$dir/v.vdb"
 ok "swarf info: a resampled stock's 0.3 mm output is valid" '"$swarf" info "$dir/v.vdb" | grep -q "level_set valid"'
 
-# a design 1 mm below the top (3 band widths): the PLY's deviation there is
+# a design 1 mm below the top (beyond the 2-voxel band): the PLY's deviation there is
 # 1.0 (measured on the design's triangles beyond its band); swarf compare
 # gives the same largest excess and deepest gouge (the slot is 1 mm deep in
 # it); a mesh of unknown extension is refused before the run

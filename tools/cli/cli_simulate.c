@@ -382,6 +382,13 @@ static int check_size(const swarf_sim_config *cfg) {
   bytes = voxels * BYTES_PER_VOXEL;
   budget = memory_budget();
   if (bytes <= budget) return 0;
+  if (cfg->voxel * sqrt(bytes / budget) * 1.05 > smallest) { /* no voxel fits: the stock's fault */
+    snprintf(what, sizeof what,
+             "--stock: %g x %g x %g mm: its surface needs more than the %.3g GB this machine can "
+             "give at any voxel up to its smallest side (%g mm); give a smaller stock",
+             d[0], d[1], d[2], budget / 1e9, smallest);
+    return usage_error(what);
+  }
   snprintf(
       what, sizeof what,
       "--voxel %g: the stock's surface alone would need ~%.3g GB (%.3g M voxels at %.0f bytes), "
@@ -391,9 +398,10 @@ static int check_size(const swarf_sim_config *cfg) {
   return usage_error(what);
 }
 
-/* The .vdb, mesh and picture: all or none (held unnamed, published
- * together once all are written; stock_output.h). */
-static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t *ntri) {
+/* The .vdb, mesh, picture and report: all or none (held unnamed,
+ * published together once all are written; stock_output.h). */
+static int write_outputs(sim_options *o, const swarf_stock *stock, const swarf_sim_report *rep,
+                         size_t *ntri) {
   swarf_error err;
   int rc;
   swarf_error_init(&err);
@@ -405,6 +413,7 @@ static int write_outputs(const sim_options *o, const swarf_stock *stock, size_t 
   }
   rc = swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
                              o->verify.tolerance, o->stock.view, ntri);
+  if (rc == 0) rc = swarf_verify_write_report(&o->verify, o->program, &o->cfg, rep);
   if (rc != 0) {
     swarf_stock_outputs_abort();
     return rc;
@@ -608,12 +617,12 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   print_alarms(&o, &clients.alarms, &rep);
   free(clients.alarms.a);
   swarf_verify_warn(&o.verify, o.program, &rep);
-  rc = write_outputs(&o, stock, &ntri);
+  rc = write_outputs(&o, stock, &rep, &ntri);
   if (rc == 0 && !o.quiet) {
     print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
     swarf_verify_summary(&o.verify, &rep);
   }
-  if (rc == 0) rc = swarf_verify_finish(&o.verify, o.program, &o.cfg, &rep);
+  if (rc == 0) rc = swarf_verify_finish(&o.verify, &rep);
   if (rc == 0 && o.fail_on_collision && rep.collisions > 0) {
     fprintf(stderr, "%s: %ld collisions (--fail-on collision): exit status 4\n", o.program,
             rep.collisions);

@@ -2,8 +2,9 @@
  *
  * Entries are kept per (line, tool) in an array with an open-addressing
  * index, so a line that runs many times (a loop, a subroutine) stays one
- * entry. The document is built with jansson at the end and written to
- * PATH.tmp.XXXXXX, synced and renamed onto PATH.
+ * entry. The document is built with jansson at the end and written by the
+ * stock module's output rules (stock_output.h), with the run's other
+ * outputs: all or none.
  */
 #include <errno.h>
 #include <math.h>
@@ -16,6 +17,7 @@
 #include <jansson.h>
 
 #include "report.h"
+#include "stock_output.h"
 
 #ifndef SWARF_VERSION
 #define SWARF_VERSION "unknown"
@@ -348,35 +350,24 @@ static json_t *inputs_json(const swarf_report_inputs *in) {
       in->design && in->tolerance > 0 ? num(in->tolerance) : json_null(), "version", SWARF_VERSION);
 }
 
-/* Writes doc to path through a synced temporary file in the same folder. */
+/* Writes doc to path by the stock module's output rules (stock_output.h):
+ * an unnamed file in the same folder, synced, named at the end, or held
+ * with the run's other outputs until their commit (all or none). */
 static swarf_status write_atomic(const json_t *doc, const char *path, swarf_error *err) {
-  size_t len = strlen(path) + 16;
-  char *tmp = malloc(len);
-  FILE *f = NULL;
-  int fd, ok;
-  if (tmp == NULL) return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
-  snprintf(tmp, len, "%s.tmp.XXXXXX", path);
-  fd = mkstemp(tmp);
-  if (fd >= 0) {
-    mode_t mask = umask(0); /* mkstemp makes 0600: give the file the usual mode */
-    umask(mask);
-    if (fchmod(fd, 0666 & ~mask) == 0) f = fdopen(fd, "w");
-  }
-  ok = f != NULL && json_dumpf(doc, f, JSON_INDENT(1) | JSON_REAL_PRECISION(12)) == 0 &&
-       fputc('\n', f) != EOF && fflush(f) == 0 && fsync(fileno(f)) == 0;
-  if (f != NULL)
-    ok = fclose(f) == 0 && ok;
-  else if (fd >= 0)
-    close(fd);
-  ok = ok && rename(tmp, path) == 0;
-  if (!ok) {
-    int e = errno;
-    if (fd >= 0) unlink(tmp);
-    free(tmp);
+  char *text = json_dumps(doc, JSON_INDENT(1) | JSON_REAL_PRECISION(12));
+  swarf_status s;
+  size_t n;
+  if (text == NULL) return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");
+  n = strlen(text);
+  text[n] = '\n'; /* json_dumps leaves room for its NUL: the file ends with a newline */
+  s = swarf_stock_output_write(path, text, n + 1, err);
+  free(text);
+  if (s != SWARF_OK) {
+    char why[sizeof err->message];
+    snprintf(why, sizeof why, "%s", err->message);
     swarf_error_at(err, path, 0, 0, "--report");
-    return swarf_error_set(err, SWARF_ERR_IO, "cannot write the report: %s", strerror(e));
+    return swarf_error_set(err, s, "cannot write the report: %s", why);
   }
-  free(tmp);
   return SWARF_OK;
 }
 

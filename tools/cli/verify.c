@@ -183,9 +183,11 @@ void swarf_verify_warn(swarf_verify *v, const char *program, const swarf_sim_rep
             "%s:%ld:%d: warning: this move comes before any G20/G21: the program is read in "
             "mm (say which with --units mm|in)\n",
             program, r->units_missing_line, r->units_missing_column);
+  /* a .vdb design's band ends at its reach: a gouge that reaches it may be deeper */
+  const double reach = r->has_deviation ? r->deviation.reach : INFINITY;
   for (size_t i = 0; i < n; i++)
-    fprintf(stderr, "%s:%ld:%d: warning: gouge %.3f mm into the design\n", program, g[i].line,
-            g[i].column, g[i].depth);
+    fprintf(stderr, "%s:%ld:%d: warning: gouge %.3f mm%s into the design\n", program, g[i].line,
+            g[i].column, g[i].depth, g[i].depth >= reach * (1 - 1e-9) ? " or more" : "");
 }
 
 static void print_point(const double p[3]) {
@@ -234,8 +236,8 @@ void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r) {
   if (peak > 0) printf("  peak removal rate %.1f mm^3/min at line %ld (T%d)\n", rate, peak, tool);
 }
 
-static int write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
-                        const swarf_sim_report *r) {
+int swarf_verify_write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
+                              const swarf_sim_report *r) {
   swarf_report_inputs in = {program,
                             v->stock_spec,
                             v->machine_spec,
@@ -250,6 +252,7 @@ static int write_report(swarf_verify *v, const char *program, const swarf_sim_co
                             v->start_set ? v->start : NULL};
   swarf_error err;
   char msg[1024];
+  if (v->report_path == NULL) return 0;
   swarf_error_init(&err);
   if (swarf_report_write(v->report, r, &in, v->report_path, &err) == SWARF_OK) return 0;
   swarf_error_format(&err, msg, sizeof msg);
@@ -257,9 +260,7 @@ static int write_report(swarf_verify *v, const char *program, const swarf_sim_co
   return 1;
 }
 
-int swarf_verify_finish(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
-                        const swarf_sim_report *r) {
-  if (v->report_path != NULL && write_report(v, program, cfg, r)) return 1;
+int swarf_verify_finish(const swarf_verify *v, const swarf_sim_report *r) {
   return v->fail_on_gouge && r->alarm_count[SWARF_ALARM_GOUGE] > 0 ? 4 : 0;
 }
 

@@ -67,10 +67,15 @@ void swarf_verify_warn(swarf_verify *v, const char *program, const swarf_sim_rep
 /* The summary's lines (start, design comparison, peak removal rate). */
 void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r);
 
-/* Writes --report (if asked); then the exit status: 0, 1 (the report could
- * not be written) or 4 (--fail-on gouge and a gouge was found). */
-int swarf_verify_finish(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
-                        const swarf_sim_report *r);
+/* Writes --report if asked (into the output group the caller opened with
+ * swarf_stock_outputs_begin: published with the .vdb and mesh, or not at
+ * all): 0, or 1 when it cannot be written (the message is printed). */
+int swarf_verify_write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
+                              const swarf_sim_report *r);
+
+/* The exit status after the outputs: 0, or 4 (--fail-on gouge and a gouge
+ * was found). */
+int swarf_verify_finish(const swarf_verify *v, const swarf_sim_report *r);
 
 void swarf_verify_free(swarf_verify *v);
 

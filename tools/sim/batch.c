@@ -18,6 +18,12 @@ static double sweep_sdf(const void *ctx, double x, double y, double z) {
   return swarf_sweep_sdf((const swarf_sweep *)ctx, p, NULL);
 }
 
+/* The sweep's sdf with its supporting plane, where it has one (stock.h). */
+static int sweep_support(const void *ctx, double x, double y, double z, double *d, double g[3]) {
+  const double p[3] = {x, y, z};
+  return swarf_sweep_support((const swarf_sweep *)ctx, p, d, g);
+}
+
 /* The cutter's sdf at p for one pose. */
 static double pose_sdf(const swarf_cutter *c, const double t[3], const double U[9], double x,
                        double y, double z) {
@@ -54,12 +60,14 @@ int swarf_sim_batch_init(swarf_sim *s) {
   s->motions = malloc(sizeof *s->motions * (size_t)s->cap);
   s->sweeps = malloc(sizeof *s->sweeps * (size_t)s->cap);
   s->cuts = malloc(sizeof *s->cuts * (size_t)s->cap);
+  s->supports = malloc(sizeof *s->supports * (size_t)s->cap);
   s->stamps = malloc(sizeof *s->stamps * (size_t)s->cap);
   s->pending_cap = s->cap;
   s->pending = malloc(sizeof *s->pending * (size_t)s->pending_cap);
   s->cut_id = malloc(sizeof *s->cut_id * (size_t)s->cap);
   s->effects = malloc(sizeof *s->effects * (size_t)s->cap);
-  return s->motions && s->sweeps && s->cuts && s->stamps && s->pending && s->cut_id && s->effects
+  return s->motions && s->sweeps && s->cuts && s->supports && s->stamps && s->pending &&
+                 s->cut_id && s->effects
              ? 0
              : -1;
 }
@@ -68,6 +76,7 @@ void swarf_sim_batch_clear(swarf_sim *s) {
   free(s->motions);
   free(s->sweeps);
   free(s->cuts);
+  free(s->supports);
   free(s->stamps);
   free(s->pending);
   free(s->cut_id);
@@ -115,7 +124,8 @@ int swarf_sim_batch_flush(swarf_sim *s) {
     if (flush_measured(s) != 0) return 1;
     s->n = 0;
   } else if (s->n > 0) {
-    if (swarf_stock_remove_batch(s->stock, s->cuts, (size_t)s->n, &e) != SWARF_OK) {
+    if (swarf_stock_remove_batch_support(s->stock, s->cuts, s->supports, (size_t)s->n, &e) !=
+        SWARF_OK) {
       swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
       return 1;
     }
@@ -189,6 +199,7 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     return swarf_sim_batch_flush(s) != 0 ? 1 : swarf_sim_batch_queue(s, mv);
   c->sdf = sweep_sdf;
   c->ctx = w;
+  s->supports[s->n] = sweep_support;
   /* shank, holder, fixtures: against the material as the move finds it */
   if (swarf_sim_collide_move(s, m, w, reach ? c : NULL) != 0) return 1;
   if (!reach) return 0;
@@ -196,6 +207,7 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     set_stamps(s, &s->stamps[s->n], m);
     c->sdf = stamp_sdf;
     c->ctx = &s->stamps[s->n];
+    s->supports[s->n] = NULL;
   }
   s->rep.cutting_moves++;
   s->cut_id[s->n] = s->cur_id;

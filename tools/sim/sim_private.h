@@ -34,6 +34,7 @@ struct swarf_sim {
   swarf_motion *motions;
   swarf_sweep *sweeps;
   swarf_stock_cut *cuts;
+  swarf_stock_support_fn *supports; /* per cut: its supporting planes, or NULL (stamps) */
   swarf_sim_stamp *stamps;
   int n, cap;
   double pad_lo[3], pad_hi[3]; /* material box grown by the narrow band */

@@ -299,7 +299,9 @@ int swarf_char_gauss_slice(double dphi, const double v[3], const double omega[3]
                            double n[2][3]) {
   double A = v[0] + dphi * omega[1], B = v[1] - dphi * omega[0], C = v[2] * z;
   double q = A * A + B * B, delta = (1.0 - z * z) * q - C * C, d;
-  if (!(q > 0.0) || delta < 0.0) return 0;
+  /* Not finite: the infinite slope of a profile at a pole (swarf_cutter_profile
+   * at z = +-1) gives an infinite or NaN q and delta, no point. */
+  if (!(q > 0.0) || !isfinite(q) || !(delta >= 0.0)) return 0;
   d = sqrt(delta);
   for (int k = 0; k < 2; k++) {
     double s = k == 0 ? 1.0 : -1.0;

@@ -311,8 +311,10 @@ SWARF_API int swarf_char_branch_points_qss(const swarf_qss *q, const double v[3]
 
 /* The Gauss points at one slice n_z = z of any profile of revolution with
  * phi'(z) = dphi (Fact 2): n[0] for s = +1, n[1] for s = -1. Returns 2, 1 when
- * the slice touches the curve (Delta = 0), 0 when it misses it or when
- * A = B = 0 (the whole latitude circle, or none, is characteristic). */
+ * the slice touches the curve (Delta = 0), 0 when it misses it, when
+ * A = B = 0 (the whole latitude circle, or none, is characteristic), or when
+ * dphi is not finite (a profile's slope at a pole: the slice z = +-1 holds
+ * one point of the sphere, never a curve through it). */
 SWARF_API int swarf_char_gauss_slice(double dphi, const double v[3], const double omega[3],
                                      double z, double n[2][3]);
 

@@ -39,6 +39,13 @@ static void test_example2(void) {
   CHECK_NEAR(z[1], 0.918957355604119, 1e-12, "z2");
   printf("Example 2 branch points: %.17g %.17g\n", z[0], z[1]);
   CHECK(swarf_char_gauss_slice(-2.0, v, w, 0.5, n) == 2, "slice z0 = 1/2 has two points");
+  /* A profile's infinite slope at a pole (swarf_cutter_profile at z = +-1):
+   * no point, never NaN normals (the sanitized suite met them here: UBSan,
+   * NaN converted to an integer in this test's reference grid). */
+  CHECK(swarf_char_gauss_slice(INFINITY, v, w, 1.0, n) == 0,
+        "infinite slope at the pole: no point");
+  CHECK(swarf_char_gauss_slice(-INFINITY, v, w, -1.0, n) == 0, "infinite slope, other pole");
+  CHECK(swarf_char_gauss_slice(NAN, v, w, 0.5, n) == 0, "NaN slope: no point");
   for (int k = 0; k < 2; k++) {
     CHECK_NEAR(5 * n[k][0] + 11 * n[k][1] + 6, 0.0, 1e-14, "5x + 11y + 6 = 0");
     CHECK_NEAR(n[k][0] * n[k][0] + n[k][1] * n[k][1], 0.75, 1e-14, "x^2 + y^2 = 3/4");

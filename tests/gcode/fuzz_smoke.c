@@ -1,11 +1,14 @@
 /* fuzz_smoke.c -- a plain driver for the fuzz entry (no libFuzzer needed).
  *
- * Usage: fuzz_smoke [-n mutations] [-t seconds] <dir-or-file>...
+ * Usage: fuzz_smoke [-n mutations] [-t seconds] [-k] <dir-or-file>...
  * Runs LLVMFuzzerTestOneInput (fuzz_gcode.c) on every seed file, then on
  * `mutations` inputs made from random windows of the seeds by byte flips,
  * insertions of G-code fragments, deletions and splices, with a fixed seed
- * so every run is the same; stops early after `seconds`. A breach of the
- * entry's checks aborts; a missing seed folder fails.
+ * so every run is the same; stops early after `seconds`. A window keeps its
+ * seed's head: the first line when the seed starts with ';' (the dialect
+ * line of fuzz_gcode.c: ";fanuc", ";haas", ";grbl"), and with -k the first
+ * byte (the reader selector of fuzz_inputs.c). A breach of the entry's
+ * checks aborts; a missing seed folder fails.
  */
 #include <dirent.h>
 #include <stdint.h>
@@ -70,12 +73,13 @@ static int load_path(const char *path) {
 }
 
 static const char *fragments[] = {
-    "G2",   "G3",         "G17",   "G18", "G19", "G20", "G21", "G91",  "G90.1", "R-",
-    "R",    "I",          "J",     "K",   "P3",  "X",   "Y",   "Z",    "A",     "F0",
-    "F100", "#",          "[",     "(",   ")",   ";",   "\n",  "\r\n", "%",     "/",
-    "N",    "M2",         "M6",    "T",   "G53", "G4",  "G80", "G0",   "G1",    ".",
-    "-",    "9999999999", "1e308", "nan", "\0",  " ",   "O",   "$",    "G43H",  "G64P",
-    "G40",  "G41",        "G42",   "G41.1D", "G42.1D", "D", "D-1", "M0", "G93", "G94"};
+    "G2",   "G3",         "G17",   "G18",    "G19",    "G20",  "G21",  "G91",    "G90.1",  "R-",
+    "R",    "I",          "J",     "K",      "P3",     "X",    "Y",    "Z",      "A",      "F0",
+    "F100", "#",          "[",     "(",      ")",      ";",    "\n",   "\r\n",   "%",      "/",
+    "N",    "M2",         "M6",    "T",      "G53",    "G4",   "G80",  "G0",     "G1",     ".",
+    "-",    "9999999999", "1e308", "nan",    "\0",     " ",    "O",    "$",      "G43H",   "G64P",
+    "G40",  "G41",        "G42",   "G41.1D", "G42.1D", "D",    "D-1",  "M0",     "G93",    "G94",
+    "M98P", "M99",        "M97P",  "G65P",   "L",      "#100", "#500", "G10L2P", "G54.1P", "G187"};
 
 /* One mutation of `buf` (length *len, capacity WINDOW_MAX * 2). */
 static void mutate(unsigned char *buf, size_t *len) {
@@ -106,28 +110,49 @@ static void mutate(unsigned char *buf, size_t *len) {
   }
 }
 
+static int keep_first_byte; /* -k */
+
+/* How many leading bytes of `s` every window keeps (see the top comment). */
+static size_t head_of(const seed *s) {
+  size_t n = 0;
+  if (s->size > 0 && s->data[0] == ';')
+    while (n < s->size && n < 64 && s->data[n++] != '\n') {
+    }
+  else if (keep_first_byte && s->size > 0)
+    n = 1;
+  return n;
+}
+
 static void one_mutation(unsigned char *buf) {
   const seed *s = &seeds[next_random() % nseeds];
-  size_t start = s->size ? next_random() % s->size : 0;
+  size_t head = head_of(s), rest = s->size - head;
+  size_t start = head + (rest ? next_random() % rest : 0);
   size_t len = 1 + next_random() % WINDOW_MAX;
   int edits = 1 + (int)(next_random() % 8);
   if (len > s->size - start) len = s->size - start;
-  memcpy(buf, s->data + start, len);
-  for (int i = 0; i < edits; i++)
-    mutate(buf, &len);
+  memcpy(buf, s->data, head);
+  memcpy(buf + head, s->data + start, len);
+  len += head;
+  for (int i = 0; i < edits; i++) {
+    size_t keep = len - head;
+    mutate(buf + head, &keep);
+    len = head + keep;
+  }
   LLVMFuzzerTestOneInput(buf, len);
 }
 
 int main(int argc, char **argv) {
   long mutations = 20000, done = 0;
   double seconds = 5;
-  unsigned char *buf = malloc(2 * WINDOW_MAX);
+  unsigned char *buf = malloc(2 * WINDOW_MAX + 64); /* head + window + insertions */
   clock_t t0 = clock();
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "-n") == 0 && i + 1 < argc)
       mutations = atol(argv[++i]);
     else if (strcmp(argv[i], "-t") == 0 && i + 1 < argc)
       seconds = atof(argv[++i]);
+    else if (strcmp(argv[i], "-k") == 0)
+      keep_first_byte = 1;
     else if (!load_path(argv[i])) {
       fprintf(stderr, "fuzz_smoke: cannot read seeds from %s\n", argv[i]);
       return 1;

@@ -4,7 +4,9 @@
  * placement strings), runs the entry on each, then on deterministic
  * mutations of them (byte flips, truncations, insertions, splices) until `-n`
  * inputs or `-t` seconds. A breach of the entry's checks aborts (and ASan/UBSan
- * builds catch memory errors). Usage: fuzz_stock_smoke [-n N] [-t SECONDS]
+ * builds catch memory errors). Usage: fuzz_stock_smoke [-n N] [-t SECONDS] [-w DIR]
+ * -w writes the seeds into DIR as files (seed-N) and stops: the libFuzzer
+ * target's seeds in tests/stock/fuzz_stock_seeds were made so.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -71,7 +73,8 @@ static void make_seeds(void) {
   swarf_stock_remove_batch(s, &cut, 1, NULL);
   swarf_stock_write_vdb(s, "stock_fuzz_seed.vdb", NULL);
   swarf_stock_free(s);
-  for (int how = 0; how < 8; how += 3) add_file(1, how, "stock_fuzz_seed.vdb");
+  for (int how = 0; how < 8; how += 3)
+    add_file(1, how, "stock_fuzz_seed.vdb");
   add_text("tx=1,ty=-2.5,tz=3,rx=180,ry=0,rz=90");
   add_text("rz=30");
   add_text("tx=1e308,rx=nan");
@@ -82,7 +85,8 @@ static size_t mutate(const blob *b, uint8_t *out, size_t cap) {
   memcpy(out, b->data, n);
   switch (next() % 4) {
   case 0: /* flips, the mode byte kept */
-    for (int k = 1 + (int)(next() % 8); k > 0 && n > 1; k--) out[1 + next() % (n - 1)] ^= (uint8_t)(1 + next() % 255);
+    for (int k = 1 + (int)(next() % 8); k > 0 && n > 1; k--)
+      out[1 + next() % (n - 1)] ^= (uint8_t)(1 + next() % 255);
     break;
   case 1: /* truncation */
     if (n > 2) n = 2 + next() % (n - 2);
@@ -91,7 +95,8 @@ static size_t mutate(const blob *b, uint8_t *out, size_t cap) {
     if (n + 16 < cap && n > 1) {
       size_t at = 1 + next() % (n - 1), k = 1 + next() % 16;
       memmove(out + at + k, out + at, n - at);
-      for (size_t i = 0; i < k; i++) out[at + i] = (uint8_t)next();
+      for (size_t i = 0; i < k; i++)
+        out[at + i] = (uint8_t)next();
       n += k;
     }
     break;
@@ -109,20 +114,41 @@ static size_t mutate(const blob *b, uint8_t *out, size_t cap) {
   return n;
 }
 
+/* -w DIR: every seed as DIR/seed-N; 0 or 1 (a file not written). */
+static int write_seeds(const char *dir) {
+  char path[4096];
+  for (int i = 0; i < nseeds; i++) {
+    FILE *f;
+    snprintf(path, sizeof path, "%s/seed-%02d", dir, i);
+    if ((f = fopen(path, "wb")) == NULL ||
+        fwrite(seeds[i].data, 1, seeds[i].size, f) != seeds[i].size) {
+      fprintf(stderr, "fuzz_stock_smoke: cannot write %s\n", path);
+      return 1;
+    }
+    fclose(f);
+  }
+  return 0;
+}
+
 int main(int argc, char **argv) {
   long limit = 100000;
   double seconds = 10;
+  const char *seed_dir = NULL;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!strcmp(argv[i], "-n")) limit = atol(argv[i + 1]);
     if (!strcmp(argv[i], "-t")) seconds = atof(argv[i + 1]);
+    if (!strcmp(argv[i], "-w")) seed_dir = argv[i + 1];
   }
   make_seeds();
+  if (seed_dir) return write_seeds(seed_dir);
   clock_t start = clock();
   time_t wall = time(NULL);
   long runs = 0, per_mode[3] = {0, 0, 0};
-  for (int i = 0; i < nseeds; i++, runs++) LLVMFuzzerTestOneInput(seeds[i].data, seeds[i].size);
+  for (int i = 0; i < nseeds; i++, runs++)
+    LLVMFuzzerTestOneInput(seeds[i].data, seeds[i].size);
   size_t cap = 0;
-  for (int i = 0; i < nseeds; i++) cap = seeds[i].size > cap ? seeds[i].size : cap;
+  for (int i = 0; i < nseeds; i++)
+    cap = seeds[i].size > cap ? seeds[i].size : cap;
   cap += 64;
   uint8_t *buf = malloc(cap);
   while (runs < limit && difftime(time(NULL), wall) < seconds) {
@@ -132,9 +158,12 @@ int main(int argc, char **argv) {
     per_mode[b->data[0] % 3]++;
     runs++;
   }
-  printf("fuzz_stock_smoke: %ld inputs (%d seeds; mutations: %ld STL, %ld vdb, %ld placement) in %.1f s CPU\n",
-         runs, nseeds, per_mode[0], per_mode[1], per_mode[2], (double)(clock() - start) / CLOCKS_PER_SEC);
+  printf("fuzz_stock_smoke: %ld inputs (%d seeds; mutations: %ld STL, %ld vdb, %ld placement) in "
+         "%.1f s CPU\n",
+         runs, nseeds, per_mode[0], per_mode[1], per_mode[2],
+         (double)(clock() - start) / CLOCKS_PER_SEC);
   free(buf);
-  for (int i = 0; i < nseeds; i++) free(seeds[i].data);
+  for (int i = 0; i < nseeds; i++)
+    free(seeds[i].data);
   return 0;
 }

@@ -6,11 +6,18 @@
  *   1 tool library JSON (tools/sim/library.c), from a memfd
  *   2 --tool spec  3 --stock spec  4 --machine spec  5 --holder spec
  *   6 --fixture spec
+ *   7 --modbus spec, 8 --modbus-push spec (tools/modbus/modbus_spec.c)
+ *   9 --offsets: LinuxCNC's parameter file (gcode/params_file.c), from a
+ *     memfd, into a parser then run on a probe program that uses every
+ *     offset (G54-G59.3, G28, G30, G92, G43)
  * Invariants (a breach aborts): a reader returns OK or an input status
  * (exit 2 class) with a message; a table error names a line within the
  * input; what a reader accepts is finite (lengths, diameters, boxes), tool
  * diameters are >= 0 and boxes have lo < hi (an STL fixture's bounds come
- * later, from the mesh).
+ * later, from the mesh); an endpoint accepted has every field in its range;
+ * a parameter file accepted gives finite moves or a G-code error, one
+ * refused leaves the parser as it was (the probe's moves equal a fresh
+ * parser's).
  * Built with libFuzzer under clang (tools_inputs_fuzz), and linked into a
  * plain smoke driver (tests/gcode/fuzz_smoke.c) everywhere.
  */
@@ -24,6 +31,7 @@
 #include <unistd.h>
 
 #include "gcode.h"
+#include "modbus_private.h"
 #include "swarf_sim.h"
 
 static void fail(const char *why, const swarf_error *e) {
@@ -134,19 +142,110 @@ static void spec(int which, const char *text) {
   check_status(s, &e);
 }
 
+/* 7, 8: an endpoint of --modbus (server) or --modbus-push. */
+static void modbus_spec(int push, const char *text) {
+  swarf_mb_endpoint e;
+  char msg[700], *end;
+  long port;
+  if (swarf_mb_endpoint_parse(text, push, &e, msg, sizeof msg) != 0) {
+    if (msg[0] == '\0') fail("--modbus: a refusal without a message", NULL);
+    return;
+  }
+  if (e.unit < 1 || e.unit > 247) fail("--modbus: unit out of 1..247", NULL);
+  if (e.kind == SWARF_MB_TCP) {
+    port = strtol(e.port, &end, 10);
+    if (memchr(e.host, '\0', sizeof e.host) == NULL || e.host[0] == '\0' || *end != '\0' ||
+        end == e.port || port < 0 || port > 65535 || (push && port == 0))
+      fail("--modbus: a bad host or port accepted", NULL);
+  } else if (push || memchr(e.device, '\0', sizeof e.device) == NULL || e.device[0] == '\0' ||
+             e.baud < 50 || e.baud > 4000000 || e.data_bits < 5 || e.data_bits > 8 ||
+             e.stop_bits < 1 || e.stop_bits > 2 || !strchr("NEO", e.parity) || e.parity == 0) {
+    fail("--modbus: a bad serial endpoint accepted", NULL);
+  }
+  if (push && (e.address < 0 || e.address > 65536 - SWARF_MB_NREGS ||
+               !(e.interval >= 0.05 && e.interval <= 3600)))
+    fail("--modbus-push: address or interval out of range", NULL);
+}
+
+/* The probe program run after a parameter file: every work system, the
+ * homes, G92 and a tool length offset, in both units. */
+static const char probe[] = "G0 X1 Y2 Z3\nG55 G0 X0\nG56 X0\nG57 X0\nG58 X0\nG59 X0\n"
+                            "G59.1 X0\nG59.2 X0\nG59.3 X0\nG54 X0\nG28\nG30\nG92 X0 Y0\n"
+                            "G1 X1 F100\nG92.1\nG20 G0 X1\nG43.1 Z1\nG0 Z0\nG91 X-1\nM2\n";
+
+typedef struct {
+  uint64_t hash;
+  long moves;
+} probe_run;
+
+static int on_probe_move(const swarf_move *mv, void *user) {
+  probe_run *r = user;
+  for (int k = 0; k < SWARF_NAXES; k++)
+    if (!isfinite(mv->start[k]) || !isfinite(mv->end[k]))
+      fail("--offsets: a move with a non-finite coordinate", NULL);
+  for (size_t i = 0; i < sizeof mv->end; i++)
+    r->hash = (r->hash ^ ((const uint8_t *)mv->end)[i]) * 1099511628211ull;
+  r->moves++;
+  return 0;
+}
+
+/* Runs the probe in `p` (which it frees): the status, the moves' hash. */
+static swarf_status run_probe(swarf_gcode_parser *p, probe_run *r) {
+  swarf_status s = swarf_gcode_parser_feed(p, probe, sizeof probe - 1);
+  if (s == SWARF_OK) s = swarf_gcode_parser_finish(p);
+  if (s != SWARF_OK && swarf_status_classify(s) != SWARF_CLASS_INPUT)
+    fail("--offsets: the probe failed as an internal error", swarf_gcode_parser_error(p));
+  swarf_gcode_parser_free(p);
+  return s;
+}
+
+static void offsets_file(const uint8_t *data, size_t size) {
+  char path[64];
+  long lines = 1;
+  swarf_error e;
+  swarf_gcode_parser *p = NULL, *fresh = NULL;
+  probe_run got = {14695981039346656037ull, 0}, want = got;
+  swarf_status s;
+  int fd = as_file(data, size, path);
+  if (fd < 0) return;
+  for (size_t i = 0; i < size; i++)
+    lines += data[i] == '\n';
+  swarf_error_init(&e);
+  if (swarf_gcode_parser_new("probe", on_probe_move, &got, &p) != SWARF_OK ||
+      swarf_gcode_parser_new("probe", on_probe_move, &want, &fresh) != SWARF_OK)
+    fail("out of memory", NULL);
+  s = swarf_gcode_parser_load_params(p, path, &e);
+  close(fd);
+  check_status(s, &e);
+  if (s != SWARF_OK && (e.line < 1 || e.line > lines || e.column < 1))
+    fail("--offsets: error place", &e);
+  if (run_probe(p, &got) != SWARF_OK && s != SWARF_OK) fail("--offsets: the probe failed", NULL);
+  if (s == SWARF_OK) {
+    swarf_gcode_parser_free(fresh);
+    return;
+  }
+  run_probe(fresh, &want);
+  if (got.moves != want.moves || got.hash != want.hash)
+    fail("--offsets: a refused file changed the parser", &e);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   int which;
   char *text;
   if (size == 0) return 0;
-  which = data[0] % 7;
+  which = data[0] % 10;
   data++, size--;
   if (which == 0) return tool_table(data, size), 0;
   if (which == 1) return tool_library(data, size), 0;
+  if (which == 9) return offsets_file(data, size), 0;
   text = malloc(size + 1);
   if (text == NULL) return 0;
   memcpy(text, data, size);
   text[size] = '\0';
-  spec(which, text);
+  if (which == 7 || which == 8)
+    modbus_spec(which == 8, text);
+  else
+    spec(which, text);
   free(text);
   return 0;
 }

@@ -987,15 +987,7 @@ extern "C" swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf
 
 extern "C" swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
                                                  size_t ncuts, swarf_error *err) {
-  return swarf::guard(err, nullptr, [&] {
-    if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
-    if (ncuts == 0) return;
-    if (cuts == nullptr) throw swarf::Error(SWARF_ERR_ARG, "cuts is NULL");
-    if (ncuts > UINT32_MAX) throw swarf::Error(SWARF_ERR_ARG, "too many cuts in one batch");
-    for (size_t i = 0; i < ncuts; i++)
-      check_cut(cuts[i], i);
-    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts); });
-  });
+  return swarf_stock_remove_batch_support(s, cuts, nullptr, ncuts, err);
 }
 
 extern "C" swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stock *design,

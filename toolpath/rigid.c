@@ -43,11 +43,10 @@ static void sin_cos_sum(double th0, double x, double *s, double *c) {
   *c = c0 * cx - s0 * sx;
 }
 
-/* Rotation matrix (row-major) by th0 + x about the unit axis n (right-hand rule). */
-static void rot_matrix_sum(const double n[3], double th0, double x, double M[9]) {
-  double c, s, k;
-  sin_cos_sum(th0, x, &s, &c);
-  k = 1.0 - c;
+/* Rotation matrix (row-major) with cosine c and sine s about the unit axis n
+ * (right-hand rule). */
+static void rot_matrix_cs(const double n[3], double c, double s, double M[9]) {
+  double k = 1.0 - c;
   M[0] = c + n[0] * n[0] * k;
   M[1] = n[0] * n[1] * k - n[2] * s;
   M[2] = n[0] * n[2] * k + n[1] * s;
@@ -59,18 +58,16 @@ static void rot_matrix_sum(const double n[3], double th0, double x, double M[9])
   M[8] = c + n[2] * n[2] * k;
 }
 
-/* Rotation matrix (row-major) by th about the unit axis n (right-hand rule). */
+/* Rotation matrix (row-major) by th0 + x about the unit axis n. */
+static void rot_matrix_sum(const double n[3], double th0, double x, double M[9]) {
+  double c, s;
+  sin_cos_sum(th0, x, &s, &c);
+  rot_matrix_cs(n, c, s, M);
+}
+
+/* Rotation matrix (row-major) by th about the unit axis n. */
 static void rot_matrix(const double n[3], double th, double M[9]) {
-  double c = cos(th), s = sin(th), k = 1.0 - c;
-  M[0] = c + n[0] * n[0] * k;
-  M[1] = n[0] * n[1] * k - n[2] * s;
-  M[2] = n[0] * n[2] * k + n[1] * s;
-  M[3] = n[1] * n[0] * k + n[2] * s;
-  M[4] = c + n[1] * n[1] * k;
-  M[5] = n[1] * n[2] * k - n[0] * s;
-  M[6] = n[2] * n[0] * k - n[1] * s;
-  M[7] = n[2] * n[1] * k + n[0] * s;
-  M[8] = c + n[2] * n[2] * k;
+  rot_matrix_cs(n, cos(th), sin(th), M);
 }
 
 static void mat_mul(const double A[9], const double B[9], double C[9]) {

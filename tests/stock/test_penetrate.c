@@ -84,7 +84,7 @@ int main(void) {
   CHECK(penetrates(s, &inside, 0.0, where) == 0, "a body inside the pocket is not found");
   /* bad arguments */
   int hit;
-  swarf_stock_cut cut = {{0, 0, 0}, {1, 1, 1}, box_cb, &inside};
+  swarf_stock_cut cut = {{0, 0, 0}, {1, 1, 1}, box_cb, &inside, NULL};
   swarf_error err;
   CHECK(swarf_stock_penetrates(NULL, &cut, NULL, 0, 0.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "NULL stock refused");

@@ -47,6 +47,9 @@
 #ifndef SWARF_READER_FROM_LIB
 #define SWARF_READER_FROM_LIB "../libexec/swarf"
 #endif
+#ifndef SWARF_READER_FROM_MODULE
+#define SWARF_READER_FROM_MODULE "../../libexec/swarf"
+#endif
 #ifndef SWARF_READER_INSTALLED
 #define SWARF_READER_INSTALLED "/usr/local/libexec/swarf"
 #endif
@@ -263,7 +266,8 @@ std::string reader_program() {
     return is_program(p);
   };
   for (const std::string &d : dirs)
-    for (const char *rel : {"", SWARF_READER_FROM_BIN, SWARF_READER_FROM_LIB}) {
+    for (const char *rel :
+         {"", SWARF_READER_FROM_BIN, SWARF_READER_FROM_LIB, SWARF_READER_FROM_MODULE}) {
       const std::string dir = *rel ? d + "/" + rel : d;
       if (found(dir)) return dir + "/" + kReaderName;
     }

@@ -12,8 +12,9 @@
 /// Where the program is found (the first that exists and is executable):
 ///   1. $SWARF_VDB_READER, if set (only there: a wrong value is an error);
 ///   2. beside the running executable (/proc/self/exe) or the library holding
-///      this code (dladdr: libswarf.so), or at ../libexec/swarf/ from either
-///      (the installed layout: bin/, LIBDIR, LIBEXECDIR/swarf/);
+///      this code (dladdr: libswarf.so, the command's stock module), or at
+///      LIBEXECDIR/swarf/ relative to either (the installed layout: bin/,
+///      LIBDIR/, LIBDIR/swarf/ for the module);
 ///   3. the install path CMake was configured with (LIBEXECDIR/swarf/);
 ///   4. in the build tree (BUILD/tools/), when the running program or
 ///      library is itself below that build tree.

@@ -10,6 +10,7 @@
 #   - consumer.c built with pkg-config (shared, and static with --static) and
 #     with CMake's find_package (swarf::swarf, swarf::swarf_static) runs and
 #     checks a simulated volume against the analytic one;
+#   - the installed command simulates (its stock module found under LIBDIR/swarf/);
 #   - the man page formats without warnings and holds every command;
 #   - the .vdb reader program (LIBEXECDIR/swarf/swarf-vdb-read) is found by
 #     the installed swarf and by the Python module through libswarf.so from
@@ -120,6 +121,15 @@ fi
 
 # ---- The command and its man page -------------------------------------------------
 "$prefix/bin/swarf" --help >/dev/null || fail "installed swarf --help"
+# The command loads its stock module from LIBDIR/swarf/ (stock/stock_module.h): a slot 20 mm
+# long, 2 mm deep, flat D4 (20*4*2 + pi*2^2*2 = 185.13 mm^3).
+ls "$libdir"/swarf/swarf_stock-"$version".so >/dev/null || fail "the stock module is not installed"
+printf 'G21 G90\nT1 M6\nG0 X10 Y10 Z5\nG1 Z-2 F100\nG1 X30\nG0 Z5\nM2\n' >"$work/slot.ngc"
+"$prefix/bin/swarf" simulate "$work/slot.ngc" --stock box:0,0,-10,40,20,0 --tool T1=flat,D4,L20 \
+  --voxel 0.1 --out "$work/slot.vdb" >"$work/slot.out" || fail "installed swarf simulate"
+removed=$(sed -n 's/.*removed \([0-9.]*\) mm^3.*/\1/p' "$work/slot.out")
+awk -v r="$removed" 'BEGIN { a = 160 + 8 * atan2(0, -1); exit !(r > a * 0.98 && r < a * 1.02) }' ||
+  fail "installed swarf simulate: removed $removed mm^3, analytic 185.13"
 warnings=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -ww -z "$prefix/share/man/man1/swarf.1" 2>&1)
 [ -z "$warnings" ] || fail "swarf.1: $warnings"
 page=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -P-cbou "$prefix/share/man/man1/swarf.1")

@@ -11,7 +11,12 @@
 #     with CMake's find_package (swarf::swarf, swarf::swarf_static) runs and
 #     checks a simulated volume against the analytic one;
 #   - the installed command simulates (its stock module found under LIBDIR/swarf/);
-#   - the man page formats without warnings and holds every command.
+#   - the man page formats without warnings and holds every command;
+#   - the .vdb reader program (LIBEXECDIR/swarf/swarf-vdb-read) is found by
+#     the installed swarf and by the Python module through libswarf.so from
+#     a copy of the prefix moved outside the build tree (so only the paths
+#     relative to the installation can find it), and its absence is an error
+#     that names it.
 # PREFIX stays for the Python test (FIXTURES_SETUP swarf_install). (No `| grep -q`:
 # under pipefail its early exit fails the pipe.)
 set -euo pipefail
@@ -132,4 +137,28 @@ for c in simulate parse info render envelope; do
   printf '%s\n' "$page" | grep "usage: swarf $c" >/dev/null || fail "swarf.1 lacks the $c command"
 done
 printf '%s\n' "$page" | grep -- "--stock box:" >/dev/null || fail "swarf.1 lacks simulate's options"
+# ---- The .vdb reader program, from a moved copy of the prefix ----------------------
+[ -x "$prefix/libexec/swarf/swarf-vdb-read" ] || fail "libexec/swarf/swarf-vdb-read not installed"
+moved=$(mktemp -d /tmp/swarf-moved-prefix.XXXXXX)
+trap 'rm -rf "$moved"' EXIT
+cp -a "$prefix/." "$moved/"
+"$moved/bin/swarf" simulate "$src/fixtures/demo.ngc" --stock box:0,0,-20,80,60,0 \
+  --tool T1=flat,D6,L24 --tool T2=ball,D3.175,L20 --voxel 1 --out "$moved/demo.vdb" --quiet
+unset SWARF_VDB_READER SWARF_VDB_ISOLATE
+info=$("$moved/bin/swarf" info "$moved/demo.vdb") || fail "moved swarf info: the reader not found"
+cli_volume=$(printf '%s\n' "$info" | sed -n 's/^volume \([0-9.]*\) mm^3$/\1/p')
+py_volume=$(PYTHONPATH="$moved/lib/python3/dist-packages" /usr/bin/python3 -c '
+import sys, swarf
+with swarf.Stock.read(sys.argv[1]) as s: print("%.3f" % s.volume)' "$moved/demo.vdb") ||
+  fail "the moved Python module cannot read a .vdb"
+[ -n "$cli_volume" ] && [ "$cli_volume" = "$py_volume" ] ||
+  fail "moved prefix: swarf info's volume '$cli_volume', the Python module's '$py_volume'"
+rm "$moved/libexec/swarf/swarf-vdb-read"
+if out=$("$moved/bin/swarf" info "$moved/demo.vdb" 2>&1); then fail "read a .vdb without the reader"; fi
+case "$out" in
+  *"swarf-vdb-read was not found"*) ;;
+  *) fail "without the reader: '$out'" ;;
+esac
+echo "reader: found from bin/ and from libswarf.so in a moved prefix ($py_volume mm^3)"
+
 echo "install.sh: all checks passed (libswarf $version in $prefix)"

@@ -324,7 +324,8 @@ typedef struct {
 /* HELIX: t(alpha) = c + radius (cos(angle alpha) e1 + sin(angle alpha) e2)
  * + alpha rise axis; n samples `step` mm apart along the path of length len.
  * A helix of more than two turns about a vertical axis is searched turn by
- * turn (sweep_sampled.c), tn samples a turn (0: not turn by turn). */
+ * turn, one of more than one turn about a horizontal axis in a one-turn
+ * window (sweep_sampled.c): tn samples a turn (0: the whole helix searched). */
 typedef struct {
   double c[3], e1[3], e2[3];
   double radius, angle, rise;

@@ -11,7 +11,9 @@
  *   cylinder and exact everywhere.
  * helix: any other helix (rise != 0, or a horizontal axis as for G18/G19):
  *   sampling and certified refinement, in sweep_sampled.c; turn by turn
- *   when it makes more than two turns about a vertical axis.
+ *   when it makes more than two turns about a vertical axis, and only the
+ *   one-turn window level with the point when it makes more than one turn
+ *   about a horizontal axis.
  * The per-method data (engine_private.h) is set by swarf_sweep_helix_init.
  */
 #include <math.h>
@@ -65,8 +67,9 @@ static void helix_frame_init(swarf_sweep *s, const double e1[3], const double e2
   x->rise = m->rise;
   n = ceil(len / helix_step(s->cutter, m->radius));
   x->tn = 0;
-  if (m->axis[0] == 0.0 && m->axis[1] == 0.0 && m->angle > 2.0 * two_pi) {
-    /* turn by turn (sweep_sampled.c): the samples of one turn */
+  if ((m->axis[0] == 0.0 && m->axis[1] == 0.0 && m->angle > 2.0 * two_pi) ||
+      (m->axis[2] == 0.0 && m->angle > two_pi)) {
+    /* turn by turn, or one turn's window (sweep_sampled.c): the samples of one turn */
     double tn = ceil(n * two_pi / m->angle);
     x->tn = tn < 2.0 ? 2 : tn > 1e6 ? 1000000 : (int)tn;
   }

@@ -23,10 +23,17 @@
  *     The others cannot hold a value below best - EPS: step 3 drops them.
  *  2. between steps the envelope is resolved on the characteristic curve:
  *     every interval where g' goes from - to + is refined (Illinois regula
- *     falsi) to g' = 0.
+ *     falsi) to g' = 0, or until the bracket left is certified (its bound
+ *     at or above best - EPS); every piece a sample cuts off the bracket
+ *     goes to step 3 with both ends known.
  *  3. certification: intervals whose lower bound (Lipschitz, and the upper
  *     envelope of the two concave parabolas of curvature -K through the end
- *     data) is below best - EPS are split, lowest first, within caps.
+ *     data) is below best - EPS are split, lowest first, within caps: next
+ *     to their lower end, at the distance d where g(end) - K d^2 / 2 meets
+ *     best - EPS (the piece beside a minimum is certified at once instead
+ *     of by a bisection per halving), or in the middle when d is half the
+ *     interval or more. (Issue 12: 2.4x fewer evaluations here, the same
+ *     certificate.)
  * Beyond FAR (72 voxels, more than any narrow band plus a block) the value
  * is the lower bound of the coarse intervals only. Nothing allocates here
  * (the pose table belongs to the thread's cache); pure function of the sweep
@@ -108,18 +115,40 @@ static inline double rbound_lip(const rctx *h, const rsample *A, const rsample *
   return 0.5 * (A->g + B->g - (x->v + x->w * Q) * w);
 }
 
+/* K with g'' >= -K over [A.a, B.a] (see the top of the file). */
+static inline double rcurv(const rctx *h, const rsample *A, const rsample *B) {
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(h->s)->u.rigid;
+  double Q = max2(A->dist, B->dist) + 0.5 * x->v * (B->a - A->a);
+  return (x->wd + x->w * x->w) * Q + x->w * x->v + x->vd;
+}
+
+/* The semiconvex part of the lower bound over [A.a, B.a]. */
+static inline double rbound_semi(const rctx *h, const rsample *A, const rsample *B) {
+  return swarf_semiconvex_bound(A->g, A->dg, B->g, B->dg, B->a - A->a, rcurv(h, A, B));
+}
+
 /* Lower bound of g over [A.a, B.a] (see the top of the file). */
 static double rbound(const rctx *h, const rsample *A, const rsample *B) {
-  const swarf_sweep_rigid *x = &swarf_sweep_cdata(h->s)->u.rigid;
-  double w = B->a - A->a, Q = max2(A->dist, B->dist) + 0.5 * x->v * w;
-  double K = (x->wd + x->w * x->w) * Q + x->w * x->v + x->vd;
-  return max2(swarf_semiconvex_bound(A->g, A->dg, B->g, B->dg, w, K), rbound_lip(h, A, B));
+  return max2(rbound_semi(h, A, B), rbound_lip(h, A, B));
+}
+
+/* Where step 3 splits a span without a sign change of g': at the distance
+ * from its lower end within which the curvature bound alone keeps g above
+ * best - EPS (g(end) - K d^2 / 2), so that the piece next to the end is
+ * certified at once (a span next to a minimum otherwise takes a bisection
+ * per halving of its width); in the middle when that is half the span or more. */
+static double rsplit(const rctx *h, const rsample *A, const rsample *B) {
+  double w = B->a - A->a, K = rcurv(h, A, B), lo = min2(A->g, B->g), d;
+  d = K > 0.0 ? 0.9 * sqrt(2.0 * (lo - h->best.g + EPS) / K) : INFINITY;
+  if (!(d < 0.5 * w)) return A->a + 0.5 * w;
+  return A->g <= B->g ? A->a + d : B->a - d;
 }
 
 static void rpush(rctx *h, rsample lo, rsample hi) {
   rspan sp = {lo, hi, 0.0, 0};
-  if (rbound_lip(h, &lo, &hi) >= h->best.g - EPS) return; /* cheap test first */
-  sp.lb = rbound(h, &lo, &hi);
+  sp.lb = rbound_lip(h, &lo, &hi);
+  if (sp.lb >= h->best.g - EPS) return; /* cheap test first */
+  sp.lb = max2(sp.lb, rbound_semi(h, &lo, &hi));
   if (sp.lb >= h->best.g - EPS || h->nheap == HEAP || hi.a - lo.a < 1e-12) return;
   swarf_tspan_push(h->heap, &h->nheap, sp);
 }
@@ -128,27 +157,37 @@ static rspan rpop(rctx *h) {
   return swarf_tspan_pop(h->heap, &h->nheap);
 }
 
-/* lo.dg < 0 < hi.dg: Illinois regula falsi to g' = 0 (the characteristic). */
-static rsample rrefine(rctx *h, rsample lo, rsample hi) {
+/* lo.dg < 0 < hi.dg: Illinois regula falsi to g' = 0 (the characteristic).
+ * Every piece of [lo, hi] a sample cuts off the bracket is queued for step
+ * 3 with both its ends known, and the last bracket on either side of the
+ * final sample, so no sample's information is lost to the certification. */
+static void rrefine(rctx *h, rsample lo, rsample hi) {
   double flo = lo.dg, fhi = hi.dg;
-  rsample m = lo;
   int side = 0;
   for (int it = 0; it < 40 && hi.a - lo.a > 1e-13; it++) {
     double a = (lo.a * fhi - hi.a * flo) / (fhi - flo);
+    rsample m;
     if (!(a > lo.a && a < hi.a)) a = 0.5 * (lo.a + hi.a);
     m = reval(h, a);
-    if (fabs(m.dg) <= 1e-12 * (1.0 + fabs(m.g))) break;
+    if (fabs(m.dg) <= 1e-12 * (1.0 + fabs(m.g))) {
+      rpush(h, lo, m);
+      rpush(h, m, hi);
+      return;
+    }
     if (m.dg < 0.0) {
+      rpush(h, lo, m);
       lo = m, flo = m.dg;
       if (side < 0) fhi *= 0.5;
       side = -1;
     } else {
+      rpush(h, m, hi);
       hi = m, fhi = m.dg;
       if (side > 0) flo *= 0.5;
       side = 1;
     }
+    if (rbound(h, &lo, &hi) >= h->best.g - EPS) return; /* the bracket is certified */
   }
-  return m;
+  rpush(h, lo, hi);
 }
 
 /* Step 2 on one interval between samples: refined to g' = 0 where g' goes
@@ -156,12 +195,8 @@ static rsample rrefine(rctx *h, rsample lo, rsample hi) {
 static void rinterval(rctx *h, rsample lo, rsample hi) {
   if (h->best.g <= h->floor) return;
   if (lo.dg < 0.0 && hi.dg > 0.0 && rbound(h, &lo, &hi) < h->best.g) {
-    rsample m = rrefine(h, lo, hi);
-    if (m.a > lo.a && m.a < hi.a) {
-      rpush(h, lo, m);
-      rpush(h, m, hi);
-      return;
-    }
+    rrefine(h, lo, hi);
+    return;
   }
   rpush(h, lo, hi);
 }
@@ -173,11 +208,11 @@ static void rheap(rctx *h) {
     rspan sp = rpop(h);
     rsample m;
     if (sp.lb >= h->best.g - EPS) break;
-    if (sp.lo.dg < 0.0 && sp.hi.dg > 0.0)
-      m = rrefine(h, sp.lo, sp.hi);
-    else
-      m = reval(h, 0.5 * (sp.lo.a + sp.hi.a));
-    if (!(m.a > sp.lo.a && m.a < sp.hi.a)) m = reval(h, 0.5 * (sp.lo.a + sp.hi.a));
+    if (sp.lo.dg < 0.0 && sp.hi.dg > 0.0 && sp.hi.a - sp.lo.a > 1e-13) {
+      rrefine(h, sp.lo, sp.hi);
+      continue;
+    }
+    m = reval(h, rsplit(h, &sp.lo, &sp.hi));
     rpush(h, sp.lo, m);
     rpush(h, m, sp.hi);
   }
@@ -205,7 +240,8 @@ static int rcoarse(rctx *h, const swarf_pose *table, int n, int S, rsample *smp,
   }
   for (int j = 0; j < nc; j++) {
     int i0 = j * S, i1 = (j + 1) * S < n ? (j + 1) * S : n, k;
-    lbc[j] = rbound(h, &smp[i0], &smp[i1]);
+    lbc[j] = rbound_lip(h, &smp[i0], &smp[i1]); /* enough to drop it: no need for more */
+    if (lbc[j] < h->best.g - EPS) lbc[j] = max2(lbc[j], rbound_semi(h, &smp[i0], &smp[i1]));
     for (k = j; k > 0 && lbc[order[k - 1]] > lbc[j]; k--)
       order[k] = order[k - 1];
     order[k] = j;

@@ -20,6 +20,9 @@
  * volume, unless the work caps stop step 2 (HEAP intervals, MAX_EVALS
  * evaluations, MAX_DEPTH splits); then it is still within STEP / 2 (the
  * Lipschitz bound of the sampling). Pure function of the sweep and p.
+ * Many turns (x->tn > 0): about a vertical axis the turns near p's height
+ * are searched one by one, about a horizontal axis (G18/G19) only the
+ * one-turn window level with p (both below).
  */
 #include <math.h>
 #include <stdint.h>
@@ -352,6 +355,45 @@ static void by_turns(hctx *h) {
   outward(&t, k0, -1, &searched);
 }
 
+/* ---- One window: a helix of more than one turn about a horizontal axis ---
+ *
+ * Every turn is the same motion translated by dz (the rise of a turn) along
+ * the axis a, with the cutter in the same pose (3-axis: its axis stays
+ * vertical). So the instances at one phase theta, one per turn, are the
+ * points t(theta) + k dz a: they differ only by a horizontal shift along a,
+ * since a is horizontal. The body is of revolution about its vertical axis
+ * and convex, so its sdf at fixed height grows with the horizontal distance
+ * to its axis, and that distance grows with |(p - t) . a| along such a
+ * shift: among them the instance axially nearest p is the lowest. With s
+ * the turn coordinate (alpha * turns) and s_p p's own (the axial offset of p
+ * over dz), that instance lies within half a turn of s_p, or in the first
+ * or last whole turn when s_p is within half a turn of an end or beyond it.
+ * So the one-turn window about s_p, clamped into [0, turns], holds the
+ * minimum over the whole helix: it alone is searched (certified as above),
+ * at the cost of a one-turn helix whatever the number of turns. rise = 0:
+ * every turn is the first one. */
+
+#define WINDOW_PAD 1e-6 /* turns added on each side against rounding in s_p */
+
+static void by_window(hctx *h) {
+  const swarf_sweep_helix *x = &swarf_sweep_cdata(h->s)->u.helix;
+  const double *ax = h->s->motion->axis, two_pi = 6.28318530717958647692;
+  double turns = x->angle / two_pi, dz = x->rise / turns, lo = 0.0, hi = 1.0, n;
+  if (dz != 0.0) {
+    double sp =
+        ((h->p[0] - x->c[0]) * ax[0] + (h->p[1] - x->c[1]) * ax[1] + (h->p[2] - x->c[2]) * ax[2]) /
+        dz;
+    lo = sp - 0.5 - WINDOW_PAD;
+    hi = sp + 0.5 + WINDOW_PAD;
+    if (lo < 0.0) hi -= lo, lo = 0.0;
+    if (hi > turns) lo -= hi - turns, hi = turns;
+    if (lo < 0.0) lo = 0.0;
+  }
+  if (hi > turns) hi = turns;
+  n = ceil(x->tn * (hi - lo));
+  search(h, lo / turns, hi / turns, n < 2.0 ? 2 : (int)n);
+}
+
 double swarf_sweep_helix_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
                                   const double p[3], double upper, double *alpha) {
   hctx h;
@@ -366,7 +408,9 @@ double swarf_sweep_helix_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, 
   h.best.g = upper;
   h.best.dg = 0.0;
   h.best_slope = INFINITY;
-  if (x->tn > 0)
+  if (x->tn > 0 && s->motion->axis[2] == 0.0)
+    by_window(&h);
+  else if (x->tn > 0)
     by_turns(&h);
   else
     search(&h, 0.0, 1.0, x->n);

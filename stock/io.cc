@@ -7,8 +7,9 @@
 /// corrupt data) becomes a status and a message. Delayed loading is off, so
 /// the whole grid is read (and checked by OpenVDB's reader) before returning.
 /// OpenVDB's reader is not hardened against damaged files (some corrupt its
-/// heap), so the file is read in a child process (isolate.h) that hands back
-/// the grid re-serialized by OpenVDB's own writer.
+/// heap), so the file is read by the reader program (swarf-vdb-read,
+/// vdb_reader.cc) in a child process (isolate.h), which hands back the grid
+/// re-serialized by OpenVDB's own writer.
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/tools/Interpolation.h>
@@ -137,27 +138,13 @@ openvdb::FloatGrid::Ptr read_grid_checked(const std::string &path) {
   }
 }
 
-/// Address space (bytes) for the reading child: what the process maps now
-/// plus room for the grid (256 MB and 64 times the file: a damaged 20 kB
-/// file that makes OpenVDB allocate gigabytes is stopped at 256 MB); 0 (no limit) under
-/// AddressSanitizer, which maps terabytes of shadow memory.
-size_t reader_address_space(const std::string &path) {
-#if defined(__SANITIZE_ADDRESS__)
-  return 0;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  return 0;
-#endif
-#endif
+/// Room (bytes) for the reading child beyond what it maps once started: 256
+/// MB and 64 times the file (a damaged 20 kB file that makes OpenVDB allocate
+/// gigabytes is stopped at 256 MB).
+size_t reader_room(const std::string &path) {
   struct stat st;
   const size_t file = ::stat(path.c_str(), &st) == 0 ? size_t(st.st_size) : 0;
-  size_t pages = 0;
-  if (FILE *f = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(f, "%zu", &pages) != 1) pages = 0;
-    std::fclose(f);
-  }
-  if (pages == 0) return 0;
-  return pages * size_t(::sysconf(_SC_PAGESIZE)) + (size_t(256) << 20) + 64 * file;
+  return (size_t(256) << 20) + 64 * file;
 }
 
 /// Whether reads run in a child: -1 follow SWARF_VDB_ISOLATE (default on),
@@ -182,20 +169,21 @@ void check_readable(const char *path) {
     throw Error(SWARF_ERR_OPEN, std::string("cannot read ") + path + ": not a regular file");
 }
 
-/// Read the stock grid of `path` in a child process (see the file comment),
-/// unless the embedding program turned that off.
+/// The reader program's work (isolate.h): the checked grid, serialized.
+std::string read_grid_serialized(const std::string &path) {
+  init_openvdb();
+  std::ostringstream os(std::ios::binary);
+  openvdb::io::Stream(os).write(openvdb::GridCPtrVec{read_grid_here(path)});
+  return os.str();
+}
+
+/// Read the stock grid of `path` with the reader program in a child process
+/// (see the file comment), unless the embedding program turned that off.
 openvdb::FloatGrid::Ptr read_grid(const std::string &path) {
   if (!isolate_reads()) return read_grid_here(path);
-  const IsolateLimits limits = {60, reader_address_space(path)};
+  const IsolateLimits limits = {60, reader_room(path)};
   std::string bytes;
-  run_isolated(
-      "reading " + path, limits,
-      [&] {
-        std::ostringstream os(std::ios::binary);
-        openvdb::io::Stream(os).write(openvdb::GridCPtrVec{read_grid_here(path)});
-        return os.str();
-      },
-      bytes);
+  run_reader("reading " + path, path, limits, bytes);
   std::istringstream is(bytes, std::ios::binary);
   openvdb::GridPtrVecPtr grids = openvdb::io::Stream(is).getGrids();
   openvdb::FloatGrid::Ptr grid;

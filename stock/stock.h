@@ -72,9 +72,9 @@ SWARF_API swarf_status swarf_stock_new_cylinder_part(int axis, double radius, do
 /* Read the grid named "stock" (or the first float level set) of a .vdb file
  * into *out: SWARF_ERR_OPEN when it cannot be opened, SWARF_ERR_FORMAT when
  * it is not a usable level set (err->file is the path). OpenVDB's reader is
- * not hardened against damaged files, so the file is read in a forked child
- * process (stock/isolate.cc) that sends the grid back: a crash, a hang or a
- * runaway allocation there becomes an error here. */
+ * not hardened, so the program swarf-vdb-read reads the file in a child
+ * (stock/isolate.h: where it is looked for; SWARF_VDB_READER) and sends the
+ * grid back: a crash, hang or runaway allocation there is an error here. */
 SWARF_API swarf_status swarf_stock_read(const char *path, swarf_stock **out, swarf_error *err);
 
 /* An embedding program that must not fork (or reads only files it wrote)

@@ -21,10 +21,31 @@
 #include "check.h"
 #include "testkit.h"
 
-enum { K_SLOT, K_PLUNGE, K_RAMP, K_ARC, K_RING, K_HELIX, K_TURNS, K_G18, K_G19, K_NKINDS };
-static const char *kind_name[K_NKINDS] = {
-    "slot",    "plunge",   "ramp", "arc", "ring", "helix", "helix of 2-15 turns",
-    "G18 arc", "G19 helix"};
+enum {
+  K_SLOT,
+  K_PLUNGE,
+  K_RAMP,
+  K_ARC,
+  K_RING,
+  K_HELIX,
+  K_TURNS,
+  K_G18,
+  K_G19,
+  K_G18_TURNS,
+  K_G19_TURNS,
+  K_NKINDS
+};
+static const char *kind_name[K_NKINDS] = {"slot",
+                                          "plunge",
+                                          "ramp",
+                                          "arc",
+                                          "ring",
+                                          "helix",
+                                          "helix of 2-15 turns",
+                                          "G18 arc",
+                                          "G19 helix",
+                                          "G18 of 1-15 turns",
+                                          "G19 of 1-15 turns"};
 
 static double tk_sign(tk_rng *r) {
   return tk_uniform(r, 0, 1) < 0.5 ? -1.0 : 1.0;
@@ -61,12 +82,17 @@ static swarf_motion random_move(tk_rng *r, int kind) {
       return tk_helix(p0, c, nrm, tk_uniform(r, 4.01 * tk_pi, 30 * tk_pi),
                       tk_sign(r) * tk_uniform(r, 0.3, 20));
     return tk_helix(p0, c, nrm, tk_uniform(r, 0.1, 4 * tk_pi), tk_sign(r) * tk_uniform(r, 0.2, 5));
-  default: {
-    int ax = kind == K_G18 ? 1 : 0, o1 = kind == K_G18 ? 2 : 1, o2 = kind == K_G18 ? 0 : 2;
-    double rise = tk_uniform(r, 0, 1) < 0.5 ? 0.0 : tk_sign(r) * tk_uniform(r, 0.2, 4);
+  default: { /* G18, G19; more than one turn: searched in a one-turn window */
+    int g18 = kind == K_G18 || kind == K_G18_TURNS, turns = kind >= K_G18_TURNS;
+    int ax = g18 ? 1 : 0, o1 = g18 ? 2 : 1, o2 = g18 ? 0 : 2;
+    double rise = tk_uniform(r, 0, 1) < (turns ? 0.2 : 0.5) ? 0.0
+                  : turns                                   ? tk_sign(r) * tk_uniform(r, 0.3, 20)
+                                                            : tk_sign(r) * tk_uniform(r, 0.2, 4);
     nrm[ax] = tk_sign(r);
     p0[ax] = c[ax], p0[o1] = c[o1] + rad * cos(ph), p0[o2] = c[o2] + rad * sin(ph);
-    return tk_helix(p0, c, nrm, tk_uniform(r, 0.1, 2 * tk_pi), rise);
+    return tk_helix(p0, c, nrm,
+                    turns ? tk_uniform(r, 2.01 * tk_pi, 30 * tk_pi) : tk_uniform(r, 0.1, 2 * tk_pi),
+                    rise);
   }
   }
 }

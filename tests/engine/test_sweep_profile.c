@@ -4,7 +4,8 @@
  * exact sdf (test_profile.c checks that sdf against the families' drawings),
  * with golden-section polish around every sampled local minimum.
  *   - lines (slot, plunge up and down, ramp), planar arcs and full circles,
- *     helices (and G18 arcs), xyza and 5-axis trt moves, and the paper's
+ *     helices (and G18 arcs, G18 and G19 helices of several turns, searched
+ *     in a one-turn window), xyza and 5-axis trt moves, and the paper's
  *     Example 2 motion (a turn about (2,1,2)/3 while moving along (1,1,0));
  *   - outside the swept volume the sweep equals the truth to 1e-6 mm; inside
  *     it is never shallower than the deepest instance (the plunge's closed
@@ -178,6 +179,7 @@ static void run_cutter(const char *cname, const swarf_cutter *c, int npts, errs 
   const double o[3] = {0, 0, 0}, x1[3] = {6, 1, 0}, dn[3] = {0, 0, -4}, upz[3] = {0, 0, 3};
   const double ramp[3] = {5, -2, -1.5}, up[3] = {0, 0, 1}, ny[3] = {0, 1, 0};
   const double c2[3] = {-4, 0, 0}, c18[3] = {-3, 0, 0}, rc[3] = {-2.5, 0, 0};
+  const double c19[3] = {0, 0, -3}, nx[3] = {-1, 0, 0};
   const double a0[6] = {-3, 0, 6, 0, 0, 0}, a1[6] = {3, 0, 6, 50, 0, 0};
   const double t0[6] = {1, 2, 3, 10, 0, -30}, t1[6] = {3, 0, 2, 30, 0, 40};
   struct {
@@ -194,7 +196,9 @@ static void run_cutter(const char *cname, const swarf_cutter *c, int npts, errs 
             {"G18 arc", tk_helix(o, c18, ny, 1.0, 0.0), 4000},
             {"xyza", machine_move("xyza", a0, a1), 8000},
             {"xyzac-trt", machine_move("xyzac-trt", t0, t1), 8000},
-            {"the paper's Example 2", tk_example2(2.0), 8000}};
+            {"the paper's Example 2", tk_example2(2.0), 8000},
+            {"G18 helix of 3.5 turns", tk_helix(o, c18, ny, 7 * tk_pi, 20.0), 16000},
+            {"G19 helix of 2.5 turns", tk_helix(o, c19, nx, 5 * tk_pi, -12.0), 16000}};
   for (size_t i = 0; i < sizeof mv / sizeof mv[0]; i++) {
     char name[96];
     snprintf(name, sizeof name, "%s, %s", cname, mv[i].what);

@@ -10,7 +10,13 @@
 #   - consumer.c built with pkg-config (shared, and static with --static) and
 #     with CMake's find_package (swarf::swarf, swarf::swarf_static) runs and
 #     checks a simulated volume against the analytic one;
-#   - the man page formats without warnings and holds every command.
+#   - the installed command simulates (its stock module found under LIBDIR/swarf/);
+#   - the man page formats without warnings and holds every command;
+#   - the .vdb reader program (LIBEXECDIR/swarf/swarf-vdb-read) is found by
+#     the installed swarf and by the Python module through libswarf.so from
+#     a copy of the prefix moved outside the build tree (so only the paths
+#     relative to the installation can find it), and its absence is an error
+#     that names it.
 # PREFIX stays for the Python test (FIXTURES_SETUP swarf_install). (No `| grep -q`:
 # under pipefail its early exit fails the pipe.)
 set -euo pipefail
@@ -115,6 +121,15 @@ fi
 
 # ---- The command and its man page -------------------------------------------------
 "$prefix/bin/swarf" --help >/dev/null || fail "installed swarf --help"
+# The command loads its stock module from LIBDIR/swarf/ (stock/stock_module.h): a slot 20 mm
+# long, 2 mm deep, flat D4 (20*4*2 + pi*2^2*2 = 185.13 mm^3).
+ls "$libdir"/swarf/swarf_stock-"$version".so >/dev/null || fail "the stock module is not installed"
+printf 'G21 G90\nT1 M6\nG0 X10 Y10 Z5\nG1 Z-2 F100\nG1 X30\nG0 Z5\nM2\n' >"$work/slot.ngc"
+"$prefix/bin/swarf" simulate "$work/slot.ngc" --stock box:0,0,-10,40,20,0 --tool T1=flat,D4,L20 \
+  --voxel 0.1 --out "$work/slot.vdb" >"$work/slot.out" || fail "installed swarf simulate"
+removed=$(sed -n 's/.*removed \([0-9.]*\) mm^3.*/\1/p' "$work/slot.out")
+awk -v r="$removed" 'BEGIN { a = 160 + 8 * atan2(0, -1); exit !(r > a * 0.98 && r < a * 1.02) }' ||
+  fail "installed swarf simulate: removed $removed mm^3, analytic 185.13"
 warnings=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -ww -z "$prefix/share/man/man1/swarf.1" 2>&1)
 [ -z "$warnings" ] || fail "swarf.1: $warnings"
 page=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -P-cbou "$prefix/share/man/man1/swarf.1")
@@ -122,4 +137,28 @@ for c in simulate parse info render envelope; do
   printf '%s\n' "$page" | grep "usage: swarf $c" >/dev/null || fail "swarf.1 lacks the $c command"
 done
 printf '%s\n' "$page" | grep -- "--stock box:" >/dev/null || fail "swarf.1 lacks simulate's options"
+# ---- The .vdb reader program, from a moved copy of the prefix ----------------------
+[ -x "$prefix/libexec/swarf/swarf-vdb-read" ] || fail "libexec/swarf/swarf-vdb-read not installed"
+moved=$(mktemp -d /tmp/swarf-moved-prefix.XXXXXX)
+trap 'rm -rf "$moved"' EXIT
+cp -a "$prefix/." "$moved/"
+"$moved/bin/swarf" simulate "$src/fixtures/demo.ngc" --stock box:0,0,-20,80,60,0 \
+  --tool T1=flat,D6,L24 --tool T2=ball,D3.175,L20 --voxel 1 --out "$moved/demo.vdb" --quiet
+unset SWARF_VDB_READER SWARF_VDB_ISOLATE
+info=$("$moved/bin/swarf" info "$moved/demo.vdb") || fail "moved swarf info: the reader not found"
+cli_volume=$(printf '%s\n' "$info" | sed -n 's/^volume \([0-9.]*\) mm^3$/\1/p')
+py_volume=$(PYTHONPATH="$moved/lib/python3/dist-packages" /usr/bin/python3 -c '
+import sys, swarf
+with swarf.Stock.read(sys.argv[1]) as s: print("%.3f" % s.volume)' "$moved/demo.vdb") ||
+  fail "the moved Python module cannot read a .vdb"
+[ -n "$cli_volume" ] && [ "$cli_volume" = "$py_volume" ] ||
+  fail "moved prefix: swarf info's volume '$cli_volume', the Python module's '$py_volume'"
+rm "$moved/libexec/swarf/swarf-vdb-read"
+if out=$("$moved/bin/swarf" info "$moved/demo.vdb" 2>&1); then fail "read a .vdb without the reader"; fi
+case "$out" in
+  *"swarf-vdb-read was not found"*) ;;
+  *) fail "without the reader: '$out'" ;;
+esac
+echo "reader: found from bin/ and from libswarf.so in a moved prefix ($py_volume mm^3)"
+
 echo "install.sh: all checks passed (libswarf $version in $prefix)"

@@ -190,12 +190,29 @@ static int ramp_cross(const ramp_point *rp, double c0, double c1, double u[2]) {
 /* Inside: the minimum over u of the convex max(r - a, |zp - k u| - hh) is at
  * an end, at the minimum of a piece, or where two pieces cross. */
 static double ramp_depth(const ramp_point *rp, double *ubest) {
-  double cand[8], best = INFINITY;
+  double cand[8], best = INFINITY, uz = rp->zp / rp->k;
   int n = 0;
+  /* Where a piece's own minimum lies on the move and that piece dominates
+   * there, it is the minimum (the other piece only adds): the radial one at
+   * xi (r = |eta|), the height one at zp / k (-hh). */
+  if (rp->xi >= 0.0 && rp->xi <= rp->U) {
+    double m = ramp_m(rp, rp->xi);
+    if (m == fabs(rp->eta) - rp->a) {
+      *ubest = rp->xi;
+      return m;
+    }
+  }
+  if (uz >= 0.0 && uz <= rp->U) {
+    double dx = uz - rp->xi;
+    if (sqrt(dx * dx + rp->eta * rp->eta) - rp->a <= -rp->hh) {
+      *ubest = uz;
+      return ramp_m(rp, uz);
+    }
+  }
   cand[n++] = 0.0;
   cand[n++] = rp->U;
   cand[n++] = rp->xi;
-  cand[n++] = rp->zp / rp->k;
+  cand[n++] = uz;
   n += ramp_cross(rp, rp->zp - rp->hh, -rp->k, cand + n);
   n += ramp_cross(rp, -rp->zp - rp->hh, rp->k, cand + n);
   for (int i = 0; i < n; i++) {

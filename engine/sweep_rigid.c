@@ -122,11 +122,14 @@ static inline double rcurv(const rctx *h, const rsample *A, const rsample *B) {
   return (x->wd + x->w * x->w) * Q + x->w * x->v + x->vd;
 }
 
+/* The semiconvex part of the lower bound over [A.a, B.a]. */
+static inline double rbound_semi(const rctx *h, const rsample *A, const rsample *B) {
+  return swarf_semiconvex_bound(A->g, A->dg, B->g, B->dg, B->a - A->a, rcurv(h, A, B));
+}
+
 /* Lower bound of g over [A.a, B.a] (see the top of the file). */
 static double rbound(const rctx *h, const rsample *A, const rsample *B) {
-  double K = rcurv(h, A, B);
-  return max2(swarf_semiconvex_bound(A->g, A->dg, B->g, B->dg, B->a - A->a, K),
-              rbound_lip(h, A, B));
+  return max2(rbound_semi(h, A, B), rbound_lip(h, A, B));
 }
 
 /* Where step 3 splits a span without a sign change of g': at the distance
@@ -143,8 +146,9 @@ static double rsplit(const rctx *h, const rsample *A, const rsample *B) {
 
 static void rpush(rctx *h, rsample lo, rsample hi) {
   rspan sp = {lo, hi, 0.0, 0};
-  if (rbound_lip(h, &lo, &hi) >= h->best.g - EPS) return; /* cheap test first */
-  sp.lb = rbound(h, &lo, &hi);
+  sp.lb = rbound_lip(h, &lo, &hi);
+  if (sp.lb >= h->best.g - EPS) return; /* cheap test first */
+  sp.lb = max2(sp.lb, rbound_semi(h, &lo, &hi));
   if (sp.lb >= h->best.g - EPS || h->nheap == HEAP || hi.a - lo.a < 1e-12) return;
   swarf_tspan_push(h->heap, &h->nheap, sp);
 }
@@ -237,7 +241,7 @@ static int rcoarse(rctx *h, const swarf_pose *table, int n, int S, rsample *smp,
   for (int j = 0; j < nc; j++) {
     int i0 = j * S, i1 = (j + 1) * S < n ? (j + 1) * S : n, k;
     lbc[j] = rbound_lip(h, &smp[i0], &smp[i1]); /* enough to drop it: no need for more */
-    if (lbc[j] < h->best.g - EPS) lbc[j] = max2(lbc[j], rbound(h, &smp[i0], &smp[i1]));
+    if (lbc[j] < h->best.g - EPS) lbc[j] = max2(lbc[j], rbound_semi(h, &smp[i0], &smp[i1]));
     for (k = j; k > 0 && lbc[order[k - 1]] > lbc[j]; k--)
       order[k] = order[k - 1];
     order[k] = j;

@@ -133,7 +133,7 @@ swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> 
   if (!has_material(*grid))
     throw Error(SWARF_ERR_FORMAT, "the mesh holds no voxel centre at this voxel size (thinner than a voxel)");
   swarf_stock *s = wrap_grid(grid);
-  if (keep_surface) s->surface = mesh_surface(ip, t);
+  if (keep_surface) s->surface = mesh_surface(std::move(ip), std::move(t));
   return s;
 }
 

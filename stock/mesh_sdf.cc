@@ -27,12 +27,14 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "stock_private.h"
@@ -202,47 +204,83 @@ inline bool local_range(const Tri &t, const Coord &o, double g, int lo[3], int h
   return true;
 }
 
+/// One pass of a triangle over the block's voxels within g of its bounding
+/// box (block-local range lo..hi): each voxel whose row bit is set in `rows`
+/// and which the pass may improve gets the triangle's squared distance when it
+/// is below the best so far. A voxel is passed over when the box, or the
+/// triangle's plane, is already farther than its best, and in the second pass
+/// when the box is nearer than `near` (the first pass had it). The row's
+/// parts of the box and plane distances are taken once a row; the sums are
+/// those of box_dist2 and (pt - a).n term by term, so every test decides as
+/// before.
+inline void triangle_pass(const Tri &t, const Coord &o, const int lo[3], const int hi[3], double g2,
+                          bool second, double near2, const uint8_t *rows, float *d2) {
+  for (int x = lo[0]; x <= hi[0]; x++)
+    for (int y = lo[1]; y <= hi[1]; y++) {
+      const int row = (x << 3) | y;
+      if (rows != nullptr && rows[row] == 0) continue;
+      // the row's voxels within g of the triangle's box
+      const double px = o[0] + x, py = o[1] + y;
+      const double ex = px < t.lo[0] ? t.lo[0] - px : px > t.hi[0] ? px - t.hi[0] : 0.0;
+      const double ey = py < t.lo[1] ? t.lo[1] - py : py > t.hi[1] ? py - t.hi[1] : 0.0;
+      const double r2 = g2 - ex * ex - ey * ey;
+      if (!(r2 > 0.0)) continue;
+      const double exy = ex * ex + ey * ey; // box_dist2's first two terms
+      const double pxy = (px - t.a[0]) * t.n[0] + (py - t.a[1]) * t.n[1];
+      // the row's voxels in the box's range (those beyond g of it fail bd < g2)
+      unsigned bits =
+          (rows != nullptr ? rows[row] : 0xffu) & (0xffu << lo[2]) & (0xffu >> (7 - hi[2]));
+      for (; bits != 0; bits &= bits - 1) {
+        const int z = __builtin_ctz(bits);
+        const openvdb::Index v = openvdb::Index((x << 6) | (y << 3) | z);
+        const double pz = o[2] + z;
+        const double ez = pz < t.lo[2] ? t.lo[2] - pz : pz > t.hi[2] ? pz - t.hi[2] : 0.0;
+        const double best = double(d2[v]), bd = exy + ez * ez;
+        if (!(bd < g2) || bd >= best || (second && bd < near2))
+          continue; // beyond g, farther, or done in the first pass
+        const double pd = pxy + (pz - t.a[2]) * t.n[2];
+        if (pd * pd >= best) continue; // the plane is already farther
+        const double e = tri_dist2(t, Vec3d(px, py, pz));
+        if (e < best) d2[v] = float(e);
+      }
+    }
+}
+
 /// The block's voxels: squared distances (index units) to its triangles,
 /// those below w^2 exact. First the voxels next to each triangle (its box
 /// grown by one voxel), which leaves most voxels near their final value, then
-/// the rest of the band; only voxels within the grown box's rounded corners
+/// the rest of the band, for the voxels the first pass left a voxel or more
+/// away only (the others' nearest triangle is already known: any other box
+/// is a voxel away); only voxels within the grown box's rounded corners
 /// are visited, and a triangle whose box or plane is farther than the best
 /// found so far is passed over without the closest-point computation.
 void block_distances(const Coord &o, const Pair *p, size_t n, const std::vector<Tri> &tris,
                      double w, float *d2) {
   for (openvdb::Index v = 0; v < Leaf::SIZE; v++)
     d2[v] = float(w * w);
-  const double near = std::min(1.0, w);
-  for (int pass = 0; pass < 2; pass++)
-    for (size_t q = 0; q < n; q++) {
-      const Tri &t = tris[p[q].tri];
-      int lo[3], hi[3];
-      if (!local_range(t, o, pass == 0 ? near : w, lo, hi)) continue;
-      const double g2 = (pass == 0 ? near : w) * (pass == 0 ? near : w);
-      for (int x = lo[0]; x <= hi[0]; x++)
-        for (int y = lo[1]; y <= hi[1]; y++) {
-          // the row's voxels within g of the triangle's box
-          const double px = o[0] + x, py = o[1] + y;
-          const double ex = px < t.lo[0] ? t.lo[0] - px : px > t.hi[0] ? px - t.hi[0] : 0.0;
-          const double ey = py < t.lo[1] ? t.lo[1] - py : py > t.hi[1] ? py - t.hi[1] : 0.0;
-          const double r2 = g2 - ex * ex - ey * ey;
-          if (!(r2 > 0.0)) continue;
-          const double r = std::sqrt(r2);
-          const int zlo = std::max(lo[2], iceil(t.lo[2] - r) - o[2]);
-          const int zhi = std::min(hi[2], ifloor(t.hi[2] + r) - o[2]);
-          for (int z = zlo; z <= zhi; z++) {
-            const openvdb::Index v = openvdb::Index((x << 6) | (y << 3) | z);
-            const Vec3d pt(o[0] + x, o[1] + y, o[2] + z);
-            const double best = double(d2[v]), bd = box_dist2(t.lo, t.hi, pt);
-            if (bd >= best || (pass == 1 && bd < near * near))
-              continue; // farther, or done in the first pass
-            const double pd = (pt - t.a).dot(t.n);
-            if (pd * pd >= best) continue; // the plane is already farther
-            const double e = tri_dist2(t, pt);
-            if (e < best) d2[v] = float(e);
-          }
-        }
-    }
+  const double near = std::min(1.0, w), near2 = near * near;
+  for (size_t q = 0; q < n; q++) {
+    const Tri &t = tris[p[q].tri];
+    int lo[3], hi[3];
+    if (local_range(t, o, near, lo, hi))
+      triangle_pass(t, o, lo, hi, near2, false, near2, nullptr, d2);
+  }
+  if (!(w > near)) return;
+  uint8_t rows[64]; // per (x, y): the voxels (bit z) still a voxel or more away
+  bool any = false;
+  for (int r = 0; r < 64; r++) {
+    unsigned bits = 0;
+    for (int z = 0; z < 8; z++)
+      bits |= unsigned(!(double(d2[(r << 3) | z]) < near2)) << z;
+    rows[r] = uint8_t(bits);
+    any = any || bits != 0;
+  }
+  if (!any) return;
+  for (size_t q = 0; q < n; q++) {
+    const Tri &t = tris[p[q].tri];
+    int lo[3], hi[3];
+    if (local_range(t, o, w, lo, hi)) triangle_pass(t, o, lo, hi, w * w, true, near2, rows, d2);
+  }
 }
 
 /// Winding numbers of the block's voxels from the sorted crossings: one
@@ -388,18 +426,24 @@ constexpr size_t kChunk = 32;
 } // namespace
 
 struct MeshSurface {
-  std::vector<Tri> tris; ///< in Morton order of their centroids
+  std::vector<openvdb::Vec3s> pts; ///< the mesh, until ordered
+  std::vector<openvdb::Vec3I> tris;
+  std::once_flag once;
+  std::vector<Tri> sorted; ///< in Morton order of their centroids
   struct Box {
     double lo[3], hi[3];
   };
-  std::vector<Box> chunks; ///< bounds of tris[kChunk i, kChunk (i + 1))
+  std::vector<Box> chunks; ///< bounds of sorted[kChunk i, kChunk (i + 1))
+  void order();
 };
 
-std::shared_ptr<const MeshSurface> mesh_surface(const std::vector<openvdb::Vec3s> &pts,
-                                                const std::vector<openvdb::Vec3I> &tris) {
-  auto m = std::make_shared<MeshSurface>();
+/// The triangles in Morton order, in chunks with their bounds; the mesh
+/// itself is let go.
+void MeshSurface::order() {
   std::vector<Tri> t = index_triangles(pts, tris);
-  if (t.empty()) return m;
+  std::vector<openvdb::Vec3s>().swap(pts);
+  std::vector<openvdb::Vec3I>().swap(tris);
+  if (t.empty()) return;
   double lo[3] = {t[0].lo[0], t[0].lo[1], t[0].lo[2]}, hi[3] = {t[0].hi[0], t[0].hi[1], t[0].hi[2]};
   for (const Tri &x : t)
     for (int a = 0; a < 3; a++)
@@ -414,28 +458,38 @@ std::shared_ptr<const MeshSurface> mesh_surface(const std::vector<openvdb::Vec3s
     key[k] = {code, uint32_t(k)};
   }
   tbb::parallel_sort(key.begin(), key.end());
-  m->tris.reserve(t.size());
+  sorted.reserve(t.size());
   for (const auto &k : key)
-    m->tris.push_back(t[k.second]);
-  for (size_t c = 0; c < m->tris.size(); c += kChunk) {
-    MeshSurface::Box b = {{m->tris[c].lo[0], m->tris[c].lo[1], m->tris[c].lo[2]},
-                          {m->tris[c].hi[0], m->tris[c].hi[1], m->tris[c].hi[2]}};
-    for (size_t k = c; k < std::min(c + kChunk, m->tris.size()); k++)
+    sorted.push_back(t[k.second]);
+  for (size_t c = 0; c < sorted.size(); c += kChunk) {
+    MeshSurface::Box b = {{sorted[c].lo[0], sorted[c].lo[1], sorted[c].lo[2]},
+                          {sorted[c].hi[0], sorted[c].hi[1], sorted[c].hi[2]}};
+    for (size_t k = c; k < std::min(c + kChunk, sorted.size()); k++)
       for (int a = 0; a < 3; a++)
-        b.lo[a] = std::min(b.lo[a], m->tris[k].lo[a]),
-        b.hi[a] = std::max(b.hi[a], m->tris[k].hi[a]);
-    m->chunks.push_back(b);
+        b.lo[a] = std::min(b.lo[a], sorted[k].lo[a]), b.hi[a] = std::max(b.hi[a], sorted[k].hi[a]);
+    chunks.push_back(b);
   }
+}
+
+std::shared_ptr<MeshSurface> mesh_surface(std::vector<openvdb::Vec3s> pts,
+                                          std::vector<openvdb::Vec3I> tris) {
+  auto m = std::make_shared<MeshSurface>();
+  m->pts = std::move(pts);
+  m->tris = std::move(tris);
   return m;
 }
 
-double mesh_surface_distance(const MeshSurface &m, const openvdb::Vec3d &p) {
+double mesh_surface_distance(MeshSurface &m, const openvdb::Vec3d &p) {
+  // Ordered at the first query (most designs are never asked beyond their
+  // band); isolated, so that the sort's thread does not take up another
+  // query of the caller's parallel loop while it holds the flag.
+  std::call_once(m.once, [&] { tbb::this_task_arena::isolate([&] { m.order(); }); });
   double best = std::numeric_limits<double>::infinity();
   for (size_t c = 0; c < m.chunks.size(); c++) {
     if (box_dist2(m.chunks[c].lo, m.chunks[c].hi, p) >= best) continue;
-    for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, m.tris.size()); k++)
-      if (box_dist2(m.tris[k].lo, m.tris[k].hi, p) < best)
-        best = std::min(best, tri_dist2(m.tris[k], p));
+    for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, m.sorted.size()); k++)
+      if (box_dist2(m.sorted[k].lo, m.sorted[k].hi, p) < best)
+        best = std::min(best, tri_dist2(m.sorted[k], p));
   }
   return std::sqrt(best);
 }

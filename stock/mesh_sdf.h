@@ -19,14 +19,16 @@ namespace swarf {
 /// largest excesses beyond the band). Index space, as mesh_band's points.
 struct MeshSurface;
 
-/// The surface of the mesh (index-space points, triangles), for queries.
-std::shared_ptr<const MeshSurface> mesh_surface(const std::vector<openvdb::Vec3s> &points,
-                                                const std::vector<openvdb::Vec3I> &triangles);
+/// The surface of the mesh (index-space points, triangles), for queries;
+/// ordered for them at the first query (mesh_surface_distance).
+std::shared_ptr<MeshSurface> mesh_surface(std::vector<openvdb::Vec3s> points,
+                                          std::vector<openvdb::Vec3I> triangles);
 
 /// Exact distance (index units) from the index-space point p to the surface:
-/// triangles in chunks of 32 along a Morton curve, chunks whose bounding box
-/// is farther than the best found skipped.
-double mesh_surface_distance(const MeshSurface &m, const openvdb::Vec3d &p);
+/// triangles in chunks of 32 along a Morton curve (sorted at the first call,
+/// thread-safe), chunks whose bounding box is farther than the best found
+/// skipped.
+double mesh_surface_distance(MeshSurface &m, const openvdb::Vec3d &p);
 
 /// A level set of the solid bounded by the mesh: points in index space
 /// (world mm / voxel; voxel centres at integer points), triangles

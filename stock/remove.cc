@@ -149,6 +149,41 @@ inline bool pair_less(const BlockCut &a, const BlockCut &b) {
   return a.cut < b.cut;
 }
 
+/// The pairs in pair_less order. Where the blocks' span and the cuts fit in
+/// 16 bits each (always, in a simulation's batches), sorted as 64-bit keys
+/// (block offsets from the least block, then the cut): 2x faster than the
+/// comparison of the fields.
+void sort_pairs(std::vector<BlockCut> &pairs, size_t ncuts) {
+  int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+  int32_t unaligned = 0; // block origins are multiples of 8
+  for (const BlockCut &q : pairs) {
+    unaligned |= (q.x | q.y | q.z) & 7;
+    lo[0] = std::min(lo[0], q.x), hi[0] = std::max(hi[0], q.x);
+    lo[1] = std::min(lo[1], q.y), hi[1] = std::max(hi[1], q.y);
+    lo[2] = std::min(lo[2], q.z), hi[2] = std::max(hi[2], q.z);
+  }
+  bool fits = ncuts <= 0x10000 && unaligned == 0;
+  for (int k = 0; k < 3; k++)
+    fits = fits && (int64_t(hi[k]) - lo[k]) / 8 < 0x10000;
+  if (!fits) {
+    tbb::parallel_sort(pairs.begin(), pairs.end(), pair_less);
+    return;
+  }
+  thread_local std::vector<uint64_t> keys;
+  keys.resize(pairs.size());
+  for (size_t i = 0; i < pairs.size(); i++) {
+    const BlockCut &q = pairs[i];
+    keys[i] = uint64_t((q.x - lo[0]) >> 3) << 48 | uint64_t((q.y - lo[1]) >> 3) << 32 |
+              uint64_t((q.z - lo[2]) >> 3) << 16 | uint64_t(q.cut);
+  }
+  tbb::parallel_sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < pairs.size(); i++) {
+    const uint64_t k = keys[i];
+    pairs[i] = {lo[0] + int32_t((k >> 48) << 3), lo[1] + int32_t(((k >> 32) & 0xffff) << 3),
+                lo[2] + int32_t(((k >> 16) & 0xffff) << 3), uint32_t(k & 0xffff)};
+  }
+}
+
 /// Pass 1: the (block, cut) pairs sorted by block, grouped into blocks.
 void list_pairs(Pass &p, size_t ncuts) {
   RemoveScratch &w = p.s.scratch;
@@ -162,7 +197,7 @@ void list_pairs(Pass &p, size_t ncuts) {
         for (int z = a.z(); z <= b.z(); z += 8)
           w.pairs.push_back({x, y, z, uint32_t(i)});
   }
-  if (ncuts > 1) tbb::parallel_sort(w.pairs.begin(), w.pairs.end(), pair_less);
+  if (ncuts > 1) sort_pairs(w.pairs, ncuts);
   w.centre_sdf.resize(w.pairs.size());
   if (p.measure) {
     w.removed.assign(w.pairs.size(), 0.0);
@@ -611,6 +646,80 @@ inline double gouge_depth(const swarf_stock &design, double dq, double r, double
   return -dq + vouched_radius(r, voxel);
 }
 
+/// True if no voxel of the block at o (stock index) can gouge the design by
+/// more than the tolerance: design and stock share a lattice and every design
+/// value over the block is at least a voxel (a gouge's depth is -value plus at
+/// most a voxel: <= 0 there). dacc: the design's tree.
+bool design_far(const Pass &p, ConstAcc &dacc, const Coord &o) {
+  const swarf_stock &d = *p.measure->design;
+  const Vec3d off = (p.s.origin - d.origin) / p.voxel;
+  const Coord lo(o.x() + int(std::lround(off[0])), o.y() + int(std::lround(off[1])),
+                 o.z() + int(std::lround(off[2])));
+  const Coord hi = lo.offsetBy(7);
+  for (int x = lo.x() & ~7; x <= hi.x(); x += 8)
+    for (int y = lo.y() & ~7; y <= hi.y(); y += 8)
+      for (int z = lo.z() & ~7; z <= hi.z(); z += 8) {
+        const Coord c(x, y, z);
+        const Leaf *leaf = dacc.probeConstLeaf(c);
+        if (leaf == nullptr) {
+          if (!(double(dacc.getValue(c)) >= p.voxel)) return false;
+          continue;
+        }
+        // the part of this leaf under the block
+        const Coord a = openvdb::Coord::maxComponent(lo, c),
+                    e = openvdb::Coord::minComponent(hi, c.offsetBy(7));
+        const float *v = leaf->buffer().data();
+        for (int i = a.x(); i <= e.x(); i++)
+          for (int j = a.y(); j <= e.y(); j++)
+            for (int k = a.z(); k <= e.z(); k++)
+              if (!(double(v[Leaf::coordToOffset(Coord(i, j, k))]) >= p.voxel)) return false;
+      }
+  return true;
+}
+
+/// The cuts that may change a block's 2^3 cubes, in program order, found
+/// as the replay asks for them (per thread, reset for every block): for each
+/// cube, the cuts whose Lipschitz bound, from the block's centre, then from
+/// the cube's centre (one sdf for the cube), lets them raise its lowest
+/// starting value, with that sdf.
+struct CubeCuts {
+  struct Entry {
+    uint32_t pair;
+    double d; ///< the cut's sdf at the cube's centre
+  };
+  std::vector<Entry> list[64];
+  uint32_t next[64]; ///< the next pair to look at
+  double low[64];    ///< lowest starting value of the cube's changed voxels (+inf: none)
+  double reach[64];  ///< block centre to the cube's farthest voxel, mm
+  void reset(const Pass &p, const Block &b) {
+    for (int c = 0; c < 64; c++) {
+      list[c].clear();
+      next[c] = b.begin;
+      low[c] = std::numeric_limits<double>::infinity();
+      const double x = 2 * (c >> 4) - 3, y = 2 * ((c >> 2) & 3) - 3, z = 2 * (c & 3) - 3;
+      reach[c] = p.voxel * (std::sqrt(x * x + y * y + z * z) + 0.5 * std::sqrt(3.0));
+    }
+  }
+  /// Entry k of cube c's list, found if needed; false when there is none.
+  bool get(const Pass &p, const Block &b, int c, size_t k, Entry &e) {
+    const RemoveScratch &w = p.s.scratch;
+    const double rv = 0.5 * std::sqrt(3.0) * p.voxel;
+    while (list[c].size() <= k) {
+      if (next[c] >= b.begin + b.count) return false;
+      const uint32_t i = next[c]++;
+      if (w.centre_sdf[i] - reach[c] + low[c] >= kMargin) continue; // a NaN: looked at
+      const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+      const Vec3d q = block_point(p, b.origin, ((c >> 4) << 1) + 0.5, (((c >> 2) & 3) << 1) + 0.5,
+                                  ((c & 3) << 1) + 0.5);
+      const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+      if (d - rv + low[c] >= kMargin) continue;
+      list[c].push_back({i, d});
+    }
+    e = list[c][k];
+    return true;
+  }
+};
+
 /// Pass 4, measured: the block's final values by the plain visit (the
 /// maximum does not depend on the cuts' order), then each cut credited, in
 /// program order, with the inside fraction it removed, and checked for a
@@ -621,27 +730,63 @@ inline double gouge_depth(const swarf_stock &design, double dq, double r, double
 /// finds no material to gouge); the others not at all. Steps are stored as
 /// the grid would (float, clamped), so every credit is the one a cut by cut
 /// evaluation of every voxel gives.
-void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design) {
+///
+/// The replay evaluates a cut at a voxel only where that can change what is
+/// measured. Values below a floor F (-half a voxel; -a voxel when the design
+/// can be gouged in the block: a gouge's depth reads min(-value, voxel)) all
+/// count as F, since their inside fraction is 1 and their depth a voxel, so a
+/// voxel starts at max(old, F). A voxel looks only at its 2^3 cube's cuts
+/// (CubeCuts: those that can raise some voxel of the cube), and passes over
+/// those whose bound from the cube's centre keeps it where it is; where the
+/// cube's centre lies so deep in the cut that the voxel ends at or beyond S
+/// (half a voxel; a voxel with the design, where a depth also reads a
+/// voxel), it is emptied without evaluating the cut: its credit is its
+/// remaining fraction, its depth min(-value, voxel).
+void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design, ConstAcc *dacc) {
   RemoveScratch &w = p.s.scratch;
   const float *data = leaf.buffer().data();
   float old[Leaf::SIZE];
   std::memcpy(old, data, sizeof old);
   visit_leaf(p, leaf, b);
-  const double half = 0.5 * p.voxel, bg = p.bgf;
+  const double half = 0.5 * p.voxel, bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel;
   const swarf_stock *ds = p.measure->design;
+  if (design && dacc && design_far(p, *dacc, b.origin)) design = nullptr;
+  const double floor = design ? -p.voxel : -half, deep = design ? p.voxel : half;
+  thread_local CubeCuts cubes;
+  cubes.reset(p, b);
+  auto changed = [&](openvdb::Index n) {
+    return data[n] > old[n] && old[n] < half && data[n] > -half;
+  };
+  auto cube_of = [](openvdb::Index n) {
+    return int(((n >> 7) << 4) | (((n >> 4) & 3) << 2) | ((n >> 1) & 3)); // x>>1, y>>1, z>>1
+  };
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
+    if (changed(n)) {
+      double &lo = cubes.low[cube_of(n)];
+      lo = std::min(lo, std::max(double(old[n]), floor));
+    }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-    const float o = old[n], fin = data[n];
-    if (!(fin > o) || !(o < half) || !(fin > -half)) continue; // no fraction changed
+    if (!changed(n)) continue; // no fraction changed
     const Coord l = Leaf::offsetToLocalCoord(n);
+    const int cube = cube_of(n);
     const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
-    double v = o, dq = std::numeric_limits<double>::quiet_NaN();
-    for (uint32_t i = b.begin; i < b.begin + b.count && v < half; i++) {
-      if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n])) continue;
+    double v = std::max(double(old[n]), floor), dq = std::numeric_limits<double>::quiet_NaN();
+    CubeCuts::Entry e;
+    for (size_t k = 0; v < half && cubes.get(p, b, cube, k, e); k++) {
+      const uint32_t i = e.pair;
+      if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n]) || e.d - rv + v >= kMargin)
+        continue; // the bounds from the block's and the cube's centres: no raise
       const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-      const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-      const float nv = stored(d, p.bgf);
-      if (!(nv > v)) continue;
-      w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+      double d, nv;
+      if (-e.d - rv - kMargin >= deep) { // emptied, deeper than anything measured
+        d = deep, nv = deep;
+        w.removed[i] += inside_fraction(v, p.voxel);
+      } else {
+        d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+        nv = stored(d, p.bgf);
+        if (!(nv > v)) continue;
+        w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+      }
       if (design && v < 0.0 && d > 0.0) {
         if (std::isnan(dq)) {
           dq = design->at(q);
@@ -926,11 +1071,13 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, cons
     const tbb::blocked_range<size_t> r(r0.begin() - w.blocks.size(), r0.end() - w.blocks.size());
     Acc acc(tree);
     std::unique_ptr<GridProbe> design;
+    std::unique_ptr<ConstAcc> dacc;
     if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
+    if (design && design->aligned()) dacc.reset(new ConstAcc(measure->design->grid->constTree()));
     for (size_t i = r.begin(); i != r.end(); ++i) {
       Block &b = w.blocks[w.visit[i]];
       if (measure)
-        visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get());
+        visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get(), dacc.get());
       else
         visit_leaf(p, *acc.probeLeaf(b.origin), b);
     }
@@ -1055,6 +1202,15 @@ extern "C" swarf_status
 swarf_stock_remove_batch_measured(swarf_stock *s, const swarf_stock_cut *cuts, size_t ncuts,
                                   const swarf_stock *design, double tolerance,
                                   swarf_stock_cut_effect *effects, swarf_error *err) {
+  return swarf_stock_remove_batch_measured_support(s, cuts, nullptr, ncuts, design, tolerance,
+                                                   effects, err);
+}
+
+extern "C" swarf_status
+swarf_stock_remove_batch_measured_support(swarf_stock *s, const swarf_stock_cut *cuts,
+                                          const swarf_stock_support_fn *support, size_t ncuts,
+                                          const swarf_stock *design, double tolerance,
+                                          swarf_stock_cut_effect *effects, swarf_error *err) {
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     if (ncuts == 0) return;
@@ -1066,6 +1222,6 @@ swarf_stock_remove_batch_measured(swarf_stock *s, const swarf_stock_cut *cuts, s
     for (size_t i = 0; i < ncuts; i++)
       check_cut(cuts[i], i);
     const swarf::Measure m{design, tolerance, effects};
-    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, &m); });
+    swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, &m, support); });
   });
 }

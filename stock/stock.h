@@ -420,6 +420,14 @@ SWARF_API swarf_status swarf_stock_remove_batch_measured(swarf_stock *s,
                                                          swarf_stock_cut_effect *effects,
                                                          swarf_error *err);
 
+/* swarf_stock_remove_batch_measured with a companion per cut (support may be
+ * NULL, as in swarf_stock_remove_batch_support): fewer sdf evaluations, the
+ * same grid and the same effects. */
+SWARF_API swarf_status swarf_stock_remove_batch_measured_support(
+    swarf_stock *s, const swarf_stock_cut *cuts, const swarf_stock_support_fn *support,
+    size_t ncuts, const swarf_stock *design, double tolerance, swarf_stock_cut_effect *effects,
+    swarf_error *err);
+
 /* ==== Outputs with views and deviation colours ================================ */
 
 typedef enum {

@@ -109,7 +109,7 @@ struct swarf_stock {
   swarf::RemoveScratch scratch;
   /// A design read from a mesh: its triangles (index space of this grid),
   /// for exact distances beyond the band (mesh_sdf.h); null otherwise.
-  std::shared_ptr<const swarf::MeshSurface> surface;
+  std::shared_ptr<swarf::MeshSurface> surface;
   int threads = 0;                        ///< swarf_stock_set_threads: 0 all cores
   std::shared_ptr<tbb::task_arena> arena; ///< the removal's threads when threads > 0
   swarf_stock_tick_fn tick = nullptr;     ///< swarf_stock_set_tick

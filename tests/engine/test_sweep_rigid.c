@@ -9,7 +9,9 @@
  *   - 5-axis: A and C change together (xyzac-trt, TCP and joint mode), B and
  *     C (xyzbc-trt; the head machines xyzbc-hh and xyzbc-ht in joint mode),
  *     A and B (xyzab-tdr);
- *   - the nearest points lie on the characteristic curves of their time.
+ *   - the nearest points lie on the characteristic curves of their time;
+ *   - the pruned search (swarf_sweep_sdf_range, what the stock calls) against
+ *     the full certified one, a short move as the impeller's (issue 12).
  */
 #include <math.h>
 #include <stdio.h>
@@ -234,10 +236,52 @@ static void test_on_characteristic(void) {
   CHECK(worst < 0.01, "nearest points on the characteristic curve: %g mm", worst);
 }
 
+/* swarf_sweep_sdf_range's contract against swarf_sweep_sdf (certified to
+ * 1e-6 mm) on a short 5-axis move like the impeller's (0.4 mm, 3 and 5
+ * degrees, ball D4 L30, 0.2 mm voxels): for windows (lo, hi) below, around
+ * and above each point's value: within 2e-6 mm of the sdf inside the window;
+ * at most lo (and not below the sdf) under it; at least hi above it. */
+static void test_range(void) {
+  swarf_cutter c;
+  swarf_sweep s;
+  const double s6[6] = {10.2, -3.1, 25.0, 20, 0, 40}, e6[6] = {10.5, -2.9, 24.8, 23, 0, 45};
+  swarf_motion m = make("xyzac-trt", s6, e6);
+  tk_rng r = {0x2545f4914f6cdd1dull};
+  double worst = 0.0;
+  int n = 0;
+  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 30.0, NULL);
+  swarf_sweep_init_voxel(&s, &c, &m, 0.2);
+  for (int i = 0; i < 400; i++) {
+    double p[3], d;
+    near_point(&r, &c, &m, p);
+    for (int k = 0; k < 3; k++)
+      p[k] += tk_uniform(&r, -0.6, 0.6);
+    d = swarf_sweep_sdf(&s, p, NULL);
+    for (int w = 0; w < 5; w++) {
+      const double off[5] = {-0.3, -0.05, 0.0, 0.05, 0.3};
+      double lo = d + off[w] - 0.1, hi = d + off[w] + 0.1;
+      double v = swarf_sweep_sdf_range(&s, p, lo, hi);
+      if (d >= lo && d < hi) {
+        worst = fmax(worst, fabs(v - d));
+        CHECK(fabs(v - d) <= 2e-6, "range in window: %.9g vs sdf %.9g", v, d);
+        n++;
+      } else if (d < lo) {
+        CHECK(v <= lo + 2e-6 && v >= d - 2e-6, "range below lo %g: %.9g (sdf %.9g)", lo, v, d);
+      } else {
+        CHECK(v >= hi - 2e-6, "range above hi %g: %.9g (sdf %.9g)", hi, v, d);
+      }
+    }
+  }
+  printf("range search vs full search: %d values in their window, max difference %.2e mm\n", n,
+         worst);
+  CHECK(n > 400, "windows holding the value: %d", n);
+}
+
 int main(void) {
   test_rotary_only();
   test_helix_4th();
   test_five_axis();
   test_on_characteristic();
+  test_range();
   return check_done();
 }

@@ -5,8 +5,10 @@
 #   - stock/stock_api.def lists exactly the SWARF_API functions of stock.h and stock_output.h;
 #   - `swarf parse` loads neither the module nor OpenVDB (the loader's own trace, LD_DEBUG);
 #   - `swarf simulate` loads the module and cuts a slot of the analytic volume;
-#   - a command copied away from its module still parses, and a simulation fails with a
-#     clear error, exit status 2 and no output file.
+#   - a copy of the command alone still parses and simulates (the module where the build put
+#     it), a copy with the module beside it loads that one;
+#   - a module that cannot be loaded (SWARF_STOCK_MODULE names none) is a clear error, exit
+#     status 2 and no output file.
 set -euo pipefail
 swarf=$1 src=$2
 work=$(mktemp -d)
@@ -43,16 +45,27 @@ awk -v r="$removed" 'BEGIN { a = 160 + 8 * atan2(0, -1); exit !(r > a * 0.98 && 
 [ -s "$work/slot.vdb" ] || fail "no .vdb written"
 echo "simulate through the module: removed $removed mm^3 (analytic 185.13)"
 
-mkdir "$work/away"
+# A copy of the command alone finds the module where the build put it; a copy with its
+# module beside it loads that one; a module that cannot be loaded is a clear error.
+mkdir "$work/away" "$work/beside"
 cp "$swarf" "$work/away/swarf"
+cp "$swarf" "$(dirname "$(grep -o 'file=[^ ]*swarf_stock-[^ ]*\.so' "$work/sim.trace" | head -1 |
+  cut -d= -f2)")"/swarf_stock-*.so "$work/beside/"
 "$work/away/swarf" parse "$work/slot.ngc" --quiet >/dev/null || fail "parse needs the module"
-set +e
 "$work/away/swarf" simulate "$work/slot.ngc" --stock box:0,0,-10,40,20,0 --tool T1=flat,D4,L20 \
-  --voxel 0.5 --out "$work/away/slot.vdb" >"$work/away.out" 2>"$work/away.err"
+  --voxel 0.5 --out "$work/away/slot.vdb" >/dev/null || fail "a copy of swarf cannot simulate"
+LD_DEBUG=files "$work/beside/swarf" simulate "$work/slot.ngc" --stock box:0,0,-10,40,20,0 \
+  --tool T1=flat,D4,L20 --voxel 0.5 --out "$work/beside/slot.vdb" >/dev/null 2>"$work/beside.trace" ||
+  fail "a copy of swarf with its module cannot simulate"
+grep "file=$work/beside/swarf_stock-" "$work/beside.trace" >/dev/null ||
+  fail "a copy of swarf did not load the module beside it"
+set +e
+SWARF_STOCK_MODULE=$work/none.so "$swarf" simulate "$work/slot.ngc" --stock box:0,0,-10,40,20,0 \
+  --tool T1=flat,D4,L20 --voxel 0.5 --out "$work/none.vdb" >"$work/none.out" 2>"$work/none.err"
 status=$?
 set -e
 [ "$status" = 2 ] || fail "without its module: exit status $status, expected 2"
-grep 'cannot load the stock module' "$work/away.err" >/dev/null || fail "unclear error: $(cat "$work/away.err")"
-[ ! -e "$work/away/slot.vdb" ] || fail "an output was written without the module"
-echo "without the module: $(cat "$work/away.err")"
+grep 'cannot load the stock module' "$work/none.err" >/dev/null || fail "unclear error: $(cat "$work/none.err")"
+[ ! -e "$work/none.vdb" ] || fail "an output was written without the module"
+echo "without the module: $(cat "$work/none.err")"
 echo "stock_module.sh: all checks passed"

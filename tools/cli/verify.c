@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -126,11 +127,21 @@ static int check_folder(const char *flag, const char *path) {
   return swarf_cli_output_ok("simulate", flag, path); /* outputs.c */
 }
 
+/* CPU time of the process (all threads), s. */
+static double process_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static int read_design(swarf_verify *v, double voxel) {
   swarf_error err;
   char msg[1024];
   swarf_error_init(&err);
-  if (swarf_stock_read_design(v->design_path, voxel, &v->design, &err) == SWARF_OK) return 0;
+  const double t0 = process_seconds();
+  const swarf_status st = swarf_stock_read_design(v->design_path, voxel, &v->design, &err);
+  v->design_read_s = process_seconds() - t0;
+  if (st == SWARF_OK) return 0;
   swarf_error_format(&err, msg, sizeof msg);
   fprintf(stderr, "swarf simulate: --design: %s\n", msg);
   return (int)swarf_status_classify(err.status);
@@ -222,6 +233,7 @@ static void print_design(swarf_verify *v, const swarf_sim_report *r) {
     print_point(d->excess_at);
   }
   printf("; gouge warnings on %zu program lines\n", n);
+  printf("    design read %.2f s CPU, compared %.2f s CPU\n", v->design_read_s, r->design_s);
 }
 
 void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r) {

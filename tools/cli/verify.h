@@ -38,6 +38,7 @@ typedef struct {
   int ntools;
   /* the run */
   swarf_stock *design;
+  double design_read_s; /* CPU time (all threads) reading the design, s */
   swarf_report *report;
 } swarf_verify;
 

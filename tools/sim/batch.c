@@ -108,8 +108,9 @@ static void raise_gouge(swarf_sim *s, int i) {
 static int flush_measured(swarf_sim *s) {
   swarf_error err;
   swarf_error_init(&err);
-  if (swarf_stock_remove_batch_measured(s->stock, s->cuts, (size_t)s->n, s->cfg.design,
-                                        s->tolerance, s->effects, &err) != SWARF_OK) {
+  if (swarf_stock_remove_batch_measured_support(s->stock, s->cuts, s->supports, (size_t)s->n,
+                                                s->cfg.design, s->tolerance, s->effects,
+                                                &err) != SWARF_OK) {
     swarf_sim_fail(s, err.status, 0, 0, "%s", err.message);
     return 1;
   }

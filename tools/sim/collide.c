@@ -349,10 +349,10 @@ void swarf_sim_collide_clear(swarf_sim *s) {
 int swarf_sim_collide_move(swarf_sim *s, const swarf_motion *m, const swarf_sweep *w,
                            const swarf_stock_cut *own) {
   swarf_sim_part parts[SWARF_SIM_MAX_PARTS];
-  const double t0 = seconds_now();
   int n = swarf_sim_tool_parts(s->tool, parts), rc = 0;
   (void)w;
-  if (n == 0 && s->cfg.nfixtures == 0) return 0;
+  if (n == 0 && s->cfg.nfixtures == 0) return 0; /* nothing to check (nor a clock to read) */
+  const double t0 = seconds_now();
   if (n > 0 && s->col.last_line[0] != m->line)
     rc = material_kind(s, m, own, parts, n, SWARF_ALARM_SHANK);
   if (rc == 0 && n > 0 && s->col.last_line[1] != m->line)

@@ -9,6 +9,7 @@
  */
 #include <math.h>
 #include <string.h>
+#include <time.h>
 
 #include "sim_private.h"
 
@@ -108,13 +109,22 @@ swarf_status swarf_sim_design_init(swarf_sim *s, swarf_error *err) {
   return st;
 }
 
+/* CPU time of the process (all threads), s. */
+static double process_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 swarf_status swarf_sim_design_compare(swarf_sim *s) {
   swarf_error err;
   swarf_status st;
   if (s->cfg.design == NULL) return SWARF_OK;
   swarf_error_init(&err);
+  const double t0 = process_seconds();
   st = swarf_stock_compare(s->stock, s->cfg.design, s->initial, s->tolerance, &s->rep.deviation,
                            &err);
+  s->rep.design_s = process_seconds() - t0;
   if (st != SWARF_OK) return swarf_sim_fail(s, st, 0, 0, "the design comparison: %s", err.message);
   s->rep.has_deviation = 1;
   return SWARF_OK;

@@ -317,6 +317,7 @@ struct swarf_sim_report {
   int units_missing_column;        /* in the machine's unit */
   int has_deviation;               /* 1: deviation holds the comparison with cfg.design */
   swarf_stock_deviation deviation; /* after finish (stock.h) */
+  double design_s;                 /* CPU time (all threads) of that comparison, s */
 };
 SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);
 

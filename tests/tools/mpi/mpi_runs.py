@@ -55,7 +55,7 @@ def run(n, args, tag=None, wait=True):
     return p
 
 
-TIMED = re.compile(r"^\s*(simulation |collision check|wrote )")
+TIMED = re.compile(r"^\s*(simulation |collision check|design read |wrote )")
 
 
 def summary(text):

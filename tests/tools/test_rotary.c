@@ -10,6 +10,8 @@
  *   - xyza: a ball held at Z while A turns 90 degrees, in a cylinder stock;
  *   - xyza: X and A together (a 4th-axis helix);
  *   - xyzac-trt (TCP): a move changing A and C together, in a box.
+ * usage: test_rotary [NAME] (NAME: only the case of that name; the sanitized
+ * suite's tools_rotary_fast runs the TCP case).
  */
 #include <math.h>
 #include <stdio.h>
@@ -118,8 +120,13 @@ static double vol_pre(const swarf_sim_config *cfg, const char *pre) {
   return v;
 }
 
+static const char *only; /* run only the case of this name (NULL: all) */
+static int cases_run;
+
 static void run_case(const char *name, const char *machine, const char *stock, const char *tool,
                      const char *pre, const char *gcode, const double s6[6], const double e6[6]) {
+  if (only && strcmp(only, name) != 0) return;
+  cases_run++;
   swarf_sim_config cfg;
   swarf_sim_report rep;
   swarf_stock *out = NULL, *truth, *stamped;
@@ -175,7 +182,8 @@ static void run_case(const char *name, const char *machine, const char *stock, c
   swarf_stock_free(stamped);
 }
 
-int main(void) {
+int main(int argc, char **argv) {
+  only = argc > 1 ? argv[1] : NULL;
   {
     const double s6[6] = {0, 0, 4, 0, 0, 0}, e6[6] = {0, 0, 4, 90, 0, 0};
     run_case("xyza rotary only", "xyza", "cylinder:x,5,-4,4", "T1=ball,D2,L6", "G0 X0 Y0 Z4\nM2\n",
@@ -192,5 +200,6 @@ int main(void) {
              "G0 X-1 Y0 Z-0.5 A0 C0\nM2\n",
              "G0 X-1 Y0 Z-0.5 A0 C0\nG1 X2 Y1 Z-0.8 A35 C60 F100\nM2\n", s6, e6);
   }
+  CHECK(cases_run > 0, "no case named '%s'", only ? only : "");
   return check_done();
 }

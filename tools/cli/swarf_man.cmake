@@ -70,9 +70,13 @@ failed allocation); 3 when a Modbus command aborted the run.
 .SH ENVIRONMENT
 .TP
 .B SWARF_VDB_ISOLATE
-Reading a .vdb file runs OpenVDB's reader in a forked child process, so that a
-damaged file cannot corrupt swarf's memory. 0 reads it in the process itself
-(trusted files; programs that must not fork).
+Reading a .vdb file runs OpenVDB's reader in a child process, the program
+swarf\-vdb\-read, so that a damaged file cannot corrupt swarf's memory. 0 reads
+it in the process itself (trusted files; programs that must not fork).
+.TP
+.B SWARF_VDB_READER
+The path of swarf\-vdb\-read (default: beside swarf, or LIBEXECDIR/swarf/ of the
+installation).
 .SH FILES
 The library behind the command is libswarf (pkg\\-config module
 .BR swarf ,

@@ -47,8 +47,9 @@ std::string point_text(const float *p) {
 }
 
 /// Welds corners with equal coordinates into one vertex, as triangles come:
-/// an open-addressing table of vertex numbers keyed by the coordinates' bits
-/// (no allocation per corner; vertices numbered in order of first use).
+/// an open-addressing table of (coordinates' bits, vertex number) slots, so
+/// that a probe reads one slot and not the vertex it names (no allocation
+/// per corner; vertices numbered in order of first use).
 class Welder {
 public:
   explicit Welder(TriMesh &m, size_t expected = 0) : m_(m) { grow(expected); }
@@ -66,6 +67,10 @@ public:
 
 private:
   static constexpr uint32_t kEmpty = UINT32_MAX;
+  struct Slot {
+    uint32_t key[3];
+    uint32_t vertex; ///< kEmpty: a free slot
+  };
   static uint64_t hash(const uint32_t b[3]) {
     uint64_t h = (uint64_t(b[0]) * 0x9e3779b97f4a7c15ull) ^
                  (uint64_t(b[1]) * 0xc2b2ae3d27d4eb4full) ^
@@ -78,17 +83,16 @@ private:
     while (size < 2 * n)
       size *= 2;
     if (size <= slots_.size()) return;
-    slots_.assign(size, kEmpty);
+    slots_.assign(size, Slot{{0, 0, 0}, kEmpty});
     const size_t mask = size - 1;
     for (uint32_t v = 0; v < uint32_t(m_.vertices()); v++) {
-      size_t at = hash(bits(v)) & mask;
-      while (slots_[at] != kEmpty)
+      Slot s{{0, 0, 0}, v};
+      std::memcpy(s.key, &m_.xyz[3 * size_t(v)], sizeof s.key);
+      size_t at = hash(s.key) & mask;
+      while (slots_[at].vertex != kEmpty)
         at = (at + 1) & mask;
-      slots_[at] = v;
+      slots_[at] = s;
     }
-  }
-  const uint32_t *bits(uint32_t v) const {
-    return reinterpret_cast<const uint32_t *>(&m_.xyz[3 * size_t(v)]);
   }
   uint32_t vertex(const float *p) {
     float f[3];
@@ -98,16 +102,17 @@ private:
     std::memcpy(k, f, sizeof k);
     const size_t mask = slots_.size() - 1;
     size_t at = hash(k) & mask;
-    for (; slots_[at] != kEmpty; at = (at + 1) & mask)
-      if (std::memcmp(bits(slots_[at]), k, sizeof k) == 0) return slots_[at];
+    for (; slots_[at].vertex != kEmpty; at = (at + 1) & mask)
+      if (slots_[at].key[0] == k[0] && slots_[at].key[1] == k[1] && slots_[at].key[2] == k[2])
+        return slots_[at].vertex;
     const uint32_t n = uint32_t(m_.vertices());
     m_.xyz.insert(m_.xyz.end(), f, f + 3);
-    slots_[at] = n;
+    slots_[at] = Slot{{k[0], k[1], k[2]}, n};
     if (2 * m_.vertices() > slots_.size()) grow(m_.vertices());
     return n;
   }
   TriMesh &m_;
-  std::vector<uint32_t> slots_;
+  std::vector<Slot> slots_;
 };
 
 void parse_binary(const unsigned char *d, size_t n, const std::string &name, TriMesh &out) {

@@ -33,7 +33,8 @@
  *                     back after M99. M98 shares the caller's locals.
  *   GOTO n, IF [c] GOTO n, IF [c] THEN #i = e, WHILE [c] DO m ... END m.
  * Bounds: calls nest at most MAX_DEPTH deep; jumps and repeats together at
- * most MAX_JUMPS, and at most MAX_EXTRA_LINES lines run beyond the number
+ * most MAX_JUMPS, and at most the parser's work limit (SWARF_GCODE_WORK_LIMIT
+ * unless lowered) lines run beyond the number
  * the program has, so that no program runs forever or for hours.
  * The store owns its lines (freed by swarf_gc_fanuc_free).
  */
@@ -46,7 +47,6 @@
 
 #define MAX_DEPTH 16
 #define MAX_JUMPS 10000000L
-#define MAX_EXTRA_LINES 5000000L /* lines run beyond the program's own, as oword.c's bound */
 #define NLOCALS 33
 
 typedef enum { ST_NONE, ST_GOTO, ST_IF, ST_WHILE, ST_DO, ST_END, ST_ASSIGN } stmt_kind;
@@ -635,7 +635,7 @@ int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_gc_fault *f) {
     const fline *l = &fa->v[pc];
     *err_line = l->line;
     fa->p->cur_line = l->line;
-    if (++run > (long)fa->n + MAX_EXTRA_LINES) {
+    if (++run > (long)fa->n + fa->p->work_limit) {
       status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT, 1, (long)run);
       break;
     }

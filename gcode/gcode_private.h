@@ -543,6 +543,8 @@ int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long lin
 /* Where `o<name> call` looks for <name>.ngc when no such sub was defined
  * (borrowed: the parser owns the string). */
 void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs);
+/* The bound on stored lines run (swarf_gcode_parser_set_work_limit). */
+void swarf_gc_flow_set_limit(swarf_gc_flow *fl, long lines);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
 
@@ -583,6 +585,7 @@ struct swarf_gcode_parser {
   int g92_restore;           /* #5210 = 1: the G92 offset #5211-#5216 is in force */
   /* The dialect and the operator's switches (dialect.c): */
   int block_delete; /* skip `/` blocks */
+  long work_limit;  /* lines run by loops, calls and subprograms, at most */
   char *subpath;    /* ':'-separated directories of subroutine files, or NULL */
   swarf_gcode_note_fn note_fn;
   void *note_user;

@@ -29,7 +29,6 @@
 #define MAX_CALL_DEPTH 50
 #define MAX_ARGS 30
 #define MAX_NEST 64
-#define SWARF_GC_MAX_EXECUTED 5000000L /* stored lines run, all calls and loops together */
 
 typedef enum {
   O_NONE,
@@ -90,11 +89,16 @@ struct swarf_gc_flow {
   open_ctl open[MAX_NEST];
   int nopen;
   sub_def *subs;
-  int depth; /* calls running */
+  int depth;     /* calls running */
   long executed; /* stored lines run so far */
+  long limit;    /* at most this many (SWARF_GCODE_WORK_LIMIT unless lowered) */
   long *err_line;
   const char *path; /* subroutine files: ':'-separated directories (borrowed) */
 };
+
+void swarf_gc_flow_set_limit(swarf_gc_flow *fl, long lines) {
+  fl->limit = lines;
+}
 
 void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs) {
   fl->path = dirs;
@@ -106,6 +110,7 @@ swarf_gc_flow *swarf_gc_flow_new(swarf_gc_params *ps, swarf_gc_line_fn run, void
   fl->ps = ps;
   fl->run = run;
   fl->ctx = ctx;
+  fl->limit = SWARF_GCODE_WORK_LIMIT;
   return fl;
 }
 
@@ -484,9 +489,9 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
   while (status == SWARF_OK && pc < l->n) {
     stored *s = &l->v[pc];
     *fl->err_line = s->line;
-    if (++fl->executed > SWARF_GC_MAX_EXECUTED) {
+    if (++fl->executed > fl->limit) {
       status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT,
-                             s->ctl.kind != O_NONE ? s->ctl.column : 1, SWARF_GC_MAX_EXECUTED);
+                             s->ctl.kind != O_NONE ? s->ctl.column : 1, fl->limit);
       break;
     }
     switch (s->ctl.kind) {

@@ -472,6 +472,7 @@ swarf_status swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn
   swarf_gc_out_init(&p->out);
   swarf_gc_out_init(&p->held);
   default_tools(p);
+  p->work_limit = SWARF_GCODE_WORK_LIMIT;
   p->flow = swarf_gc_flow_new(&p->params, run_line, p);
   if (p->flow == NULL) {
     free(p);

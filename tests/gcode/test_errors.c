@@ -248,6 +248,60 @@ static void test_long_line(void) {
   free(text);
 }
 
+/* The program under a work limit of `limit` lines (0: the default). */
+static collected *run_limited(const char *text, int dialect, long limit, collected *c) {
+  swarf_gcode_parser *p = NULL;
+  int status;
+  swarf_gcode_parser_new("test.ngc", collect_move, c, &p);
+  memset(c, 0, sizeof *c);
+  status = swarf_gcode_parser_set_dialect(p, (swarf_gcode_dialect)dialect, NULL);
+  if (status == SWARF_OK && limit > 0) status = swarf_gcode_parser_set_work_limit(p, limit, NULL);
+  if (status == SWARF_OK) status = swarf_gcode_parser_feed(p, text, strlen(text));
+  collect_end(c, p, status);
+  return c;
+}
+
+/* A lowered work limit: a loop of 300 turns (3 lines run a turn, ~900 in
+ * all) passes under 1,000 and the default, stops under 500 at the loop's
+ * line with the limit in the message; the same for a Fanuc WHILE (2 lines a
+ * turn beyond the program's own). Out-of-range limits and a late call are
+ * refused. */
+static void test_work_limit(void) {
+  static collected c;
+  char want[64];
+  const char *lcnc = "#1 = 0\no1 while [#1 LT 300]\n#1 = [#1 + 1]\no1 endwhile\nG0 X#1\n";
+  const char *fanuc = "#1 = 0\nWHILE [#1 LT 300] DO1\n#1 = [#1 + 1]\nEND1\nG0 X#1\nM30\n";
+  for (int k = 0; k < 2; k++) {
+    const char *text = k ? fanuc : lcnc;
+    int d = k ? SWARF_GCODE_DIALECT_FANUC : SWARF_GCODE_DIALECT_LINUXCNC;
+    run_limited(text, d, 0, &c);
+    CHECK(c.status == SWARF_OK && c.n == 1 && c.moves[0].end[0] == 300, "%d: default limit: %s", k,
+          c.error.message);
+    run_limited(text, d, 1000, &c);
+    CHECK(c.status == SWARF_OK && c.n == 1, "%d: 300 turns under 1,000 lines: %s", k,
+          c.error.message);
+    run_limited(text, d, 500, &c);
+    snprintf(want, sizeof want, "%d", 500);
+    CHECK(c.status == LIM && c.error.code == SWARF_GCODE_E_O_WORK_LIMIT && c.n == 0,
+          "%d: 300 turns over 500 lines: status %d (%s)", k, c.status, c.error.message);
+    CHECK(k == 1 || strstr(c.error.message, want) != NULL, "the limit in the message: %s",
+          c.error.message);
+    CHECK(c.error.line >= 2 && c.error.line <= 4, "%d: stopped at line %ld", k, c.error.line);
+  }
+  swarf_gcode_parser *p = NULL;
+  swarf_error err;
+  swarf_gcode_parser_new("limit.ngc", collect_move, &c, &p);
+  CHECK(swarf_gcode_parser_set_work_limit(p, 0, &err) == SWARF_ERR_ARG &&
+            err.code == SWARF_GCODE_E_WORK_LIMIT_VALUE,
+        "a limit of 0");
+  CHECK(swarf_gcode_parser_set_work_limit(p, SWARF_GCODE_WORK_LIMIT + 1, &err) == SWARF_ERR_ARG,
+        "a limit above the default");
+  CHECK(swarf_gcode_parser_set_work_limit(NULL, 10, &err) != SWARF_OK, "no parser");
+  swarf_gcode_parser_feed(p, "G0 X1\n", 6);
+  CHECK(swarf_gcode_parser_set_work_limit(p, 10, &err) != SWARF_OK, "a limit after the first line");
+  swarf_gcode_parser_free(p);
+}
+
 int main(void) {
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
     check_case(&cases[i]);
@@ -258,5 +312,6 @@ int main(void) {
   test_stop_and_sticky_errors();
   test_files();
   test_long_line();
+  test_work_limit();
   return check_done();
 }

@@ -20,7 +20,7 @@ const char swarf_modbus_help[] =
     "  --modbus tcp:[HOST:]PORT[,unit=N]  serve the status while the job runs (FC 02,\n"
     "                   03, 04); HOST defaults to 127.0.0.1 (give 0.0.0.0 to open it\n"
     "                   to the shop network); PORT 0 picks a free port; unit default 1;\n"
-    "                   up to 72 clients; when full, a newcomer replaces a misbehaving,\n"
+    "                   up to 96 clients; when full, a newcomer replaces a misbehaving,\n"
     "                   unproven or overdue client before any polite poller\n"
     "  --modbus rtu:DEVICE,BAUD,PARITY,DATABITS,STOPBITS[,unit=N]   the same map on a\n"
     "                   serial line, e.g. rtu:/dev/ttyUSB0,19200,E,8,1,unit=3\n"

@@ -28,17 +28,6 @@
 
 #include "stock_error.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SWARF_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SWARF_ASAN 1
-#endif
-#endif
-#ifdef SWARF_ASAN
-#include <sanitizer/common_interface_defs.h>
-#endif
-
 // Where CMake puts and installs the reader (stock/CMakeLists.txt); the
 // defaults are the usual layout.
 #ifndef SWARF_READER_FROM_BIN

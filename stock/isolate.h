@@ -25,6 +25,19 @@
 #include <functional>
 #include <string>
 
+// SWARF_ASAN: this code is built with AddressSanitizer, which takes no
+// address-space limit (its shadow memory) and bounds allocations instead.
+#if defined(__SANITIZE_ADDRESS__)
+#define SWARF_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SWARF_ASAN 1
+#endif
+#endif
+#ifdef SWARF_ASAN
+#include <sanitizer/common_interface_defs.h>
+#endif
+
 namespace swarf {
 
 /// Limits on the reading child: CPU seconds (set before exec) and room, the

@@ -23,17 +23,6 @@
 
 #include "isolate.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SWARF_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SWARF_ASAN 1
-#endif
-#endif
-#ifdef SWARF_ASAN
-#include <sanitizer/common_interface_defs.h>
-#endif
-
 namespace {
 
 int usage(const char *why) {

@@ -771,8 +771,11 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
     const int cube = cube_of(n);
     const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
     double v = std::max(double(old[n]), floor), dq = std::numeric_limits<double>::quiet_NaN();
+    // No cut raises the voxel beyond its final value (the maximum the plain
+    // visit stored): the replay ends there, or where the voxel is empty.
+    const double end = std::min(half, double(data[n]));
     CubeCuts::Entry e;
-    for (size_t k = 0; v < half && cubes.get(p, b, cube, k, e); k++) {
+    for (size_t k = 0; v < end && cubes.get(p, b, cube, k, e); k++) {
       const uint32_t i = e.pair;
       if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n]) || e.d - rv + v >= kMargin)
         continue; // the bounds from the block's and the cube's centres: no raise

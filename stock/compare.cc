@@ -81,6 +81,7 @@ struct Frame {
   /// The tolerance reaches beyond the design's band (a design read from a
   /// mesh): design values at the band's edge are measured on its triangles.
   bool exact_far;
+  bool initial_same;  ///< the initial stock and the design: same voxel and origin
 };
 
 /// Design values at the band's edge of one block when the frame is
@@ -125,8 +126,10 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const double s = w.leaf ? w.leaf->getValue(n) : w.tile;
     if (!(s < 0.5 * v)) continue;  // no material in this voxel
-    const Vec3d q = index_to_world(f.s, w.origin + Leaf::offsetToLocalCoord(n));
-    const double d = far.at(design.at(q), q);
+    const Coord ijk = w.origin + Leaf::offsetToLocalCoord(n);
+    const Vec3d q = index_to_world(f.s, ijk);
+    // one index space: the design's voxel ijk, as design.at(q) would round to
+    const double d = far.at(f.same_lattice ? double(design.at_index(ijk)) : design.at(q), q);
     out.volume += std::max(0.0, inside_fraction(s, v) - inside_fraction(d - f.tol, v));
     if (!(s < 0.0)) continue;
     const double h = d + vouched_radius(-s, v);
@@ -149,8 +152,11 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     double d = w.leaf ? w.leaf->getValue(n) : w.tile;
     if (!f.exact_far && !(inside_fraction(d + f.tol, v) > 0.0)) continue;
-    const Vec3d q = index_to_world(f.design, w.origin + Leaf::offsetToLocalCoord(n));
-    const double s = stock.at(q), s0 = initial ? initial->at(q) : -1e30;
+    const Coord ijk = w.origin + Leaf::offsetToLocalCoord(n);
+    const Vec3d q = index_to_world(f.design, ijk);
+    // one index space: the voxel ijk, as at(q) would round to
+    const double s = f.same_lattice ? double(stock.at_index(ijk)) : stock.at(q);
+    const double s0 = !initial ? -1e30 : f.initial_same ? double(initial->at_index(ijk)) : initial->at(q);
     if (f.exact_far) {
       if (s <= -0.5 * f.s.voxel && s0 <= -0.5 * f.s.voxel) continue;  // material there, before and after
       d = far.at(d, q);
@@ -289,8 +295,11 @@ void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock 
              swarf_stock_deviation &out) {
   check_design(s, design);
   const bool same = GridProbe::lattices_coincide(s, design) && (s.origin - design.origin).length() <= 1e-9 * s.voxel;
+  const bool initial_same = initial != nullptr && GridProbe::lattices_coincide(*initial, design) &&
+                            (initial->origin - design.origin).length() <= 1e-9 * s.voxel;
   const Frame f{s, design, initial, tol, same,
-                design.surface != nullptr && tol + std::max(s.voxel, design.voxel) >= double(design.background)};
+                design.surface != nullptr && tol + std::max(s.voxel, design.voxel) >= double(design.background),
+                initial_same};
   // Voxels within a voxel of the band's edge may be the deepest of a block
   // that reached it: they are measured on the triangles too.
   const double edge = double(design.background) - design.voxel;

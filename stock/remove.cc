@@ -338,6 +338,12 @@ struct BlockValues {
   double omin[8];       ///< per 4^3 octant, index (x >> 2) << 2 | (y >> 2) << 1 | z >> 2
   double cmin[64];      ///< per 2^3 cube, index (x >> 1) << 4 | (y >> 1) << 2 | z >> 1
   double mlo[64];       ///< per 2^3 cube: min of m over its voxels with m < bg (+inf if none)
+  uint32_t *arg;        ///< measured: per voxel, the cut that last raised m (else null)
+  /// m[n] = value, raised by cut c (an index into the pass's cuts).
+  void raise(openvdb::Index n, double value, size_t c) {
+    m[n] = value;
+    if (arg != nullptr) arg[n] = uint32_t(c);
+  }
 };
 
 /// Whether voxel n (value m, at distance r from a point where the cut's sdf is
@@ -434,10 +440,10 @@ void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, i
         const double bound = c.d + (x > x0 ? gx : -gx) + (y > y0 ? gy : -gy) + (z > z0 ? gz : -gz);
         if (may_raise(m, bg, bound, r)) {
           if (clear) {
-            m = bg;
+            bv.raise(n, bg, c.cut - p.cuts);
           } else {
             const double d = -voxel_sdf(p, *c.cut, block_point(p, b.origin, x, y, z), m);
-            if (d > m) m = d;
+            if (d > m) bv.raise(n, d, c.cut - p.cuts);
           }
         }
         const double l = summary(m, bg, 0.0);
@@ -503,7 +509,7 @@ void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t n
         for (int y = y0; y < y0 + 2; y++)
           for (int z = z0; z < z0 + 2; z++) {
             const openvdb::Index n = (x << 6) | (y << 3) | z;
-            if (may_raise(bv.m[n], bg, o.d, p.roct[n])) bv.m[n] = bg;
+            if (may_raise(bv.m[n], bg, o.d, p.roct[n])) bv.raise(n, bg, o.cut - p.cuts);
           }
       cube_summary(p, bv, x0, y0, z0);
       continue;
@@ -570,7 +576,7 @@ void visit_flat(const Pass &p, const Block &b, const swarf_stock_cut &cut, doubl
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         if (!may_raise(bv.m[n], p.bgf, dc, p.radius[n])) continue;
         const double d = -voxel_sdf(p, cut, block_point(p, b.origin, x, y, z), bv.m[n]);
-        if (d > bv.m[n]) bv.m[n] = d;
+        if (d > bv.m[n]) bv.raise(n, d, &cut - p.cuts);
       }
 }
 
@@ -601,12 +607,14 @@ inline void collapse_if_uniform(const Leaf &leaf, Block &b) {
 /// bound from the nearest centre above it cannot decide, and an octant or a
 /// cube is looked at only where its summary (BlockValues) says a voxel may be
 /// raised. Marks the block kCollapse (with its tile value) if no voxel is left
-/// in the band.
-void visit_leaf(const Pass &p, Leaf &leaf, Block &b) {
+/// in the band. arg (measured): where each voxel's final value came from
+/// (BlockValues::arg), left as it was for voxels no cut raised.
+void visit_leaf(const Pass &p, Leaf &leaf, Block &b, uint32_t *arg = nullptr) {
   const RemoveScratch &w = p.s.scratch;
   const float bgf = p.bgf;
   const float *data = leaf.buffer().data();
   BlockValues bv;
+  bv.arg = arg;
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
     bv.m[n] = data[n];
   if (p.flat) {
@@ -747,7 +755,9 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
   const float *data = leaf.buffer().data();
   float old[Leaf::SIZE];
   std::memcpy(old, data, sizeof old);
-  visit_leaf(p, leaf, b);
+  uint32_t arg[Leaf::SIZE]; // the cut each changed voxel's final value came from
+  std::fill_n(arg, Leaf::SIZE, UINT32_MAX);
+  visit_leaf(p, leaf, b, arg);
   const double half = 0.5 * p.voxel, bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel;
   const swarf_stock *ds = p.measure->design;
   if (design && dacc && design_far(p, *dacc, b.origin)) design = nullptr;
@@ -760,13 +770,16 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
   auto cube_of = [](openvdb::Index n) {
     return int(((n >> 7) << 4) | (((n >> 4) & 3) << 2) | ((n >> 1) & 3)); // x>>1, y>>1, z>>1
   };
+  uint16_t list[Leaf::SIZE]; // the voxels whose fraction changed
+  size_t count = 0;
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
     if (changed(n)) {
       double &lo = cubes.low[cube_of(n)];
       lo = std::min(lo, std::max(double(old[n]), floor));
+      list[count++] = uint16_t(n);
     }
-  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-    if (!changed(n)) continue; // no fraction changed
+  for (size_t at = 0; at < count; at++) {
+    const openvdb::Index n = list[at];
     const Coord l = Leaf::offsetToLocalCoord(n);
     const int cube = cube_of(n);
     const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
@@ -784,6 +797,14 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
       if (-e.d - rv - kMargin >= deep) { // emptied, deeper than anything measured
         d = deep, nv = deep;
         w.removed[i] += inside_fraction(v, p.voxel);
+      } else if (w.pairs[i].cut == arg[n] && (cut.range == nullptr || p.plain) &&
+                 !(design && v < 0.0)) {
+        // The cut the plain visit took the final value from (by the same sdf
+        // at the same point): its step ends there, unevaluated. (A gouge
+        // needs its sdf: evaluated below.)
+        d = nv = double(data[n]);
+        if (!(nv > v)) continue;
+        w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
       } else {
         d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
         nv = stored(d, p.bgf);

@@ -72,6 +72,7 @@ struct Pass {
   double reach;                     ///< half diagonal of a block plus the band, mm
   float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
   double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
+  double rcube[64]; ///< distance (mm) from the block centre to each 2^3 cube's farthest voxel
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
   bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
   bool plain = false;               ///< SWARF_REMOVE_PLAIN=1: no range functions (tests)
@@ -114,6 +115,10 @@ void init_pass(Pass &p) {
         const double dx = (x & 3) - 1.5, dy = (y & 3) - 1.5, dz = (z & 3) - 1.5;
         p.roct[(x << 6) | (y << 3) | z] = v * std::sqrt(dx * dx + dy * dy + dz * dz);
       }
+  for (int c = 0; c < 64; c++) {
+    const double x = 2 * (c >> 4) - 3, y = 2 * ((c >> 2) & 3) - 3, z = 2 * (c & 3) - 3;
+    p.rcube[c] = v * (std::sqrt(x * x + y * y + z * z) + 0.5 * std::sqrt(3.0));
+  }
 }
 
 /// Index box (block origins, both ends inclusive) of the blocks a cut may
@@ -698,14 +703,11 @@ struct CubeCuts {
   std::vector<Entry> list[64];
   uint32_t next[64]; ///< the next pair to look at
   double low[64];    ///< lowest starting value of the cube's changed voxels (+inf: none)
-  double reach[64];  ///< block centre to the cube's farthest voxel, mm
-  void reset(const Pass &p, const Block &b) {
+  void reset(const Block &b) {
     for (int c = 0; c < 64; c++) {
       list[c].clear();
       next[c] = b.begin;
       low[c] = std::numeric_limits<double>::infinity();
-      const double x = 2 * (c >> 4) - 3, y = 2 * ((c >> 2) & 3) - 3, z = 2 * (c & 3) - 3;
-      reach[c] = p.voxel * (std::sqrt(x * x + y * y + z * z) + 0.5 * std::sqrt(3.0));
     }
   }
   /// Entry k of cube c's list, found if needed; false when there is none.
@@ -715,7 +717,7 @@ struct CubeCuts {
     while (list[c].size() <= k) {
       if (next[c] >= b.begin + b.count) return false;
       const uint32_t i = next[c]++;
-      if (w.centre_sdf[i] - reach[c] + low[c] >= kMargin) continue; // a NaN: looked at
+      if (w.centre_sdf[i] - p.rcube[c] + low[c] >= kMargin) continue; // a NaN: looked at
       const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
       const Vec3d q = block_point(p, b.origin, ((c >> 4) << 1) + 0.5, (((c >> 2) & 3) << 1) + 0.5,
                                   ((c & 3) << 1) + 0.5);
@@ -763,7 +765,7 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
   if (design && dacc && design_far(p, *dacc, b.origin)) design = nullptr;
   const double floor = design ? -p.voxel : -half, deep = design ? p.voxel : half;
   thread_local CubeCuts cubes;
-  cubes.reset(p, b);
+  cubes.reset(b);
   auto changed = [&](openvdb::Index n) {
     return data[n] > old[n] && old[n] < half && data[n] > -half;
   };
@@ -996,7 +998,7 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
 /// True if the cut penetrates the material by more than depth (see stock.h).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,
                     size_t nclear, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -1010,7 +1012,7 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}, {}};
   init_pass(p);
   Coord a, b;
   if (!cut_blocks(p, cut, a, b)) return false;
@@ -1025,7 +1027,7 @@ bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth
 /// Deepest gouge of the cut into the design where the stock has material (see stock.h).
 double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_stock_cut &cut,
                  double tolerance, Vec3d &where) {
-  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}};
+  Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}, {}};
   init_pass(p);
   Coord a, b;
   double best = 0.0;
@@ -1070,7 +1072,7 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, cons
     const char *e = std::getenv("SWARF_REMOVE_FLAT");
     return e != nullptr && e[0] == '1';
   }();
-  Pass p{s, cuts, s.voxel, s.background, 0.0, {}, {}, measure, flat, plain, support};
+  Pass p{s, cuts, s.voxel, s.background, 0.0, {}, {}, {}, measure, flat, plain, support};
   init_pass(p);
   RemoveScratch &w = s.scratch;
   list_pairs(p, ncuts);

@@ -33,10 +33,13 @@
  * curvature mu through the bracket's ends certify the value (to TIGHT,
  * below the general search's 1e-6 mm). The two ends come first, with the
  * bounds taken over the whole move (most points: a short move's G is convex
- * by those alone, and the nearest instant is often an end), then every step.
- * Where convexity is not certified the Lipschitz bound of the steps may
- * still put the value at or above hi; otherwise (also: p above the top of
- * the axis segment at some time, more than MAXS steps, no pose table, no
+ * by those alone, and the nearest instant is often an end); then the steps
+ * (every sqrt(n)-th first on long moves), the bounds taken only over the
+ * window of steps whose Lipschitz bound (the nearest point of the axis
+ * segment moves at most cv + W (L - 2R)) is below the best step's value.
+ * Where convexity is not certified that Lipschitz bound may still put the
+ * value at or above hi; otherwise (also: p above the top of the axis
+ * segment at some time, a window of more than MAXW steps, no pose table, no
  * convergence) the answer is -1 and the caller runs the general search, so
  * exactness never rests on this path's assumptions. The window (lo, hi) is
  * swarf_sweep_rigid_sdf_range's: a value at or below lo (a genuine one, from
@@ -48,7 +51,9 @@
 #include "engine_private.h"
 
 #define TIGHT 1e-7 /* certified accuracy, mm */
-#define MAXS 64    /* time steps at most (more: the general search) */
+#define MAXW 64    /* time steps in the window at most (more: the general search) */
+#define COARSE 16  /* moves of more steps: every sqrt(n)-th step first */
+#define MAXC 32    /* coarse steps at most (n <= 512: sqrt(n) - 1 <= n / sqrt(n) <= 24) */
 #define ITER 24    /* regula falsi steps at most */
 
 typedef struct {
@@ -185,9 +190,9 @@ static double seg_norm2(const double u[2], const double w[2], double h0, double 
  * 2 (P^2 - 2 W E ck - W^2 E^2 - E (ca + h1 (W^2 + W'))) with P <= |X'_xy|
  * (at the steps, less its change over half a step: |u'| <= ca + W cv,
  * |w'| <= W') and E >= |e| = sqrt(G) (Lipschitz in cv + W D). */
-static double shank_mu(const swarf_sweep_rigid *x, const bsample *smp, int n, double D, double h0,
-                       double h1) {
-  double w = 1.0 / n, P2 = INFINITY, E2 = 0.0, W = x->w, P, E;
+static double shank_mu(const swarf_sweep_rigid *x, const bsample *smp, int n, double w, double D,
+                       double h0, double h1) {
+  double P2 = INFINITY, E2 = 0.0, W = x->w, P, E;
   for (int i = 0; i <= n; i++) {
     P2 = min2(P2, seg_norm2(smp[i].u, smp[i].w, h0, h1));
     E2 = max2(E2, smp[i].f - smp[i].h * smp[i].h);
@@ -201,8 +206,9 @@ static double shank_mu(const swarf_sweep_rigid *x, const bsample *smp, int n, do
 /* mu from the steps, or 0 when G may not be convex: D >= |d| over the move
  * (Lipschitz in cv), h in [h0, h1] (Lipschitz in W D + ck: h' = k' . d - k .
  * c'), the ball's piece where h0 <= 0, the shank's where h1 > 0. */
-static double curvature(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, int n) {
-  double w = 1.0 / n, F = 0.0, hlo = INFINITY, hhi = -INFINITY, mu = INFINITY, D, lh;
+static double curvature(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, int n,
+                        double w) {
+  double F = 0.0, hlo = INFINITY, hhi = -INFINITY, mu = INFINITY, D, lh;
   for (int i = 0; i <= n; i++) {
     F = max2(F, smp[i].f);
     hlo = min2(hlo, smp[i].h), hhi = max2(hhi, smp[i].h);
@@ -212,17 +218,17 @@ static double curvature(const swarf_sweep_rigid *x, const bctx *b, const bsample
   hlo -= lh, hhi += lh;
   if (!(hhi < b->seg)) return 0.0; /* the top end may be nearest */
   if (hlo <= 0.0) mu = 2.0 * (x->cvmin * x->cvmin - D * x->ca);
-  if (hhi > 0.0) mu = min2(mu, shank_mu(x, smp, n, D, max2(hlo, 0.0), hhi));
+  if (hhi > 0.0) mu = min2(mu, shank_mu(x, smp, n, w, D, max2(hlo, 0.0), hhi));
   return mu > 0.0 ? mu : 0.0;
 }
 
-/* Without convexity: the least value at the steps smp[0..n] if it is at most
- * lo (B_BELOW), or their Lipschitz bound over the move if it is at least hi
- * (B_ABOVE: the nearest point of the axis segment moves at most
+/* Without convexity: the least value at the steps smp[0..n] (w apart) if it
+ * is at most lo (B_BELOW), or their Lipschitz bound over the move if it is
+ * at least hi (B_ABOVE: the nearest point of the axis segment moves at most
  * cv + W (L - 2R)); else B_FAIL. */
-static bkind bbounds(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, int n,
+static bkind bbounds(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, int n, double w,
                      double lo, double hi, double *v, double *at) {
-  double lip = 0.5 * (x->cv + x->w * b->seg) / n, lb = INFINITY, s0 = sqrt(smp[0].G), best = s0;
+  double lip = 0.5 * (x->cv + x->w * b->seg) * w, lb = INFINITY, s0 = sqrt(smp[0].G), best = s0;
   int ib = 0;
   for (int i = 0; i < n; i++) {
     double s1 = sqrt(smp[i + 1].G);
@@ -236,21 +242,65 @@ static bkind bbounds(const swarf_sweep_rigid *x, const bctx *b, const bsample *s
   return *v >= hi ? B_ABOVE : B_FAIL;
 }
 
-/* The minimum from the steps smp[0..n] (time step 1/n), if they certify
- * convexity (b->mu set) or bound it out of the window; else B_FAIL. */
-static bkind bsteps(bctx *b, const swarf_sweep *s, const bsample *smp, int n, double lo, double hi,
-                    double *v, double *at) {
+/* The minimum from the steps smp[0..n] (w apart), if they certify convexity
+ * over their span (b->mu set) or bound it out of the window; else B_FAIL. */
+static bkind bsteps(bctx *b, const swarf_sweep *s, const bsample *smp, int n, double w, double lo,
+                    double hi, double *v, double *at) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
-  b->mu = curvature(x, b, smp, n);
+  b->mu = curvature(x, b, smp, n, w);
   if (b->mu > 0.0) return bmin(b, s->motion, smp, n, lo, hi, v, at);
-  return bbounds(x, b, smp, n, lo, hi, v, at);
+  return bbounds(x, b, smp, n, w, lo, hi, v, at);
+}
+
+/* Every S-th of the n steps into c[0..nc] and their distances to the axis
+ * segment into sq; returns the index of the least. */
+static int bcoarse(const bctx *b, const swarf_pose *table, int n, int S, int nc, bsample *c,
+                   double *sq) {
+  int jb = 0;
+  for (int j = 0; j <= nc; j++) {
+    int i = j * S < n ? j * S : n;
+    c[j] = bsample_at(b, (double)i / n, &table[i]);
+    sq[j] = sqrt(c[j].G);
+    if (j == 0 || sq[j] < sq[jb]) jb = j;
+  }
+  return jb;
+}
+
+/* The time steps that can hold the minimum: every S-th step (S ~ sqrt(n) on
+ * long moves) first, then every step between the first and the last coarse
+ * interval whose Lipschitz bound is below the best coarse value (and the
+ * best step). Where more than MAXW steps remain or convexity over them is
+ * not certified, the coarse steps' bounds decide if they can (bbounds). */
+static bkind bwindow(bctx *b, const swarf_sweep *s, const swarf_pose *table, int n, double lo,
+                     double hi, double *v, double *at) {
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
+  int S = n <= COARSE ? 1 : (int)sqrt((double)n), nc = (n + S - 1) / S, jb, j0 = -1, j1 = -1;
+  bsample c[MAXC + 1], smp[MAXW + 1];
+  double sq[MAXC + 1], lip = 0.5 * (x->cv + x->w * b->seg) * S / n;
+  if (nc < 1 || nc > MAXC) return B_FAIL;
+  jb = bcoarse(b, table, n, S, nc, c, sq);
+  for (int j = 0; j < nc; j++)
+    if (0.5 * (sq[j] + sq[j + 1]) - lip < sq[jb]) j0 = j0 < 0 ? j : j0, j1 = j + 1;
+  if (j0 < 0) { /* nothing between the steps below the best: it is the minimum */
+    *v = sq[jb] - b->R, *at = c[jb].a;
+    return *v <= lo ? B_BELOW : B_VALUE;
+  }
+  j0 = j0 < jb ? j0 : jb, j1 = j1 > jb ? j1 : jb;
+  j0 *= S, j1 = j1 * S < n ? j1 * S : n; /* now steps */
+  if (j1 - j0 <= MAXW) {
+    for (int i = j0; i <= j1; i++)
+      smp[i - j0] = bsample_at(b, (double)i / n, &table[i]);
+    b->mu = curvature(x, b, smp, j1 - j0, 1.0 / n);
+    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at);
+  }
+  return bbounds(x, b, c, nc, (double)S / n, lo, hi, v, at);
 }
 
 int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, double hi,
                            double *value, double *alpha) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
   const swarf_pose *table;
-  bsample smp[MAXS + 1];
+  bsample smp[2];
   double v, at;
   int n = x->n;
   bctx b;
@@ -260,13 +310,8 @@ int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, d
   /* the ends first: their bounds over the whole move often certify it */
   smp[0] = bsample_at(&b, 0.0, &table[0]);
   smp[1] = bsample_at(&b, 1.0, &table[n]);
-  kind = bsteps(&b, s, smp, 1, lo, hi, &v, &at);
-  if (kind == B_FAIL && n > 1 && n <= MAXS) { /* every step: bounds over each */
-    smp[n] = smp[1];
-    for (int i = 1; i < n; i++)
-      smp[i] = bsample_at(&b, (double)i / n, &table[i]);
-    kind = bsteps(&b, s, smp, n, lo, hi, &v, &at);
-  }
+  kind = bsteps(&b, s, smp, 1, 1.0, lo, hi, &v, &at);
+  if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, table, n, lo, hi, &v, &at);
   if (kind == B_FAIL) return -1;
   *value = v;
   if (alpha != NULL) *alpha = at;

@@ -19,7 +19,8 @@
  *   sweep_sampled.c any other helix: sampling plus certified refinement.
  *   sweep_rigid.c   motions with rotation: time steps, characteristic
  *                   refinement, certification; sweep_rigid_setup.c its
- *                   per-move constants and bounds.
+ *                   per-move constants and bounds; sweep_rigid_ball.c a
+ *                   ball end mill's path from the characteristic circles.
  *   sweep_profile.c profile cutters: the union of convex pieces, each swept
  *                   by the closed forms or the searches above.
  *   sweep_general.c a non-convex QSS piece under any motion.
@@ -335,12 +336,16 @@ typedef struct {
 
 /* RIGID: bounds lo, hi of the volume; n time steps; v, w bounds of |v|,
  * |omega| and vd, wd of their alpha-derivatives; beyond `far` mm a lower
- * bound is returned. */
+ * bound is returned. A ball end mill (ball = 1; sweep_rigid_ball.c): cv and
+ * cvmin bound the speed |c'| of its centre c = t + U (0, 0, R) from above and
+ * below, ca its acceleration |c''|, ck the part of c' along the tool axis. */
 typedef struct {
   double lo[3], hi[3];
   double v, w, vd, wd;
   double far;
+  double cv, cvmin, ca, ck;
   int n;
+  int ball;
 } swarf_sweep_rigid;
 
 /* P_SLOT, P_PLUNGE, P_RAMP (profile cutters): the line p0 + alpha d. */
@@ -410,5 +415,11 @@ static inline double swarf_cutter_rz(const swarf_cutter *c, double r, double z) 
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]);
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], double lo, double hi);
+/* The ball end mill's path (sweep_rigid_ball.c): the value at p as
+ * swarf_sweep_rigid_sdf_range gives it for the window (lo, hi), the instant
+ * of the value in *alpha (may be NULL). Returns 0, or -1 when its
+ * preconditions cannot be certified at p (then the caller searches). */
+int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, double hi,
+                           double *value, double *alpha);
 
 #endif

@@ -34,6 +34,9 @@
  *     of by a bisection per halving), or in the middle when d is half the
  *     interval or more. (Issue 12: 2.4x fewer evaluations here, the same
  *     certificate.)
+ * A ball end mill takes sweep_rigid_ball.c first (the characteristic
+ * circles at the time steps, a local refinement certified by convexity) and
+ * comes here only where that path cannot certify its preconditions.
  * Beyond FAR (72 voxels, more than any narrow band plus a block) the value
  * is the lower bound of the coarse intervals only. Nothing allocates here
  * (the pose table belongs to the thread's cache); pure function of the sweep
@@ -302,6 +305,8 @@ double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body
 }
 
 double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], double lo, double hi) {
+  double v;
+  if (swarf_sweep_rigid_ball(s, p, lo, hi, &v, NULL) == 0) return v;
   return rsearch(s, cutter_body, s->cutter, p, lo, hi + EPS, NULL);
 }
 
@@ -313,5 +318,9 @@ double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, 
 }
 
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  double v;
+  if (s != NULL && p != NULL && swarf_sweep_cdata(s)->method == SWARF_SWEEP_RIGID &&
+      swarf_sweep_rigid_ball(s, p, -INFINITY, INFINITY, &v, alpha) == 0)
+    return v;
   return swarf_sweep_rigid_body_sdf(s, cutter_body, s->cutter, p, alpha);
 }

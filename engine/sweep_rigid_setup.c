@@ -7,8 +7,12 @@
  * low degree in alpha whose derivatives vary by O(turn) between probes, so
  * 64 probes and a factor 1.25 (1.5 on the derivatives) cover them for any
  * turn a single move makes (tested, tests/engine/test_sweep_rigid.c).
+ * A ball end mill's path (sweep_rigid_ball.c) gets the speed of the ball's
+ * centre and its derivative from the same probes, with the same factors.
  */
 #include <math.h>
+#include <stdatomic.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "engine_private.h"
@@ -25,6 +29,54 @@ static double dist3(const double a[3], const double b[3]) {
   return norm3(d);
 }
 
+/* SWARF_SWEEP_GENERAL=1 in the environment (read once): every cutter takes the
+ * general search (sweep_rigid.c), for the tests that compare the paths. */
+static int general_only(void) {
+  static atomic_int cached = -1;
+  int v = atomic_load_explicit(&cached, memory_order_relaxed);
+  if (v < 0) {
+    const char *e = getenv("SWARF_SWEEP_GENERAL");
+    v = e != NULL && e[0] == '1';
+    atomic_store_explicit(&cached, v, memory_order_relaxed);
+  }
+  return v;
+}
+
+/* u = v + omega x (0, 0, R), the speed of the ball's centre in the cutter's
+ * frame, and c' = U u in the workpiece's. */
+static void centre_speed(const double U[9], const double v[3], const double w[3], double R,
+                         double u[3], double cp[3]) {
+  u[0] = v[0] + R * w[1], u[1] = v[1] - R * w[0], u[2] = v[2];
+  for (int i = 0; i < 3; i++)
+    cp[i] = U[3 * i] * u[0] + U[3 * i + 1] * u[1] + U[3 * i + 2] * u[2];
+}
+
+/* The ball path's constants (ball, cv, cvmin, ca, ck) from the
+ * centre's speeds at the nprobe + 1 probes (u cutter frame, cp workpiece
+ * frame) and the bounds already set. */
+static void ball_init(swarf_sweep *s, const double (*u)[3], const double (*cp)[3], int nprobe) {
+  const swarf_cutter *c = s->cutter;
+  swarf_sweep_rigid *x = &swarf_sweep_data_of(s)->u.rigid;
+  double R = 0.5 * c->diameter, vmax = 0.0, vmin = INFINITY, dmax = 0.0, kmax = 0.0, general;
+  x->ball = 0;
+  if (!c->fast || c->shape != SWARF_CUTTER_BALL || !(c->length >= c->diameter) || general_only())
+    return;
+  for (int i = 0; i <= nprobe; i++) {
+    double sp = norm3(cp[i]);
+    vmax = fmax(vmax, sp), vmin = fmin(vmin, sp);
+    kmax = fmax(kmax, fabs(u[i][2]));
+    if (i > 0) dmax = fmax(dmax, dist3(cp[i], cp[i - 1]) * nprobe);
+  }
+  /* c'' = U (omega x (v + omega x r) + v' + omega' x r), r = (0, 0, R) */
+  general = x->w * (x->v + x->w * R) + x->vd + x->wd * R;
+  x->ca = fmin(general, 1.5 * dmax + 1e-9 * vmax);
+  x->cv = fmin(x->v + x->w * R, 1.25 * vmax + 1e-12);
+  /* between probes: |c''| <= ca, and u' = U^T c'' - omega x u */
+  x->cvmin = fmax(vmin - 0.5 * x->ca / nprobe, 0.0);
+  x->ck = kmax + 0.5 * (x->ca + x->w * x->cv) / nprobe;
+  x->ball = 1;
+}
+
 /* Widen the box by the cutter's axis segment at the pose (t, U). */
 static void include_pose(swarf_sweep_rigid *x, const swarf_cutter *c, const double t[3],
                          const double U[9]) {
@@ -39,7 +91,7 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
   const swarf_cutter *c = s->cutter;
   swarf_sweep_data *sd = swarf_sweep_data_of(s);
   swarf_sweep_rigid *x = &sd->u.rigid;
-  double t[3], U[9], v[3], w[3], pv[3] = {0}, pw[3] = {0};
+  double t[3], U[9], v[3], w[3], pv[3] = {0}, pw[3] = {0}, u[PROBE + 1][3], cp[PROBE + 1][3];
   double r = 0.5 * c->diameter, reach = hypot(r, c->length), tol = 0.1 * voxel;
   double V = 0, W = 0, VD = 0, WD = 0, step, travel, pad;
   sd->method = SWARF_SWEEP_RIGID;
@@ -50,6 +102,7 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
     swarf_motion_eval(s->motion, a, t, U);
     swarf_motion_velocity(s->motion, a, NULL, v, w);
     include_pose(x, c, t, U);
+    centre_speed(U, v, w, 0.5 * c->diameter, u[i], cp[i]);
     V = fmax(V, norm3(v));
     W = fmax(W, norm3(w));
     if (i > 0) VD = fmax(VD, dist3(v, pv) * PROBE), WD = fmax(WD, dist3(w, pw) * PROBE);
@@ -67,6 +120,7 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
   pad = r + travel / PROBE;
   for (int k = 0; k < 3; k++)
     x->lo[k] -= pad, x->hi[k] += pad;
+  ball_init(s, (const double(*)[3])u, (const double(*)[3])cp, PROBE);
 }
 
 void swarf_sweep_rigid_bounds(const swarf_sweep *s, double lo[3], double hi[3]) {

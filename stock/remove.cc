@@ -39,6 +39,7 @@
 #include <openvdb/tree/ValueAccessor.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -46,8 +47,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include "stock_private.h"
 
@@ -159,49 +162,124 @@ inline bool pair_less(const BlockCut &a, const BlockCut &b) {
 /// (block offsets from the least block, then the cut): 2x faster than the
 /// comparison of the fields.
 void sort_pairs(std::vector<BlockCut> &pairs, size_t ncuts) {
-  int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
-  int32_t unaligned = 0; // block origins are multiples of 8
-  for (const BlockCut &q : pairs) {
-    unaligned |= (q.x | q.y | q.z) & 7;
-    lo[0] = std::min(lo[0], q.x), hi[0] = std::max(hi[0], q.x);
-    lo[1] = std::min(lo[1], q.y), hi[1] = std::max(hi[1], q.y);
-    lo[2] = std::min(lo[2], q.z), hi[2] = std::max(hi[2], q.z);
-  }
-  bool fits = ncuts <= 0x10000 && unaligned == 0;
+  struct Span {
+    int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+    int32_t unaligned = 0; // block origins are multiples of 8
+  };
+  const tbb::blocked_range<size_t> all(0, pairs.size(), 4096);
+  const Span sp = tbb::parallel_reduce(
+      all, Span(),
+      [&](const tbb::blocked_range<size_t> &r, Span a) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const BlockCut &q = pairs[i];
+          a.unaligned |= (q.x | q.y | q.z) & 7;
+          a.lo[0] = std::min(a.lo[0], q.x), a.hi[0] = std::max(a.hi[0], q.x);
+          a.lo[1] = std::min(a.lo[1], q.y), a.hi[1] = std::max(a.hi[1], q.y);
+          a.lo[2] = std::min(a.lo[2], q.z), a.hi[2] = std::max(a.hi[2], q.z);
+        }
+        return a;
+      },
+      [](Span a, const Span &b) {
+        a.unaligned |= b.unaligned;
+        for (int k = 0; k < 3; k++)
+          a.lo[k] = std::min(a.lo[k], b.lo[k]), a.hi[k] = std::max(a.hi[k], b.hi[k]);
+        return a;
+      });
+  const int32_t *lo = sp.lo, *hi = sp.hi;
+  bool fits = ncuts <= 0x10000 && sp.unaligned == 0;
   for (int k = 0; k < 3; k++)
     fits = fits && (int64_t(hi[k]) - lo[k]) / 8 < 0x10000;
   if (!fits) {
     tbb::parallel_sort(pairs.begin(), pairs.end(), pair_less);
     return;
   }
-  thread_local std::vector<uint64_t> keys;
-  keys.resize(pairs.size());
-  for (size_t i = 0; i < pairs.size(); i++) {
-    const BlockCut &q = pairs[i];
-    keys[i] = uint64_t((q.x - lo[0]) >> 3) << 48 | uint64_t((q.y - lo[1]) >> 3) << 32 |
-              uint64_t((q.z - lo[2]) >> 3) << 16 | uint64_t(q.cut);
-  }
-  tbb::parallel_sort(keys.begin(), keys.end());
-  for (size_t i = 0; i < pairs.size(); i++) {
-    const uint64_t k = keys[i];
-    pairs[i] = {lo[0] + int32_t((k >> 48) << 3), lo[1] + int32_t(((k >> 32) & 0xffff) << 3),
-                lo[2] + int32_t(((k >> 16) & 0xffff) << 3), uint32_t(k & 0xffff)};
-  }
+  thread_local std::vector<uint64_t> keys_v; // this thread's buffer
+  keys_v.resize(pairs.size());
+  uint64_t *const keys = keys_v.data(); // the workers see the caller's buffer through it
+  tbb::parallel_for(all, [&](const tbb::blocked_range<size_t> &r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const BlockCut &q = pairs[i];
+      keys[i] = uint64_t((q.x - lo[0]) >> 3) << 48 | uint64_t((q.y - lo[1]) >> 3) << 32 |
+                uint64_t((q.z - lo[2]) >> 3) << 16 | uint64_t(q.cut);
+    }
+  });
+  tbb::parallel_sort(keys, keys + pairs.size());
+  tbb::parallel_for(all, [&](const tbb::blocked_range<size_t> &r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const uint64_t k = keys[i];
+      pairs[i] = {lo[0] + int32_t((k >> 48) << 3), lo[1] + int32_t(((k >> 32) & 0xffff) << 3),
+                  lo[2] + int32_t(((k >> 16) & 0xffff) << 3), uint32_t(k & 0xffff)};
+    }
+  });
+}
+
+/// The sorted pairs grouped into blocks (each block's first pair and count),
+/// in chunks found in parallel: the pairs of a big batch number millions.
+void group_blocks(RemoveScratch &w) {
+  const size_t np = w.pairs.size(), nchunk = std::max<size_t>(1, std::min<size_t>(256, np >> 14));
+  auto starts = [&](size_t i) {
+    const BlockCut &q = w.pairs[i];
+    return i == 0 || q.x != w.pairs[i - 1].x || q.y != w.pairs[i - 1].y || q.z != w.pairs[i - 1].z;
+  };
+  auto chunk = [&](size_t c) {
+    return tbb::blocked_range<size_t>(c * np / nchunk, (c + 1) * np / nchunk);
+  };
+  thread_local std::vector<size_t> first_v; // first block of each chunk (this thread's buffer)
+  first_v.assign(nchunk + 1, 0);
+  size_t *const first = first_v.data(); // the workers see the caller's buffer through it
+  tbb::parallel_for(size_t(0), nchunk, [&](size_t c) {
+    size_t n = 0;
+    for (size_t i = chunk(c).begin(); i != chunk(c).end(); ++i)
+      n += starts(i);
+    first[c + 1] = n;
+  });
+  for (size_t c = 0; c < nchunk; c++)
+    first[c + 1] += first[c];
+  w.blocks.resize(first[nchunk]);
+  tbb::parallel_for(size_t(0), nchunk, [&](size_t c) {
+    size_t j = first[c];
+    for (size_t i = chunk(c).begin(); i != chunk(c).end(); ++i)
+      if (starts(i)) {
+        const BlockCut &q = w.pairs[i];
+        w.blocks[j++] = {Coord(q.x, q.y, q.z), uint32_t(i), 0, kSkip, 0.0f};
+      }
+  });
+  const size_t nb = w.blocks.size();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nb, 4096),
+                    [&](const tbb::blocked_range<size_t> &r) {
+                      for (size_t j = r.begin(); j != r.end(); ++j)
+                        w.blocks[j].count =
+                            uint32_t((j + 1 < nb ? w.blocks[j + 1].begin : np) - w.blocks[j].begin);
+                    });
 }
 
 /// Pass 1: the (block, cut) pairs sorted by block, grouped into blocks.
 void list_pairs(Pass &p, size_t ncuts) {
   RemoveScratch &w = p.s.scratch;
-  w.pairs.clear();
-  w.blocks.clear();
+  thread_local std::vector<size_t> at_v; // first pair of each cut (this thread's buffer)
+  at_v.assign(ncuts + 1, 0);
+  size_t *const at = at_v.data(); // the workers see the caller's buffer through it
   for (size_t i = 0; i < ncuts; i++) {
     Coord a, b;
-    if (!cut_blocks(p, p.cuts[i], a, b)) continue;
-    for (int x = a.x(); x <= b.x(); x += 8)
-      for (int y = a.y(); y <= b.y(); y += 8)
-        for (int z = a.z(); z <= b.z(); z += 8)
-          w.pairs.push_back({x, y, z, uint32_t(i)});
+    size_t n = 0;
+    if (cut_blocks(p, p.cuts[i], a, b))
+      n = size_t((b.x() - a.x()) / 8 + 1) * size_t((b.y() - a.y()) / 8 + 1) *
+          size_t((b.z() - a.z()) / 8 + 1);
+    at[i + 1] = at[i] + n;
   }
+  w.pairs.resize(at[ncuts]); // no clear(): growing zero-fills only what is new
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, ncuts, 8),
+                    [&](const tbb::blocked_range<size_t> &r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i) {
+                        Coord a, b;
+                        if (at[i + 1] == at[i] || !cut_blocks(p, p.cuts[i], a, b)) continue;
+                        BlockCut *q = &w.pairs[at[i]];
+                        for (int x = a.x(); x <= b.x(); x += 8)
+                          for (int y = a.y(); y <= b.y(); y += 8)
+                            for (int z = a.z(); z <= b.z(); z += 8)
+                              *q++ = {x, y, z, uint32_t(i)};
+                      }
+                    });
   if (ncuts > 1) sort_pairs(w.pairs, ncuts);
   w.centre_sdf.resize(w.pairs.size());
   if (p.measure) {
@@ -209,12 +287,7 @@ void list_pairs(Pass &p, size_t ncuts) {
     w.gouge.assign(w.pairs.size(), 0.0);
     w.gouge_at.assign(w.pairs.size(), Vec3d(0.0));
   }
-  for (size_t i = 0; i < w.pairs.size(); i++) {
-    const BlockCut &q = w.pairs[i];
-    if (i == 0 || q.x != w.pairs[i - 1].x || q.y != w.pairs[i - 1].y || q.z != w.pairs[i - 1].z)
-      w.blocks.push_back({Coord(q.x, q.y, q.z), uint32_t(i), 0, kSkip, 0.0f});
-    w.blocks.back().count++;
-  }
+  group_blocks(w);
 }
 
 /// True if the block holds no material and no band (all voxels outside).
@@ -423,6 +496,39 @@ struct CutAt {
   double g[3];
 };
 
+/// An octant's cuts deepest first (a NaN sdf first), sorted lazily: the
+/// cubes walk the order from its start and most stop after a few cuts, so
+/// the order is drawn from a heap only as far as some cube reads it
+/// (issue 12: with 1024 moves a batch, a full sort of every octant's cuts
+/// took 12 % of bear.nc at 0.2 mm).
+class OctOrder {
+public:
+  using Key = std::pair<double, uint32_t>; ///< sort key (NaN: -inf), index in the octant's cuts
+
+  /// Takes the octant's n cuts; keys and order are the caller's scratch of n each.
+  OctOrder(const CutAt *oct, uint32_t n, Key *keys, uint32_t *order)
+      : oct_(oct), heap_(keys), order_(order), hn_(n) {
+    for (uint32_t i = 0; i < n; i++)
+      heap_[i] = {std::isnan(oct[i].d) ? -HUGE_VAL : oct[i].d, i};
+    std::make_heap(heap_, heap_ + hn_, std::greater<Key>());
+  }
+
+  /// The i-th deepest cut, or null past the last.
+  const CutAt *get(uint32_t i) {
+    while (ns_ <= i && hn_ > 0) {
+      std::pop_heap(heap_, heap_ + hn_, std::greater<Key>());
+      order_[ns_++] = heap_[--hn_].second;
+    }
+    return i < ns_ ? &oct_[order_[i]] : nullptr;
+  }
+
+private:
+  const CutAt *oct_;
+  Key *heap_;
+  uint32_t *order_;
+  uint32_t hn_, ns_ = 0;
+};
+
 /// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut whose
 /// sdf at the cube's centre is dcube: a voxel is evaluated unless the bound
 /// from the centre keeps it below its value; all are cleared when the cube lies
@@ -484,8 +590,8 @@ inline bool plane_keeps_below(const Pass &p, const BlockValues &bv, const CutAt 
 /// the later ones mostly find their bound below the voxels' values and
 /// evaluate nothing, down to the first whose octant value keeps every voxel
 /// of the cube below (the maximum does not depend on the order).
-void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t noct, int x0, int y0,
-                     int z0, BlockValues &bv) {
+void visit_cube_cuts(const Pass &p, const Block &b, OctOrder &oct, int x0, int y0, int z0,
+                     BlockValues &bv) {
   const double bg = p.bgf, v = p.voxel, rcube = std::sqrt(3.0) * v; // cube centre -> octant centre
   const double rv = 0.5 * std::sqrt(3.0) * v;                       // voxel -> its cube's centre
   const int ci = ((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1);
@@ -502,8 +608,10 @@ void visit_cube_cuts(const Pass &p, const Block &b, const CutAt *oct, uint32_t n
         const double m = bv.m[(x << 6) | (y << 3) | z];
         if (m < bg) cube_hi = std::max(cube_hi, kMargin + rv - m);
       }
-  for (uint32_t i = 0; i < noct; i++) {
-    const CutAt &o = oct[i];
+  for (uint32_t i = 0;; i++) {
+    const CutAt *at = oct.get(i);
+    if (at == nullptr) break;
+    const CutAt &o = *at;
     // may_raise for the cube's lowest value with the cube's sdf at least
     // o.d - rcube: false, and false for the remaining (shallower) cuts too
     if (o.d - rcube - rv + bv.mlo[ci] >= kMargin) break;
@@ -561,13 +669,14 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
     if (f == nullptr) o.d = cut_value(p, cut, c, oct_lo, oct_hi);
   }
   if (n == 0) return;
-  std::sort(oct, oct + n, [](const CutAt &a, const CutAt &b) { // a NaN sdf first
-    return (std::isnan(a.d) ? -HUGE_VAL : a.d) < (std::isnan(b.d) ? -HUGE_VAL : b.d);
-  });
+  thread_local std::vector<OctOrder::Key> keys;
+  thread_local std::vector<uint32_t> order;
+  if (keys.size() < n) keys.resize(n), order.resize(n);
+  OctOrder ord(oct, n, keys.data(), order.data());
   for (int sx = x0; sx < x0 + 4; sx += 2)
     for (int sy = y0; sy < y0 + 4; sy += 2)
       for (int sz = z0; sz < z0 + 4; sz += 2)
-        visit_cube_cuts(p, b, oct, n, sx, sy, sz, bv);
+        visit_cube_cuts(p, b, ord, sx, sy, sz, bv);
 }
 
 /// Pass 4 for one cut without the hierarchy (SWARF_REMOVE_FLAT=1, the

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -186,11 +187,19 @@ swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, in
     s->region_lo = openvdb::Coord(rl[0], rl[1], rl[2]);
     s->region_hi = openvdb::Coord(rh[0], rh[1], rh[2]);
   }
-  swarf_stock_cut cut{};
-  for (int k = 0; k < 3; k++) cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;
-  cut.sdf = outside;
-  cut.ctx = ctx;
-  remove_cuts(*s, &cut, 1);
+  static const bool by_removal = [] { // SWARF_SHAPE_REMOVE=1: the reference (tests)
+    const char *e = std::getenv("SWARF_SHAPE_REMOVE");
+    return e != nullptr && e[0] == '1';
+  }();
+  if (by_removal) {
+    swarf_stock_cut cut{};
+    for (int k = 0; k < 3; k++) cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;
+    cut.sdf = outside;
+    cut.ctx = ctx;
+    remove_cuts(*s, &cut, 1);
+  } else {
+    fill_shape(*s, outside, ctx, region);
+  }
   if (rlo != nullptr)
     openvdb::tools::prune(grid->tree());
   else

@@ -141,6 +141,12 @@ template <class F> void in_arena(swarf_stock &s, F &&f) {
     f();
 }
 
+/// The band of a new stock holding -background in the block-aligned index
+/// box `blocks` (and nothing else): as removing the cut {outside < 0} there
+/// (shape.cc; bit for bit what remove_cuts gives).
+void fill_shape(swarf_stock &s, swarf_stock_sdf_fn outside, const void *ctx,
+                const openvdb::CoordBBox &blocks);
+
 /// Apply stock = max(stock, -sdf) for every cut (remove.cc). Arguments are
 /// assumed checked. On an exception the stock may be partly cut but stays a
 /// valid narrow band.

@@ -12,9 +12,12 @@
  *   - the nearest points lie on the characteristic curves of their time;
  *   - the pruned search (swarf_sweep_sdf_range, what the stock calls) against
  *     the full certified one, a short move as the impeller's (issue 12).
+ * All through the general search (SWARF_SWEEP_GENERAL=1): the ball end
+ * mill's own path is test_sweep_ball's.
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -278,6 +281,8 @@ static void test_range(void) {
 }
 
 int main(void) {
+  /* the general search for every cutter (a ball's own path: test_sweep_ball) */
+  setenv("SWARF_SWEEP_GENERAL", "1", 1);
   test_rotary_only();
   test_helix_4th();
   test_five_axis();

@@ -3,7 +3,7 @@
 the same stock: the same number of active voxels (more than 10,000, so the
 runs did cut) and, over the union of their active boxes, values within
 1e-6 mm (--bits: bit-identical). Read with pyopenvdb and numpy, not swarf.
-Used by impeller_paths.sh (tools_rotary_blocks, tools_rotary_range) and line_blocks.sh to hold a fast
+Used by impeller_paths.sh (tools_rotary_blocks, _range, _ball) and line_blocks.sh to hold a fast
 removal path to its reference path. Exit 0 when they match."""
 import sys
 

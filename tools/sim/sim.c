@@ -28,7 +28,7 @@ void swarf_sim_config_init(swarf_sim_config *cfg) {
   memset(cfg, 0, sizeof *cfg);
   cfg->voxel = 0.2;
   cfg->half_width = 3;
-  cfg->batch = 128;
+  cfg->batch = 1024;
 }
 
 swarf_status swarf_sim_config_add_tool(swarf_sim_config *cfg, const swarf_sim_tool *t,

@@ -194,7 +194,7 @@ typedef struct {
   swarf_sim_stock_spec stock; /* the initial stock, unless swarf_sim_new_with_stock */
   double voxel;               /* voxel edge, mm */
   int half_width;             /* narrow band, voxels each side (>= 3) */
-  int batch;                  /* moves removed per stock pass (default 128) */
+  int batch;                  /* moves removed per stock pass (default 1024) */
   swarf_sim_tool tools[SWARF_SIM_MAX_TOOLS];
   int ntools;       /* one tool: loaded at the start; more: T<n> M6 selects */
   int line_volumes; /* 1: measure each line's removed volume (swarf_line_result) */
@@ -250,7 +250,7 @@ typedef struct {
 /* How far above the stock the tool starts by default, mm. */
 #define SWARF_SIM_CLEARANCE 10.0
 
-/* Defaults: xyz machine, 0.2 mm voxel, band 3, batch 128, no tools, no stock
+/* Defaults: xyz machine, 0.2 mm voxel, band 3, batch 1024, no tools, no stock
  * (a stock or an existing stock handle must be given). */
 SWARF_API void swarf_sim_config_init(swarf_sim_config *cfg);
 

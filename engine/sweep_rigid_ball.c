@@ -1,0 +1,319 @@
+/* sweep_rigid_ball.c -- the volume swept by a ball end mill under a rigid
+ * motion with rotation, built from the characteristic circles at the time
+ * steps (issue 12): per point a local refinement certified by convexity
+ * instead of the general search over the move (sweep_rigid.c).
+ *
+ * The cutter is a capsule: the points within R of its axis segment from the
+ * ball's centre (0, 0, R) up to (0, 0, L - R) (swarf_cutter_sdf_rz). Under
+ * x' = t(a) + U(a) x the centre runs on c(a) = t + U (0, 0, R) with
+ * c' = U u, u = v + omega x (0, 0, R), and k(a) = U e_z is the tool axis.
+ * With d = p - c and h = k . d (p's height above the ball's equator plane)
+ * the squared distance to the axis segment is
+ *   G = |d|^2          where h <= 0 (the ball: inside and out),
+ *   G = |e|^2, e = d - h k, where 0 < h < L - 2R (the shank),
+ * and the sweep's value is min over a of sqrt(G) - R. G is C^1 with
+ * G' = -2 e . X', X' = c' + h+ k' the velocity of the axis point nearest p:
+ * zero where p lies in the plane of the ball's characteristic circle
+ * {|x - c| = R, (x - c) . c' = 0} of that time (or on the shank's
+ * characteristic lines). G'' is bounded below piece by piece:
+ *   ball:  G'' = 2 (|c'|^2 - d . c'')  >= 2 (cvmin^2 - D ca),
+ *   shank: G'' = 2 (|X'_xy|^2 + 2 (k' . e) u_z - (k' . e)^2 - e . (c'' + h k''))
+ *              >= 2 (P^2 - 2 W E ck - W^2 E^2 - E (ca + H (W^2 + W'))),
+ * X'_xy = u_xy + h (omega_y, -omega_x) the part of X' across the axis (cutter
+ * frame), P its least norm over h at the steps less its change over half a
+ * step, D >= |d|, E >= |e| and H >= h over the move (from the time steps,
+ * Lipschitz in cv, cv + W D and W D + ck), cv, cvmin, ca, ck the per-move
+ * bounds of sweep_rigid_setup.c (|c'| above and below, |c''|, |u_z|), W, W'
+ * those of |omega| and its derivative. G' is continuous (the pieces meet at
+ * h = 0 with equal slopes), so G'' >= mu on each piece makes G convex with
+ * modulus mu. When mu > 0 the sign of G' at the time steps (the pose table:
+ * which side of each step's circle plane p lies on) brackets the one
+ * minimiser, or it is an end; Illinois regula falsi on G' inside the
+ * bracket (poses off the table) finds it, and the quadratic minorants of
+ * curvature mu through the bracket's ends certify the value (to TIGHT,
+ * below the general search's 1e-6 mm). The two ends come first, with the
+ * bounds taken over the whole move (most points: a short move's G is convex
+ * by those alone, and the nearest instant is often an end); then the steps
+ * (every sqrt(n)-th first on long moves), the bounds taken only over the
+ * window of steps whose Lipschitz bound (the nearest point of the axis
+ * segment moves at most cv + W (L - 2R)) is below the best step's value.
+ * Where convexity is not certified that Lipschitz bound may still put the
+ * value at or above hi; otherwise (also: p above the top of the axis
+ * segment at some time, a window of more than MAXW steps, no pose table, no
+ * convergence) the answer is -1 and the caller runs the general search, so
+ * exactness never rests on this path's assumptions. The window (lo, hi) is
+ * swarf_sweep_rigid_sdf_range's: a value at or below lo (a genuine one, from
+ * a pose) ends the work, and so does a lower bound at or above hi. Nothing
+ * allocates; pure function of the sweep and p.
+ */
+#include <math.h>
+
+#include "engine_private.h"
+
+#define TIGHT 1e-7 /* certified accuracy, mm */
+#define MAXW 64    /* time steps in the window at most (more: the general search) */
+#define COARSE 16  /* moves of more steps: every sqrt(n)-th step first */
+#define MAXC 32    /* coarse steps at most (n <= 512: sqrt(n) - 1 <= n / sqrt(n) <= 24) */
+#define ITER 24    /* regula falsi steps at most */
+
+typedef struct {
+  double a, G, dG, h, f; /* time, squared distance to the axis segment, G', h, |d|^2 */
+  double u[2], w[2];     /* u_xy and (omega_y, -omega_x): X'_xy = u + h w (cutter frame) */
+} bsample;
+
+typedef struct {
+  const double *p;
+  double R, seg; /* ball radius, axis segment length L - 2R */
+  double mu;     /* G'' >= mu > 0 over the move */
+} bctx;
+
+typedef enum { B_VALUE, B_BELOW, B_ABOVE, B_FAIL } bkind;
+
+static inline double min2(double a, double b) {
+  return a < b ? a : b;
+}
+
+static inline double max2(double a, double b) {
+  return a > b ? a : b;
+}
+
+/* The sample at time a from the pose there. */
+static bsample bsample_at(const bctx *b, double a, const swarf_pose *P) {
+  const double *U = P->U, *v = P->v, *w = P->omega, R = b->R;
+  const double k[3] = {U[2], U[5], U[8]}, u[3] = {v[0] + R * w[1], v[1] - R * w[0], v[2]};
+  double d[3], cp[3], kp[3], f, df, hp;
+  bsample r;
+  for (int i = 0; i < 3; i++) {
+    d[i] = b->p[i] - P->t[i] - R * k[i];
+    cp[i] = U[3 * i] * u[0] + U[3 * i + 1] * u[1] + U[3 * i + 2] * u[2];
+    kp[i] = U[3 * i] * w[1] - U[3 * i + 1] * w[0]; /* k' = U (omega x e_z) */
+  }
+  f = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  df = -2.0 * (d[0] * cp[0] + d[1] * cp[1] + d[2] * cp[2]);
+  r.a = a;
+  r.u[0] = u[0], r.u[1] = u[1], r.w[0] = w[1], r.w[1] = -w[0];
+  r.h = k[0] * d[0] + k[1] * d[1] + k[2] * d[2];
+  r.f = r.G = f, r.dG = df;
+  if (r.h > 0.0) { /* the shank's segment (its top end: h >= seg) */
+    double z = r.h < b->seg ? r.h : b->seg;
+    hp = kp[0] * d[0] + kp[1] * d[1] + kp[2] * d[2] - (k[0] * cp[0] + k[1] * cp[1] + k[2] * cp[2]);
+    r.G = f - z * (2.0 * r.h - z);
+    r.dG = df - 2.0 * z * hp; /* z = h: G' = f' - 2 h h'; z = seg: the same (k . k' = 0) */
+    if (r.G < 0.0) r.G = 0.0;
+  }
+  return r;
+}
+
+/* Minimum over [l, r] of the parabola f0 + g0 (x - x0) + mu/2 (x - x0)^2. */
+static double qmin(double f0, double g0, double x0, double mu, double l, double r) {
+  double x = x0 - g0 / mu;
+  x = x < l ? l : x > r ? r : x;
+  return f0 + (x - x0) * (g0 + 0.5 * mu * (x - x0));
+}
+
+/* Lower bound of G over [A.a, B.a]: the minimum of the larger of the two
+ * minorants T_A, T_B of curvature mu through the ends (T_A - T_B is linear:
+ * T_A is the larger up to xs, T_B after). */
+static double bracket_lb(const bctx *b, const bsample *A, const bsample *B) {
+  double mu = b->mu, w = B->a - A->a, xs = B->a;
+  double c0 = A->G - (B->G - B->dG * w + 0.5 * mu * w * w), c1 = A->dG - B->dG + mu * w;
+  if (c1 < 0.0) xs = A->a - c0 / c1;
+  xs = xs < A->a ? A->a : xs > B->a ? B->a : xs;
+  return min2(qmin(A->G, A->dG, A->a, mu, A->a, xs), qmin(B->G, B->dG, B->a, mu, xs, B->a));
+}
+
+/* The minimum over the move, its minimiser inside [A.a, B.a] (A.dG < 0 <
+ * B.dG): Illinois regula falsi on G' until the minorants certify the best
+ * sample to TIGHT (B_VALUE), or it is at most lo (B_BELOW), or the bound is
+ * at least hi (B_ABOVE: *v the bound). */
+static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B, double lo,
+                     double hi, double *v, double *at) {
+  bsample best = A.G <= B.G ? A : B;
+  double gA = A.dG, gB = B.dG;
+  int side = 0;
+  for (int it = 0;; it++) {
+    double lb = sqrt(max2(bracket_lb(b, &A, &B), 0.0)) - b->R, vb = sqrt(best.G) - b->R, x;
+    swarf_pose P;
+    bsample M;
+    *at = best.a;
+    if (vb <= lo || vb - lb <= TIGHT) {
+      *v = vb;
+      return vb <= lo ? B_BELOW : B_VALUE;
+    }
+    if (lb >= hi) {
+      *v = lb;
+      return B_ABOVE;
+    }
+    if (it == ITER || !(B.a - A.a > 1e-15)) return B_FAIL;
+    x = (A.a * gB - B.a * gA) / (gB - gA);
+    if (!(x > A.a && x < B.a)) x = 0.5 * (A.a + B.a);
+    swarf_motion_pose(m, x, &P);
+    M = bsample_at(b, x, &P);
+    if (M.G < best.G) best = M;
+    if (M.dG < 0.0) {
+      A = M, gA = M.dG;
+      if (side < 0) gB *= 0.5;
+      side = -1;
+    } else {
+      B = M, gB = M.dG;
+      if (side > 0) gA *= 0.5;
+      side = 1;
+    }
+  }
+}
+
+/* The minimum over the move from the steps smp[0..n] (G convex). */
+static bkind bmin(const bctx *b, const swarf_motion *m, const bsample *smp, int n, double lo,
+                  double hi, double *v, double *at) {
+  int i = 0;
+  while (i <= n && smp[i].dG < 0.0)
+    i++;
+  if (i == 0 || i > n) { /* G' >= 0 at the start, or < 0 at the end: an end */
+    const bsample *e = i == 0 ? &smp[0] : &smp[n];
+    *v = sqrt(e->G) - b->R, *at = e->a;
+    return *v <= lo ? B_BELOW : B_VALUE;
+  }
+  return brefine(b, m, smp[i - 1], smp[i], lo, hi, v, at);
+}
+
+/* Least |u + h w|^2 over h in [h0, h1] (2-D: the squared distance from the
+ * origin to a segment). */
+static double seg_norm2(const double u[2], const double w[2], double h0, double h1) {
+  double ww = w[0] * w[0] + w[1] * w[1], h = h0, x, y;
+  if (ww > 0.0) h = -(u[0] * w[0] + u[1] * w[1]) / ww;
+  h = h < h0 ? h0 : h > h1 ? h1 : h;
+  x = u[0] + h * w[0], y = u[1] + h * w[1];
+  return x * x + y * y;
+}
+
+/* The shank's piece of the bound on G'' where h is in [h0, h1] (0 <= h0):
+ * 2 (P^2 - 2 W E ck - W^2 E^2 - E (ca + h1 (W^2 + W'))) with P <= |X'_xy|
+ * (at the steps, less its change over half a step: |u'| <= ca + W cv,
+ * |w'| <= W') and E >= |e| = sqrt(G) (Lipschitz in cv + W D). */
+static double shank_mu(const swarf_sweep_rigid *x, const bsample *smp, int n, double w, double D,
+                       double h0, double h1) {
+  double P2 = INFINITY, E2 = 0.0, W = x->w, P, E;
+  for (int i = 0; i <= n; i++) {
+    P2 = min2(P2, seg_norm2(smp[i].u, smp[i].w, h0, h1));
+    E2 = max2(E2, smp[i].f - smp[i].h * smp[i].h);
+  }
+  P = sqrt(P2) - 0.5 * w * (x->ca + W * x->cv + h1 * x->wd);
+  if (!(P > 0.0)) return 0.0;
+  E = sqrt(E2) + 0.5 * w * (x->cv + W * D);
+  return 2.0 * (P * P - 2.0 * W * E * x->ck - W * W * E * E - E * (x->ca + h1 * (W * W + x->wd)));
+}
+
+/* mu from the steps, or 0 when G may not be convex: D >= |d| over the move
+ * (Lipschitz in cv), h in [h0, h1] (Lipschitz in W D + ck: h' = k' . d - k .
+ * c'), the ball's piece where h0 <= 0, the shank's where h1 > 0. */
+static double curvature(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, int n,
+                        double w) {
+  double F = 0.0, hlo = INFINITY, hhi = -INFINITY, mu = INFINITY, D, lh;
+  for (int i = 0; i <= n; i++) {
+    F = max2(F, smp[i].f);
+    hlo = min2(hlo, smp[i].h), hhi = max2(hhi, smp[i].h);
+  }
+  D = sqrt(F) + 0.5 * x->cv * w;
+  lh = 0.5 * (x->w * D + x->ck) * w;
+  hlo -= lh, hhi += lh;
+  if (!(hhi < b->seg)) return 0.0; /* the top end may be nearest */
+  if (hlo <= 0.0) mu = 2.0 * (x->cvmin * x->cvmin - D * x->ca);
+  if (hhi > 0.0) mu = min2(mu, shank_mu(x, smp, n, w, D, max2(hlo, 0.0), hhi));
+  return mu > 0.0 ? mu : 0.0;
+}
+
+/* Without convexity: the least value at the steps smp[0..n] (w apart) if it
+ * is at most lo (B_BELOW), or their Lipschitz bound over the move if it is
+ * at least hi (B_ABOVE: the nearest point of the axis segment moves at most
+ * cv + W (L - 2R)); else B_FAIL. */
+static bkind bbounds(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, int n, double w,
+                     double lo, double hi, double *v, double *at) {
+  double lip = 0.5 * (x->cv + x->w * b->seg) * w, lb = INFINITY, s0 = sqrt(smp[0].G), best = s0;
+  int ib = 0;
+  for (int i = 0; i < n; i++) {
+    double s1 = sqrt(smp[i + 1].G);
+    lb = min2(lb, 0.5 * (s0 + s1) - lip);
+    if (s1 < best) best = s1, ib = i + 1;
+    s0 = s1;
+  }
+  *v = best - b->R, *at = smp[ib].a;
+  if (*v <= lo) return B_BELOW;
+  *v = lb - b->R;
+  return *v >= hi ? B_ABOVE : B_FAIL;
+}
+
+/* The minimum from the steps smp[0..n] (w apart), if they certify convexity
+ * over their span (b->mu set) or bound it out of the window; else B_FAIL. */
+static bkind bsteps(bctx *b, const swarf_sweep *s, const bsample *smp, int n, double w, double lo,
+                    double hi, double *v, double *at) {
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
+  b->mu = curvature(x, b, smp, n, w);
+  if (b->mu > 0.0) return bmin(b, s->motion, smp, n, lo, hi, v, at);
+  return bbounds(x, b, smp, n, w, lo, hi, v, at);
+}
+
+/* Every S-th of the n steps into c[0..nc] and their distances to the axis
+ * segment into sq; returns the index of the least. */
+static int bcoarse(const bctx *b, const swarf_pose *table, int n, int S, int nc, bsample *c,
+                   double *sq) {
+  int jb = 0;
+  for (int j = 0; j <= nc; j++) {
+    int i = j * S < n ? j * S : n;
+    c[j] = bsample_at(b, (double)i / n, &table[i]);
+    sq[j] = sqrt(c[j].G);
+    if (j == 0 || sq[j] < sq[jb]) jb = j;
+  }
+  return jb;
+}
+
+/* The time steps that can hold the minimum: every S-th step (S ~ sqrt(n) on
+ * long moves) first, then every step between the first and the last coarse
+ * interval whose Lipschitz bound is below the best coarse value (and the
+ * best step). Where more than MAXW steps remain or convexity over them is
+ * not certified, the coarse steps' bounds decide if they can (bbounds). */
+static bkind bwindow(bctx *b, const swarf_sweep *s, const swarf_pose *table, int n, double lo,
+                     double hi, double *v, double *at) {
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
+  int S = n <= COARSE ? 1 : (int)sqrt((double)n), nc = (n + S - 1) / S, jb, j0 = -1, j1 = -1;
+  bsample c[MAXC + 1], smp[MAXW + 1];
+  double sq[MAXC + 1], lip = 0.5 * (x->cv + x->w * b->seg) * S / n;
+  if (nc < 1 || nc > MAXC) return B_FAIL;
+  jb = bcoarse(b, table, n, S, nc, c, sq);
+  for (int j = 0; j < nc; j++)
+    if (0.5 * (sq[j] + sq[j + 1]) - lip < sq[jb]) j0 = j0 < 0 ? j : j0, j1 = j + 1;
+  if (j0 < 0) { /* nothing between the steps below the best: it is the minimum */
+    *v = sq[jb] - b->R, *at = c[jb].a;
+    return *v <= lo ? B_BELOW : B_VALUE;
+  }
+  j0 = j0 < jb ? j0 : jb, j1 = j1 > jb ? j1 : jb;
+  j0 *= S, j1 = j1 * S < n ? j1 * S : n; /* now steps */
+  if (j1 - j0 <= MAXW) {
+    for (int i = j0; i <= j1; i++)
+      smp[i - j0] = bsample_at(b, (double)i / n, &table[i]);
+    b->mu = curvature(x, b, smp, j1 - j0, 1.0 / n);
+    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at);
+  }
+  return bbounds(x, b, c, nc, (double)S / n, lo, hi, v, at);
+}
+
+int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, double hi,
+                           double *value, double *alpha) {
+  const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
+  const swarf_pose *table;
+  bsample smp[2];
+  double v, at;
+  int n = x->n;
+  bctx b;
+  bkind kind;
+  if (!x->ball || swarf_motion_pose_table(s->motion, n, &table) != SWARF_OK) return -1;
+  b.p = p, b.R = 0.5 * s->cutter->diameter, b.seg = s->cutter->length - s->cutter->diameter;
+  /* the ends first: their bounds over the whole move often certify it */
+  smp[0] = bsample_at(&b, 0.0, &table[0]);
+  smp[1] = bsample_at(&b, 1.0, &table[n]);
+  kind = bsteps(&b, s, smp, 1, 1.0, lo, hi, &v, &at);
+  if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, table, n, lo, hi, &v, &at);
+  if (kind == B_FAIL) return -1;
+  *value = v;
+  if (alpha != NULL) *alpha = at;
+  return 0;
+}

@@ -1,0 +1,225 @@
+/* test_sweep_ball.c -- the ball end mill's rotary path (sweep_rigid_ball.c:
+ * characteristic circles at the time steps, a refinement certified by
+ * convexity) against two independent values at random points:
+ *   - the truth: the exact cutter sdf minimised over poses 100 times finer
+ *     than the production time steps, plus golden-section polish;
+ *   - the general certified search (swarf_sweep_rigid_body_sdf with the
+ *     cutter's sdf as a body: sweep_rigid.c, which the path falls back to).
+ * Moves: short 5-axis moves from the LinuxCNC impeller (xyzac-trt, TCP, ball
+ * D4 L30), and adversarial ones: large turns (TCP, and the tip held in joint
+ * mode while A turns 90 degrees), points at the ball's centre path, points
+ * where the shank is nearest. Also the window contract of
+ * swarf_sweep_sdf_range and the instant returned. Each case states how many
+ * points the path certified itself (the rest fell back).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "engine_private.h"
+#include "testkit.h"
+
+#define TOL 1.001e-6 /* the certified accuracy, mm */
+
+/* Cutter sdf of the instance at alpha. */
+static double instance(const swarf_cutter *c, const swarf_motion *m, const double p[3], double a) {
+  double t[3], U[9], d[3], q[3];
+  swarf_motion_eval(m, a, t, U);
+  for (int k = 0; k < 3; k++)
+    d[k] = p[k] - t[k];
+  for (int k = 0; k < 3; k++)
+    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
+  return swarf_cutter_sdf(c, q);
+}
+
+static double golden(const swarf_cutter *c, const swarf_motion *m, const double p[3], double lo,
+                     double hi) {
+  const double g = 0.6180339887498949;
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  double f1 = instance(c, m, p, x1), f2 = instance(c, m, p, x2);
+  for (int it = 0; it < 70; it++) {
+    if (f1 < f2)
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = instance(c, m, p, x1);
+    else
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = instance(c, m, p, x2);
+  }
+  return fmin(f1, f2);
+}
+
+/* n poses, then golden section around every sampled local minimum. */
+static double truth(const swarf_cutter *c, const swarf_motion *m, const double p[3], int n) {
+  static double g[51201];
+  double best = INFINITY;
+  for (int i = 0; i <= n; i++)
+    g[i] = instance(c, m, p, (double)i / n);
+  for (int i = 0; i <= n; i++) {
+    double prev = i > 0 ? g[i - 1] : INFINITY, next = i < n ? g[i + 1] : INFINITY;
+    best = fmin(best, g[i]);
+    if (g[i] <= prev && g[i] <= next)
+      best = fmin(best, golden(c, m, p, i > 0 ? (i - 1.0) / n : 0.0, i < n ? (i + 1.0) / n : 1.0));
+  }
+  return best;
+}
+
+static double body(const void *ctx, const double q[3], double grad[3]) {
+  return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
+}
+
+/* The general certified search alone (what the path falls back to). */
+static double general(const swarf_sweep *s, const double p[3]) {
+  return swarf_sweep_rigid_body_sdf(s, body, s->cutter, p, NULL);
+}
+
+static swarf_motion make(const char *machine, const double s6[6], const double e6[6]) {
+  swarf_machine mc;
+  swarf_move mv;
+  swarf_motion m;
+  swarf_error err;
+  memset(&mv, 0, sizeof mv);
+  mv.kind = SWARF_MOVE_LINE;
+  mv.feed = 500;
+  memcpy(mv.start, s6, sizeof mv.start);
+  memcpy(mv.end, e6, sizeof mv.end);
+  CHECK(swarf_machine_parse(&mc, machine, &err) == SWARF_OK, "parse %s: %s", machine, err.message);
+  CHECK(swarf_machine_motion(&mc, &mv, &m, NULL) == SWARF_OK, "motion on %s", machine);
+  return m;
+}
+
+/* World point of the cutter-frame point x at the instance alpha. */
+static void place(const swarf_motion *m, double a, const double x[3], double p[3]) {
+  double t[3], U[9];
+  swarf_motion_eval(m, a, t, U);
+  for (int k = 0; k < 3; k++)
+    p[k] = t[k] + U[3 * k] * x[0] + U[3 * k + 1] * x[1] + U[3 * k + 2] * x[2];
+}
+
+typedef enum { NEAR_SURFACE, NEAR_CENTRE, NEAR_SHANK } where;
+
+/* A random point: within `band` mm of a random instance's ball, within
+ * 0.01 mm of the ball's centre, or within `band` of the shank's side. */
+static void point(tk_rng *r, const swarf_cutter *c, const swarf_motion *m, where w, double band,
+                  double p[3]) {
+  double x[3], n[3], R = 0.5 * c->diameter, a = tk_uniform(r, 0.0, 1.0);
+  if (w == NEAR_SURFACE) { /* the ball's part of the surface (the top is the shank's end) */
+    double off = tk_uniform(r, -band, band);
+    tk_unit(r, n);
+    n[2] = -fabs(n[2]);
+    swarf_cutter_point(c, n, x);
+    for (int k = 0; k < 3; k++)
+      x[k] += off * n[k];
+  } else if (w == NEAR_CENTRE) {
+    tk_unit(r, n);
+    for (int k = 0; k < 3; k++)
+      x[k] = tk_uniform(r, 0.0, 0.01) * n[k];
+    x[2] += R;
+  } else {
+    double th = tk_uniform(r, 0.0, 2 * tk_pi), rho = R + tk_uniform(r, -band, band);
+    x[0] = rho * cos(th), x[1] = rho * sin(th), x[2] = tk_uniform(r, R, c->length - R);
+  }
+  place(m, a, x, p);
+}
+
+/* The window contract of swarf_sweep_sdf_range against the truth d: within
+ * TOL inside (lo, hi); at most lo and not below d - TOL under it; at least
+ * hi - TOL above it. */
+static void check_windows(const swarf_sweep *s, const double p[3], double d, const char *name) {
+  const double off[5] = {-0.3, -0.05, 0.0, 0.05, 0.3};
+  for (int w = 0; w < 5; w++) {
+    double lo = d + off[w] - 0.1, hi = d + off[w] + 0.1, v = swarf_sweep_sdf_range(s, p, lo, hi);
+    if (d >= lo && d < hi)
+      CHECK(fabs(v - d) <= TOL, "%s: range in window: %.9g vs %.9g", name, v, d);
+    else if (d < lo)
+      CHECK(v <= lo + TOL && v >= d - TOL, "%s: below lo %g: %.9g (d %.9g)", name, lo, v, d);
+    else
+      CHECK(v >= hi - TOL, "%s: above hi %g: %.9g (d %.9g)", name, hi, v, d);
+  }
+}
+
+/* npts points of kind w about the move: the sweep (ball path where it
+ * certifies, else the general search), the general search alone and the
+ * path's own answer against the truth. Returns how many the path took. */
+static int run(const char *name, const swarf_cutter *c, const swarf_motion *m, double voxel,
+               where w, int npts, unsigned seed) {
+  swarf_sweep s;
+  tk_rng r = {0x9e3779b97f4a7c15ull * seed + 7};
+  double worst = 0.0, worst_gen = 0.0;
+  int n, took = 0;
+  swarf_sweep_init_voxel(&s, c, m, voxel);
+  n = swarf_sweep_cdata(&s)->u.rigid.n;
+  CHECK(swarf_sweep_cdata(&s)->method == SWARF_SWEEP_RIGID, "%s: rigid sweep", name);
+  for (int i = 0; i < npts; i++) {
+    double p[3], a = -1.0, v, vb, tr, gen, at;
+    point(&r, c, m, w, 2 * voxel, p);
+    tr = truth(c, m, p, 100 * n);
+    v = swarf_sweep_sdf(&s, p, &a);
+    gen = general(&s, p);
+    worst = fmax(worst, fabs(v - tr));
+    worst_gen = fmax(worst_gen, fabs(v - gen));
+    CHECK(fabs(v - tr) <= TOL, "%s: sweep %.9g vs truth %.9g", name, v, tr);
+    CHECK(fabs(v - gen) <= TOL, "%s: sweep %.9g vs general search %.9g", name, v, gen);
+    at = instance(c, m, p, a);
+    CHECK(a >= 0.0 && a <= 1.0 && at <= v + 1e-9 && at >= v - TOL,
+          "%s: the instant %g holds the value (%.9g vs %.9g)", name, a, at, v);
+    if (swarf_sweep_rigid_ball(&s, p, -INFINITY, INFINITY, &vb, NULL) == 0) {
+      took++;
+      CHECK(fabs(vb - tr) <= TOL, "%s: ball path %.9g vs truth %.9g", name, vb, tr);
+    }
+    if (i % 4 == 0) check_windows(&s, p, tr, name);
+  }
+  printf("%-34s %3d steps: %3d of %3d points by the ball path; max |sweep - truth| %.2e mm, "
+         "|sweep - general| %.2e mm\n",
+         name, n, took, npts, worst, worst_gen);
+  return took;
+}
+
+/* Short moves of the impeller's first operation (xyzac-trt, TCP). */
+static void test_impeller(void) {
+  static const double line[5][6] = {{6.302, -11.560, 27.743, -71.841, 0, -35.930},
+                                    {6.358, -12.418, 26.178, -71.266, 0, -32.919},
+                                    {6.346, -12.607, 25.858, -71.158, 0, -32.304},
+                                    {5.476, -14.121, 23.987, -71.566, 0, -28.632},
+                                    {4.815, -14.881, 23.162, -71.965, 0, -27.052}};
+  swarf_cutter c;
+  int took = 0;
+  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 30.0, NULL);
+  for (int k = 0; k + 1 < 5; k++) {
+    swarf_motion m = make("xyzac-trt", line[k], line[k + 1]);
+    char name[64];
+    snprintf(name, sizeof name, "impeller move %d", k + 1);
+    took += run(name, &c, &m, 0.2, NEAR_SURFACE, 150, 11 + k);
+  }
+  CHECK(took > 500, "the ball path takes most impeller points (%d of 600)", took);
+}
+
+static void test_adversarial(void) {
+  swarf_cutter c;
+  const double t0[6] = {0, 0, 0, 0, 0, 0}, t1[6] = {3, 1, -2, 60, 0, 150};
+  const double h0[6] = {0, 0, 10, 0, 0, 0}, h1[6] = {0, 0, 10, 90, 0, 0};
+  const double s0[6] = {1, 2, 3, 10, 0, -30}, s1[6] = {4, 0, 2, 40, 0, 60};
+  const double imp0[6] = {6.302, -11.560, 27.743, -71.841, 0, -35.930};
+  const double imp1[6] = {6.358, -12.418, 26.178, -71.266, 0, -32.919};
+  swarf_motion m = make("xyzac-trt", t0, t1);
+  int took;
+  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 6.0, 0, 20.0, NULL);
+  run("large turn A+C, TCP", &c, &m, 0.5, NEAR_SURFACE, 60, 21);
+  m = make("xyza", h0, h1);
+  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 12.0, NULL);
+  run("A 90 degrees, tip held (torus)", &c, &m, 0.5, NEAR_SURFACE, 60, 22);
+  m = make("xyzac-trt", s0, s1);
+  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 16.0, NULL);
+  run("A+C, points at the centre path", &c, &m, 0.2, NEAR_CENTRE, 60, 23);
+  run("A+C, points at the shank", &c, &m, 0.2, NEAR_SHANK, 100, 24);
+  m = make("xyzac-trt", imp0, imp1);
+  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 30.0, NULL);
+  took = run("impeller move 1, at the centre path", &c, &m, 0.2, NEAR_CENTRE, 60, 25);
+  CHECK(took > 50, "the path takes points at the centre path (%d of 60)", took);
+  took = run("impeller move 1, at the shank", &c, &m, 0.2, NEAR_SHANK, 100, 26);
+  CHECK(took > 80, "the path takes points at the shank (%d of 100)", took);
+}
+
+int main(void) {
+  test_impeller();
+  test_adversarial();
+  return check_done();
+}

@@ -8,7 +8,8 @@
  * Moves: short 5-axis moves from the LinuxCNC impeller (xyzac-trt, TCP, ball
  * D4 L30), and adversarial ones: large turns (TCP, and the tip held in joint
  * mode while A turns 90 degrees), points at the ball's centre path, points
- * where the shank is nearest. Also the window contract of
+ * where the shank is nearest; short moves of the head machines in joint mode
+ * and of the dual table. Also the window contract of
  * swarf_sweep_sdf_range and the instant returned. Each case states how many
  * points the path certified itself (the rest fell back).
  */
@@ -218,8 +219,32 @@ static void test_adversarial(void) {
   CHECK(took > 80, "the path takes points at the shank (%d of 100)", took);
 }
 
+/* The other kinematics (their poses and velocities differ, the path reads
+ * only t, U, v, omega): heads that tilt about their pivot in joint mode, the
+ * dual table. Short moves, as a finishing program makes them. Beside the
+ * shank the dual table's move turns the tool about a point of its axis
+ * (the axis points there hardly move across it: no convexity to certify),
+ * so those points take the general search, and must still be exact. */
+static void test_machines(void) {
+  const double b0[6] = {1, 2, 3, 0, 10, -30}, b1[6] = {1.4, 1.8, 2.9, 0, 12, -26};
+  const double a0[6] = {1, 2, 3, 10, 20, 0}, a1[6] = {1.3, 2.2, 2.8, 13, 17, 0};
+  swarf_cutter c;
+  swarf_motion m;
+  int took = 0;
+  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 16.0, NULL);
+  m = make("xyzbc-hh,mode=joint,head=25", b0, b1);
+  took += run("head-head B+C, joint", &c, &m, 0.2, NEAR_SURFACE, 60, 31);
+  m = make("xyzbc-ht,mode=joint,pivot=2,-3,head=25", b0, b1);
+  took += run("head-table B+C, joint", &c, &m, 0.2, NEAR_SURFACE, 60, 32);
+  m = make("xyzab-tdr", a0, a1);
+  took += run("dual table A+B, TCP", &c, &m, 0.2, NEAR_SURFACE, 60, 33);
+  run("dual table A+B, TCP, at the shank", &c, &m, 0.2, NEAR_SHANK, 60, 34);
+  CHECK(took > 150, "the path takes most points on the other machines (%d of 180)", took);
+}
+
 int main(void) {
   test_impeller();
   test_adversarial();
+  test_machines();
   return check_done();
 }

@@ -1,6 +1,6 @@
 /* test_motion.c -- the xyz machine's rigid motions against hand-computed values:
  * line and helix positions, velocities by finite differences, bounds against
- * dense sampling. */
+ * dense sampling; the per-thread pose tables against the motions' poses. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -105,10 +105,46 @@ static void test_bounds(void) {
   }
 }
 
+/* swarf_motion_pose_table: more motions than its slots (an array of them, as
+ * a batch holds), each with more poses than its memory budget keeps for all,
+ * asked for twice in two orders, and a motion changed in place: every table
+ * holds the motion's own poses (swarf_motion_pose at i / n). */
+static int table_matches(const swarf_motion *m, int n) {
+  const swarf_pose *t;
+  swarf_pose p;
+  if (swarf_motion_pose_table(m, n, &t) != SWARF_OK) return 0;
+  for (int i = 0; i <= n; i += n / 4) {
+    swarf_motion_pose(m, (double)i / n, &p);
+    if (memcmp(&p, &t[i], sizeof p) != 0) return 0;
+  }
+  return 1;
+}
+
+static void test_pose_table(void) {
+  enum { NM = 1100, N = 2000 };
+  swarf_motion *ms = malloc(sizeof *ms * NM);
+  int bad = 0;
+  CHECK(ms != NULL, "memory");
+  if (ms == NULL) return;
+  for (int i = 0; i < NM; i++) {
+    swarf_move mv = make_arc(0.01 * i, 0.0, 1.0, 0.5 + 1e-3 * i, 0.1);
+    swarf_motion_from_move(&mv, &ms[i], NULL);
+  }
+  for (int i = 0; i < NM; i++)
+    bad += !table_matches(&ms[i], N);
+  for (int i = NM - 1; i >= 0; i--)
+    bad += !table_matches(&ms[i], i % 2 ? N : 16);
+  ms[7].p0[0] += 1.0; /* changed in place: recomputed */
+  bad += !table_matches(&ms[7], N) + !table_matches(&ms[7], 16);
+  CHECK(bad == 0, "pose tables match their motions (%d do not)", bad);
+  free(ms);
+}
+
 int main(void) {
   test_line();
   test_helix_quarter();
   test_velocity();
   test_bounds();
+  test_pose_table();
   return check_done();
 }

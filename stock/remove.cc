@@ -16,8 +16,7 @@
 ///     by the band and lying in the stock's content box; sorted by block.
 ///  2. classify (parallel, read-only tree): blocks entirely outside the stock
 ///     are skipped; the others are classified from their cuts' centre values.
-///  3. serial topology: cleared blocks become outside tiles, tiles to visit
-///     become leaves (densified from the tile value).
+///  3. serial topology: cleared blocks become outside tiles.
 ///  4. visit (parallel, one leaf per task, no topology change), top down:
 ///     each cut's sdf at the block centre, then, octant by octant and cube by
 ///     cube with all their cuts, at the 4^3 octants' and 2^3 cubes' centres
@@ -29,7 +28,12 @@
 ///     centre) decide for a cut without looking at the voxels, and a cube's
 ///     cuts are applied deepest first, so that the others mostly find the
 ///     voxels already above their bound (tiger.nc: 2x fewer raised voxels).
-///  5. serial: visited leaves left without any band collapse back into tiles.
+///     A block that is a tile is visited in a per-thread leaf densified from
+///     the tile's value and copied into a leaf of its own only if it does not
+///     collapse (a roughing empties most such blocks: the impeller at 0.1 mm
+///     with 1024-move batches peaked at ~800 MB when every one became a leaf).
+///  5. serial: visited leaves left without any band collapse back into tiles,
+///     the tiles' new leaves go into the tree.
 ///
 /// Voxel values stay in [-w, w]; a voxel is active iff |value| < w, inactive
 /// voxels hold exactly +-w: the narrow band stays valid without a flood fill.
@@ -374,6 +378,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   }
   b.count = kept;
   if (kept > 0) b.action = leaf ? kVisitLeaf : kVisitTile;
+  if (b.action == kVisitTile) b.tile = acc.getValue(b.origin), b.tile_on = acc.isValueOn(b.origin);
 }
 
 /// Count a visited block's cuts (swarf_stock_set_tally).
@@ -387,7 +392,9 @@ inline void tally_block(swarf_stock &s, const Coord &o, uint32_t cuts) {
   s.tally[at] += cuts;
 }
 
-/// Pass 3: topology changes, serial. Collects the blocks to visit.
+/// Pass 3: topology changes, serial. Collects the blocks to visit. (A tile
+/// to visit stays a tile until the visit has made its leaf: most of a
+/// roughing's are emptied by their cuts and collapse, and never take memory.)
 void change_topology(Pass &p) {
   RemoveScratch &w = p.s.scratch;
   Tree &tree = p.s.grid->tree();
@@ -395,7 +402,6 @@ void change_topology(Pass &p) {
   for (size_t i = 0; i < w.blocks.size(); i++) {
     Block &b = w.blocks[i];
     if (b.action == kClear) tree.addTile(1, b.origin, p.bgf, false);
-    if (b.action == kVisitTile) tree.touchLeaf(b.origin);
     if (b.action == kVisitLeaf || b.action == kVisitTile) {
       w.visit.push_back(uint32_t(i));
       if (p.s.tally) tally_block(p.s, b.origin, b.count);
@@ -1008,9 +1014,12 @@ struct Ticker {
 void collapse(Pass &p) {
   RemoveScratch &w = p.s.scratch;
   Tree &tree = p.s.grid->tree();
-  for (uint32_t i : w.visit) {
-    const Block &b = w.blocks[i];
-    if (b.action == kCollapse) tree.addTile(1, b.origin, b.tile, false);
+  for (size_t i = 0; i < w.visit.size(); i++) {
+    const Block &b = w.blocks[w.visit[i]];
+    if (b.action == kCollapse)
+      tree.addTile(1, b.origin, b.tile, false);
+    else if (w.fresh[i])
+      tree.addLeaf(w.fresh[i].release());
   }
 }
 
@@ -1201,6 +1210,8 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, cons
   });
   change_topology(p);
   Tree &tree = s.grid->tree();
+  w.fresh.clear(); // (an aborted pass's leftovers)
+  w.fresh.resize(w.visit.size());
   ticker.total = w.blocks.size() + w.visit.size();
   ticker.run(w.blocks.size(), w.visit.size(), 1, [&](const tbb::blocked_range<size_t> &r0) {
     const tbb::blocked_range<size_t> r(r0.begin() - w.blocks.size(), r0.end() - w.blocks.size());
@@ -1209,12 +1220,22 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, cons
     std::unique_ptr<ConstAcc> dacc;
     if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
     if (design && design->aligned()) dacc.reset(new ConstAcc(measure->design->grid->constTree()));
+    thread_local std::unique_ptr<Leaf> scratch; // a tile's block, until it proves a leaf
     for (size_t i = r.begin(); i != r.end(); ++i) {
       Block &b = w.blocks[w.visit[i]];
+      const bool was_tile = b.action == kVisitTile;
+      Leaf *leaf = was_tile ? nullptr : acc.probeLeaf(b.origin);
+      if (was_tile) {
+        if (!scratch) scratch.reset(new Leaf());
+        scratch->setOrigin(b.origin);
+        scratch->fill(b.tile, b.tile_on);
+        leaf = scratch.get();
+      }
       if (measure)
-        visit_leaf_measured(p, *acc.probeLeaf(b.origin), b, design.get(), dacc.get());
+        visit_leaf_measured(p, *leaf, b, design.get(), dacc.get());
       else
-        visit_leaf(p, *acc.probeLeaf(b.origin), b);
+        visit_leaf(p, *leaf, b);
+      if (was_tile && b.action != kCollapse) w.fresh[i].reset(new Leaf(*leaf));
     }
   });
   collapse(p);

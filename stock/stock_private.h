@@ -43,7 +43,9 @@ struct Block {
   openvdb::Coord origin;  ///< index origin of the 8^3 block
   uint32_t begin, count;  ///< its cuts: pairs[begin, begin + count) after classification
   uint8_t action;         ///< see remove.cc
-  float tile;             ///< value of the tile replacing the block when it collapses
+  float tile;             ///< value of the tile replacing the block when it collapses; for a
+                          ///< block that was a tile, that tile's value until then
+  bool tile_on;           ///< a block that was a tile: that tile's active state
 };
 
 /// Buffers of the removal, kept in the handle so that a removal allocates nothing
@@ -53,6 +55,9 @@ struct RemoveScratch {
   std::vector<double> centre_sdf;  ///< sdf (mm) at the block centre, one per pair
   std::vector<Block> blocks;
   std::vector<uint32_t> visit;     ///< blocks whose voxels are visited
+  /// Per visited block that was a tile: its leaf, made by the visit and put
+  /// in the tree after it (null where it collapsed back to a tile).
+  std::vector<std::unique_ptr<openvdb::FloatTree::LeafNodeType>> fresh;
   /// Measured removals only, one per pair: what the pair's cut did in the block.
   std::vector<double> removed;     ///< inside fraction removed (voxels, not yet mm^3)
   std::vector<double> gouge;       ///< deepest gouge (mm), 0 if none

@@ -37,6 +37,7 @@ struct swarf_sim {
   swarf_stock_support_fn *supports; /* per cut: its supporting planes, or NULL (stamps) */
   swarf_sim_stamp *stamps;
   int n, cap;
+  double blocks;               /* batch: the stock blocks its cuts' bounds span (estimate) */
   double pad_lo[3], pad_hi[3]; /* material box grown by the narrow band */
   double mat_lo[3], mat_hi[3]; /* material box: the spec's, or the stock's active voxels */
   /* per-line results: the open line and the closed ones not yet told */

@@ -245,7 +245,7 @@ void group_blocks(RemoveScratch &w) {
     for (size_t i = chunk(c).begin(); i != chunk(c).end(); ++i)
       if (starts(i)) {
         const BlockCut &q = w.pairs[i];
-        w.blocks[j++] = {Coord(q.x, q.y, q.z), uint32_t(i), 0, kSkip, 0.0f};
+        w.blocks[j++] = {Coord(q.x, q.y, q.z), uint32_t(i), 0, kSkip, 0.0f, false};
       }
   });
   const size_t nb = w.blocks.size();

@@ -23,46 +23,6 @@
 
 #define TOL 1.001e-6 /* the certified accuracy, mm */
 
-/* Cutter sdf of the instance at alpha. */
-static double instance(const swarf_cutter *c, const swarf_motion *m, const double p[3], double a) {
-  double t[3], U[9], d[3], q[3];
-  swarf_motion_eval(m, a, t, U);
-  for (int k = 0; k < 3; k++)
-    d[k] = p[k] - t[k];
-  for (int k = 0; k < 3; k++)
-    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
-  return swarf_cutter_sdf(c, q);
-}
-
-static double golden(const swarf_cutter *c, const swarf_motion *m, const double p[3], double lo,
-                     double hi) {
-  const double g = 0.6180339887498949;
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = instance(c, m, p, x1), f2 = instance(c, m, p, x2);
-  for (int it = 0; it < 70; it++) {
-    if (f1 < f2)
-      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = instance(c, m, p, x1);
-    else
-      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = instance(c, m, p, x2);
-  }
-  return fmin(f1, f2);
-}
-
-/* n poses, then golden section around every sampled local minimum. */
-static double truth(const swarf_cutter *c, const swarf_motion *m, const double p[3], int n) {
-  static double g[51201];
-  double best = INFINITY;
-  for (int i = 0; i <= n; i++)
-    g[i] = instance(c, m, p, (double)i / n);
-  for (int i = 0; i <= n; i++) {
-    double prev = i > 0 ? g[i - 1] : INFINITY, next = i < n ? g[i + 1] : INFINITY;
-    best = fmin(best, g[i]);
-    if (g[i] <= prev && g[i] <= next)
-      best = fmin(best, golden(c, m, p, i > 0 ? (i - 1.0) / n : 0.0, i < n ? (i + 1.0) / n : 1.0));
-  }
-  return best;
-}
-
 static double body(const void *ctx, const double q[3], double grad[3]) {
   return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
 }
@@ -152,14 +112,14 @@ static int run(const char *name, const swarf_cutter *c, const swarf_motion *m, d
   for (int i = 0; i < npts; i++) {
     double p[3], a = -1.0, v, vb, tr, gen, at;
     point(&r, c, m, w, 2 * voxel, p);
-    tr = truth(c, m, p, 100 * n);
+    tr = tk_rigid_truth(c, m, p, 100 * n);
     v = swarf_sweep_sdf(&s, p, &a);
     gen = general(&s, p);
     worst = fmax(worst, fabs(v - tr));
     worst_gen = fmax(worst_gen, fabs(v - gen));
     CHECK(fabs(v - tr) <= TOL, "%s: sweep %.9g vs truth %.9g", name, v, tr);
     CHECK(fabs(v - gen) <= TOL, "%s: sweep %.9g vs general search %.9g", name, v, gen);
-    at = instance(c, m, p, a);
+    at = tk_rigid_instance(c, m, p, a);
     CHECK(a >= 0.0 && a <= 1.0 && at <= v + 1e-9 && at >= v - TOL,
           "%s: the instant %g holds the value (%.9g vs %.9g)", name, a, at, v);
     if (swarf_sweep_rigid_ball(&s, p, -INFINITY, INFINITY, &vb, NULL) == 0) {

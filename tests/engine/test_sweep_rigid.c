@@ -27,52 +27,11 @@
 #define VOXEL 0.1
 #define NPTS 800
 
-/* Cutter sdf of the instance at alpha (cutter frame q = U^T (p - t)). */
-static double instance(const swarf_cutter *c, const swarf_motion *m, const double p[3], double a) {
-  double t[3], U[9], d[3], q[3];
-  swarf_motion_eval(m, a, t, U);
-  for (int k = 0; k < 3; k++)
-    d[k] = p[k] - t[k];
-  for (int k = 0; k < 3; k++)
-    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
-  return swarf_cutter_sdf(c, q);
-}
-
-static double golden(const swarf_cutter *c, const swarf_motion *m, const double p[3], double lo,
-                     double hi) {
-  const double g = 0.6180339887498949;
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = instance(c, m, p, x1), f2 = instance(c, m, p, x2);
-  for (int it = 0; it < 60; it++) {
-    if (f1 < f2) {
-      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = instance(c, m, p, x1);
-    } else {
-      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = instance(c, m, p, x2);
-    }
-  }
-  return fmin(f1, f2);
-}
-
-/* The truth: n poses, then golden section around every sampled local minimum. */
-static double truth(const swarf_cutter *c, const swarf_motion *m, const double p[3], int n) {
-  static double g[60001];
-  double best = INFINITY;
-  for (int i = 0; i <= n; i++)
-    g[i] = instance(c, m, p, (double)i / n);
-  for (int i = 0; i <= n; i++) {
-    double prev = i > 0 ? g[i - 1] : INFINITY, next = i < n ? g[i + 1] : INFINITY;
-    best = fmin(best, g[i]);
-    if (g[i] <= prev && g[i] <= next)
-      best = fmin(best, golden(c, m, p, i > 0 ? (i - 1.0) / n : 0.0, i < n ? (i + 1.0) / n : 1.0));
-  }
-  return best;
-}
-
 /* Stamping: the cutter at the n + 1 production poses only. */
 static double stamp(const swarf_cutter *c, const swarf_motion *m, const double p[3], int n) {
   double best = INFINITY;
   for (int i = 0; i <= n; i++)
-    best = fmin(best, instance(c, m, p, (double)i / n));
+    best = fmin(best, tk_rigid_instance(c, m, p, (double)i / n));
   return best;
 }
 
@@ -102,7 +61,7 @@ static errors compare(const char *name, const swarf_cutter *c, const swarf_motio
   for (int i = 0; i < NPTS; i++) {
     double p[3], a, lo[3], hi[3];
     near_point(&r, c, m, p);
-    double d = swarf_sweep_sdf(&s, p, &a), tr = truth(c, m, p, 100 * e.steps);
+    double d = swarf_sweep_sdf(&s, p, &a), tr = tk_rigid_truth(c, m, p, 100 * e.steps);
     double st = stamp(c, m, p, e.steps);
     e.max_err = fmax(e.max_err, fabs(d - tr) / VOXEL);
     e.max_stamp = fmax(e.max_stamp, fabs(st - tr) / VOXEL);
@@ -222,7 +181,7 @@ static void test_on_characteristic(void) {
     for (int k = 0; k < 3; k++) {
       double pp[3] = {p[0], p[1], p[2]};
       pp[k] += 1e-6;
-      gw[k] = (instance(&c, &m, pp, a) - instance(&c, &m, p, a)) / 1e-6;
+      gw[k] = (tk_rigid_instance(&c, &m, pp, a) - tk_rigid_instance(&c, &m, p, a)) / 1e-6;
     }
     for (int k = 0; k < 3; k++)
       x[k] = p[k] - d * gw[k];

@@ -186,4 +186,51 @@ static inline double tk_brute(const swarf_cutter *c, const swarf_motion *m, cons
   return best;
 }
 
+/* The cutter's sdf at p for the instance at alpha of a motion with rotation
+ * (cutter frame q = U^T (p - t)). */
+static inline double tk_rigid_instance(const swarf_cutter *c, const swarf_motion *m,
+                                       const double p[3], double alpha) {
+  double t[3], U[9], d[3], q[3];
+  swarf_motion_eval(m, alpha, t, U);
+  for (int k = 0; k < 3; k++)
+    d[k] = p[k] - t[k];
+  for (int k = 0; k < 3; k++)
+    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
+  return swarf_cutter_sdf(c, q);
+}
+
+/* Golden-section minimum of tk_rigid_instance over [lo, hi]. */
+static inline double tk_rigid_golden(const swarf_cutter *c, const swarf_motion *m,
+                                     const double p[3], double lo, double hi) {
+  const double g = 0.6180339887498949;
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  double f1 = tk_rigid_instance(c, m, p, x1), f2 = tk_rigid_instance(c, m, p, x2);
+  for (int it = 0; it < 70; it++) {
+    if (f1 < f2)
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = tk_rigid_instance(c, m, p, x1);
+    else
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = tk_rigid_instance(c, m, p, x2);
+  }
+  return fmin(f1, f2);
+}
+
+/* The truth for a motion with rotation: n + 1 poses (n <= 60000), then golden
+ * section around every sampled local minimum. */
+static inline double tk_rigid_truth(const swarf_cutter *c, const swarf_motion *m, const double p[3],
+                                    int n) {
+  static double g[60001];
+  double best = INFINITY;
+  if (n > 60000) n = 60000;
+  for (int i = 0; i <= n; i++)
+    g[i] = tk_rigid_instance(c, m, p, (double)i / n);
+  for (int i = 0; i <= n; i++) {
+    double prev = i > 0 ? g[i - 1] : INFINITY, next = i < n ? g[i + 1] : INFINITY;
+    best = fmin(best, g[i]);
+    if (g[i] <= prev && g[i] <= next)
+      best = fmin(
+          best, tk_rigid_golden(c, m, p, i > 0 ? (i - 1.0) / n : 0.0, i < n ? (i + 1.0) / n : 1.0));
+  }
+  return best;
+}
+
 #endif

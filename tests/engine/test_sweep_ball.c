@@ -33,17 +33,8 @@ static double general(const swarf_sweep *s, const double p[3]) {
 }
 
 static swarf_motion make(const char *machine, const double s6[6], const double e6[6]) {
-  swarf_machine mc;
-  swarf_move mv;
   swarf_motion m;
-  swarf_error err;
-  memset(&mv, 0, sizeof mv);
-  mv.kind = SWARF_MOVE_LINE;
-  mv.feed = 500;
-  memcpy(mv.start, s6, sizeof mv.start);
-  memcpy(mv.end, e6, sizeof mv.end);
-  CHECK(swarf_machine_parse(&mc, machine, &err) == SWARF_OK, "parse %s: %s", machine, err.message);
-  CHECK(swarf_machine_motion(&mc, &mv, &m, NULL) == SWARF_OK, "motion on %s", machine);
+  CHECK(tk_machine_move(machine, s6, e6, &m) == SWARF_OK, "motion on %s", machine);
   return m;
 }
 

@@ -26,41 +26,18 @@
 
 #define VOXEL 0.1
 
-static double instance(const swarf_cutter *c, const swarf_motion *m, const double p[3], double a) {
-  double t[3], U[9], d[3], q[3];
-  swarf_motion_eval(m, a, t, U);
-  for (int k = 0; k < 3; k++)
-    d[k] = p[k] - t[k];
-  for (int k = 0; k < 3; k++)
-    q[k] = U[k] * d[0] + U[3 + k] * d[1] + U[6 + k] * d[2];
-  return swarf_cutter_sdf(c, q);
-}
-
-static double golden(const swarf_cutter *c, const swarf_motion *m, const double p[3], double lo,
-                     double hi) {
-  const double g = 0.6180339887498949;
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = instance(c, m, p, x1), f2 = instance(c, m, p, x2);
-  for (int it = 0; it < 70; it++) {
-    if (f1 < f2)
-      hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = instance(c, m, p, x1);
-    else
-      lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = instance(c, m, p, x2);
-  }
-  return fmin(f1, f2);
-}
-
 static double truth(const swarf_cutter *c, const swarf_motion *m, const double p[3], int n) {
   static double g[20001];
   double best = INFINITY;
   for (int i = 0; i <= n; i++)
-    g[i] = instance(c, m, p, (double)i / n);
+    g[i] = tk_rigid_instance(c, m, p, (double)i / n);
   for (int i = 0; i <= n; i++)
     best = fmin(best, g[i]);
   for (int i = 0; i <= n; i++) {
     double prev = i > 0 ? g[i - 1] : INFINITY, next = i < n ? g[i + 1] : INFINITY;
     if (g[i] <= prev && g[i] <= next && g[i] < best + 0.05)
-      best = fmin(best, golden(c, m, p, i > 0 ? (i - 1.0) / n : 0.0, i < n ? (i + 1.0) / n : 1.0));
+      best = fmin(
+          best, tk_rigid_golden(c, m, p, i > 0 ? (i - 1.0) / n : 0.0, i < n ? (i + 1.0) / n : 1.0));
   }
   return best;
 }
@@ -92,7 +69,7 @@ static void compare(const char *name, const swarf_cutter *c, const swarf_motion 
     double p[3], a, lo[3], hi[3];
     near_point(&r, c, m, p);
     double d = swarf_sweep_sdf(&s, p, &a), tr = truth(c, m, p, nsamp);
-    double at = instance(c, m, p, a);
+    double at = tk_rigid_instance(c, m, p, a);
     if (tr >= 0) {
       e.out = fmax(e.out, fabs(d - tr)), e.nout++;
       e.alpha = fmax(e.alpha, at - tr);
@@ -132,7 +109,7 @@ static void on_characteristic(const char *name, const swarf_cutter *c, const swa
     for (int k = 0; k < 3; k++) {
       double pp[3] = {p[0], p[1], p[2]}, pm[3] = {p[0], p[1], p[2]};
       pp[k] += 1e-6, pm[k] -= 1e-6;
-      gw[k] = (instance(c, m, pp, a) - instance(c, m, pm, a)) / 2e-6;
+      gw[k] = (tk_rigid_instance(c, m, pp, a) - tk_rigid_instance(c, m, pm, a)) / 2e-6;
     }
     for (int k = 0; k < 3; k++)
       x[k] = p[k] - d * gw[k];
@@ -161,17 +138,8 @@ static void on_characteristic(const char *name, const swarf_cutter *c, const swa
 }
 
 static swarf_motion machine_move(const char *machine, const double s6[6], const double e6[6]) {
-  swarf_machine mc;
-  swarf_move mv;
   swarf_motion m;
-  swarf_error err;
-  memset(&mv, 0, sizeof mv);
-  mv.kind = SWARF_MOVE_LINE;
-  mv.feed = 500;
-  memcpy(mv.start, s6, sizeof mv.start);
-  memcpy(mv.end, e6, sizeof mv.end);
-  CHECK(swarf_machine_parse(&mc, machine, &err) == SWARF_OK, "parse %s: %s", machine, err.message);
-  CHECK(swarf_machine_motion(&mc, &mv, &m, NULL) == SWARF_OK, "motion on %s", machine);
+  CHECK(tk_machine_move(machine, s6, e6, &m) == SWARF_OK, "motion on %s", machine);
   return m;
 }
 

@@ -233,4 +233,21 @@ static inline double tk_rigid_truth(const swarf_cutter *c, const swarf_motion *m
   return best;
 }
 
+/* The motion of a straight move of six axes (X Y Z and the machine's two
+ * rotary axes, as swarf_move's start and end) on `machine` (swarf_machine_parse's
+ * description), at F500. Its status: the description's, else the motion's. */
+static inline swarf_status tk_machine_move(const char *machine, const double s6[6],
+                                           const double e6[6], swarf_motion *m) {
+  swarf_machine mc;
+  swarf_move mv;
+  swarf_status st;
+  memset(&mv, 0, sizeof mv);
+  mv.kind = SWARF_MOVE_LINE;
+  mv.feed = 500;
+  memcpy(mv.start, s6, sizeof mv.start);
+  memcpy(mv.end, e6, sizeof mv.end);
+  if ((st = swarf_machine_parse(&mc, machine, NULL)) != SWARF_OK) return st;
+  return swarf_machine_motion(&mc, &mv, m, NULL);
+}
+
 #endif

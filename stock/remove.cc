@@ -758,12 +758,6 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b, uint32_t *arg = nullptr) {
   collapse_if_uniform(leaf, b);
 }
 
-/// A voxel's value as stored: float, clamped to the band.
-inline float stored(double m, float bgf) {
-  const float v = float(m);
-  return v >= bgf ? bgf : v <= -bgf ? -bgf : v;
-}
-
 /// The depth of a gouge at a voxel whose design value is dq, with r mm of
 /// removed material vouched beyond its centre. A design without triangles
 /// (a .vdb) knows only its band: where dq is at the band's edge the gouge

@@ -63,7 +63,7 @@ void fill_block(const swarf_stock &s, swarf_stock_sdf_fn outside, const void *ct
       for (int z = 0; z < 8; z++) {
         const openvdb::Vec3d q = at(x, y, z);
         const double m = std::max(-bg, -outside(ctx, q.x(), q.y(), q.z()));
-        const float f = float(m), val = f >= bgf ? bgf : f <= -bgf ? -bgf : f;
+        const float val = stored(m, bgf);
         const openvdb::Index n = (x << 6) | (y << 3) | z; // LeafNode<float, 3>'s offset
         data[n] = val;
         if (val > -bgf && val < bgf) on.setOn(n), any_on = true;

@@ -198,6 +198,12 @@ inline openvdb::Vec3d index_to_world(const swarf_stock &s, const openvdb::Coord 
   return s.origin + s.voxel * ijk.asVec3d();
 }
 
+/// A voxel's value as stored: float, clamped to the band (remove.cc, shape.cc).
+inline float stored(double m, float bgf) {
+  const float v = float(m);
+  return v >= bgf ? bgf : v <= -bgf ? -bgf : v;
+}
+
 /// Inside fraction of a voxel whose value is phi (mm): a ramp one voxel wide,
 /// exact for a plane parallel to a voxel face at any offset; NaN counts as outside.
 inline double inside_fraction(double phi, double voxel) {

@@ -135,10 +135,14 @@ SWARF_API void swarf_motion_velocity(const swarf_motion *m, double alpha, double
                                      double v[3], double omega[3]);
 
 /* Pose and velocities at one alpha, as swarf_motion_eval and
- * swarf_motion_velocity give them (tdot omitted). */
+ * swarf_motion_velocity give them, and the derivative of the tool axis
+ * k = U e_z (what a ball end mill's sweep needs per time step in the
+ * workpiece frame: sweep_rigid_ball.c). */
 typedef struct {
   double t[3], U[9];     /* pose: x' = t + U x */
   double v[3], omega[3]; /* moving-frame velocity and angular velocity, per unit alpha */
+  double tdot[3];        /* t' = U v, workpiece frame */
+  double kdot[3];        /* k' = U (omega x e_z), workpiece frame */
 } swarf_pose;
 
 /* swarf_motion_eval and swarf_motion_velocity in one evaluation (the table

@@ -31,7 +31,9 @@
  * minimiser, or it is an end; Illinois regula falsi on G' inside the
  * bracket (poses off the table) finds it, and the quadratic minorants of
  * curvature mu through the bracket's ends certify the value (to TIGHT,
- * below the general search's 1e-6 mm). The two ends come first, with the
+ * below the general search's 1e-6 mm). The two ends come first: the lesser
+ * at or below lo, or their Lipschitz bound at or above hi, ends the work
+ * before any bound on G'' (a fifth of the calls on the impeller); then the
  * bounds taken over the whole move (most points: a short move's G is convex
  * by those alone, and the nearest instant is often an end); then the steps
  * (every sqrt(n)-th first on long moves), the bounds taken only over the
@@ -218,7 +220,7 @@ static double curvature(const swarf_sweep_rigid *x, const bctx *b, const bsample
   lh = 0.5 * (x->w * D + x->ck) * w;
   hlo -= lh, hhi += lh;
   if (!(hhi < b->seg)) return 0.0; /* the top end may be nearest */
-  if (hlo <= 0.0) mu = 2.0 * (x->cvmin * x->cvmin - D * x->ca);
+  if (hlo <= 0.0 && !((mu = 2.0 * (x->cvmin * x->cvmin - D * x->ca)) > 0.0)) return 0.0;
   if (hhi > 0.0) mu = min2(mu, shank_mu(x, b->R, smp, n, w, D, max2(hlo, 0.0), hhi));
   return mu > 0.0 ? mu : 0.0;
 }
@@ -240,6 +242,19 @@ static bkind bbounds(const swarf_sweep_rigid *x, const bctx *b, const bsample *s
   *v = best - b->R, *at = smp[ib].a;
   if (*v <= lo) return B_BELOW;
   *v = lb - b->R;
+  return *v >= hi ? B_ABOVE : B_FAIL;
+}
+
+/* The two ends alone, before any bound on G'': the lesser at or below lo
+ * (B_BELOW), or their Lipschitz bound over the move at or above hi (B_ABOVE:
+ * as bbounds); else B_FAIL. */
+static bkind bends(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, double lo,
+                   double hi, double *v, double *at) {
+  double s0 = sqrt(smp[0].G), s1 = sqrt(smp[1].G);
+  int i = s1 < s0;
+  *v = (i ? s1 : s0) - b->R, *at = smp[i].a;
+  if (*v <= lo) return B_BELOW;
+  *v = 0.5 * (s0 + s1 - x->cv - x->w * b->seg) - b->R;
   return *v >= hi ? B_ABOVE : B_FAIL;
 }
 
@@ -311,7 +326,8 @@ int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, d
   /* the ends first: their bounds over the whole move often certify it */
   smp[0] = bsample_at(&b, 0.0, &table[0]);
   smp[1] = bsample_at(&b, 1.0, &table[n]);
-  kind = bsteps(&b, s, smp, 1, 1.0, lo, hi, &v, &at);
+  kind = bends(x, &b, smp, lo, hi, &v, &at);
+  if (kind == B_FAIL) kind = bsteps(&b, s, smp, 1, 1.0, lo, hi, &v, &at);
   if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, table, n, lo, hi, &v, &at);
   if (kind == B_FAIL) return -1;
   *value = v;

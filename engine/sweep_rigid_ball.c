@@ -321,7 +321,7 @@ int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, d
   int n = x->n;
   bctx b;
   bkind kind;
-  if (!x->ball || swarf_motion_pose_table(s->motion, n, &table) != SWARF_OK) return -1;
+  if (!x->ball || swarf_motion_pose_table_id(s->motion, n, x->id, &table) != SWARF_OK) return -1;
   b.p = p, b.R = 0.5 * s->cutter->diameter, b.seg = s->cutter->length - s->cutter->diameter;
   /* the ends first: their bounds over the whole move often certify it */
   smp[0] = bsample_at(&b, 0.0, &table[0]);

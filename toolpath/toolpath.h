@@ -21,6 +21,7 @@
 #define SWARF_TOOLPATH_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "swarf_status.h"
 
@@ -157,6 +158,13 @@ SWARF_API void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose
  * SWARF_ERR_ARG for n < 1. Thread-safe (each thread has its own cache). */
 SWARF_API swarf_status swarf_motion_pose_table(const swarf_motion *m, int n,
                                                const swarf_pose **out);
+
+/* swarf_motion_pose_table, the table found by id (not 0) instead of a
+ * comparison of m's contents: the caller's number for m's current contents,
+ * which it must never give to other contents (a new number whenever m is
+ * changed or its place reused). id 0: as swarf_motion_pose_table. */
+SWARF_API swarf_status swarf_motion_pose_table_id(const swarf_motion *m, int n, uint64_t id,
+                                                  const swarf_pose **out);
 
 /* Axis-aligned bounds of the tip path t([0,1]), mm. */
 SWARF_API void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]);

@@ -197,7 +197,7 @@ namespace {
 
 /// A shallow copy of the stock's grid (sharing its tree) with swarf's metadata.
 openvdb::FloatGrid::Ptr grid_for_output(const swarf_stock &s) {
-  openvdb::FloatGrid::Ptr g = s.grid->copy();
+  openvdb::FloatGrid::Ptr g = leaf_parallel_copy(s);
   g->setName("stock");
   g->setGridClass(openvdb::GRID_LEVEL_SET);
   g->setSaveFloatAsHalf(false);

@@ -146,6 +146,11 @@ template <class F> void in_arena(swarf_stock &s, F &&f) {
     f();
 }
 
+/// A shallow copy of s's grid (the tree shared) for io::Archive::write that
+/// compresses its leaves on s's threads, the bytes those of OpenVDB's own
+/// serial loop (write_leaves.cc).
+openvdb::FloatGrid::Ptr leaf_parallel_copy(const swarf_stock &s);
+
 /// The band of a new stock holding -background in the block-aligned index
 /// box `blocks` (and nothing else): as removing the cut {outside < 0} there
 /// (shape.cc; bit for bit what remove_cuts gives).

@@ -16,10 +16,6 @@
 #include <sstream>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
-
 #include "stock_error.h"
 
 namespace swarf {
@@ -65,8 +61,27 @@ public:
     m_.tri.insert(m_.tri.end(), v, v + 3);
   }
 
+  /// Ask for the table's slots of a triangle's corners (9 floats) ahead of
+  /// add(): a large mesh's table is far beyond the caches, and a probe
+  /// otherwise waits for memory at every corner.
+  void prefetch(const float *c) const {
+    const size_t mask = slots_.size() - 1;
+    for (int i = 0; i < 3; i++) {
+      uint32_t k[3];
+      key(c + 3 * i, k);
+      __builtin_prefetch(&slots_[hash(k) & mask]);
+    }
+  }
+
 private:
   static constexpr uint32_t kEmpty = UINT32_MAX;
+  /// The bits of a point's coordinates, -0 as +0 (one point).
+  static void key(const float *p, uint32_t k[3]) {
+    float f[3];
+    for (int i = 0; i < 3; i++)
+      f[i] = p[i] == 0.0f ? 0.0f : p[i];
+    std::memcpy(k, f, sizeof f);
+  }
   struct Slot {
     uint32_t key[3];
     uint32_t vertex; ///< kEmpty: a free slot
@@ -95,17 +110,16 @@ private:
     }
   }
   uint32_t vertex(const float *p) {
-    float f[3];
     uint32_t k[3];
-    for (int i = 0; i < 3; i++)
-      f[i] = p[i] == 0.0f ? 0.0f : p[i]; // -0 and +0 are one point
-    std::memcpy(k, f, sizeof k);
+    key(p, k);
     const size_t mask = slots_.size() - 1;
     size_t at = hash(k) & mask;
     for (; slots_[at].vertex != kEmpty; at = (at + 1) & mask)
       if (slots_[at].key[0] == k[0] && slots_[at].key[1] == k[1] && slots_[at].key[2] == k[2])
         return slots_[at].vertex;
     const uint32_t n = uint32_t(m_.vertices());
+    float f[3];
+    std::memcpy(f, k, sizeof f);
     m_.xyz.insert(m_.xyz.end(), f, f + 3);
     slots_[at] = Slot{{k[0], k[1], k[2]}, n};
     if (2 * m_.vertices() > slots_.size()) grow(m_.vertices());
@@ -120,11 +134,19 @@ void parse_binary(const unsigned char *d, size_t n, const std::string &name, Tri
   out.xyz.reserve(3 * (n / 2 + 4));
   Welder w(out, n / 2 + 4);
   out.tri.reserve(3 * n);
-  for (size_t i = 0; i < n; i++) {
+  constexpr size_t kAhead = 8; // triangles whose slots are asked for ahead
+  auto corners = [&](size_t i, float c[9]) {
     const unsigned char *r = d + 84 + 50 * i + 12; // the record's vertices
-    float c[9];
     for (int k = 0; k < 9; k++)
       c[k] = get_f32_le(r + 4 * k);
+  };
+  for (size_t i = 0; i < n; i++) {
+    float c[9];
+    if (i + kAhead < n) {
+      corners(i + kAhead, c);
+      w.prefetch(c);
+    }
+    corners(i, c);
     w.add(c, [&] { return name + ": triangle " + std::to_string(i + 1); });
   }
 }
@@ -252,6 +274,37 @@ double six_volume(const TriMesh &m) {
   return v;
 }
 
+/// The directed keys of the mesh's edges, sorted: a counting sort by the
+/// edge's lower vertex (the key's high half), then each vertex's few keys
+/// (about six on a closed mesh) by insertion, a fan's hub's by std::sort.
+std::vector<uint64_t> sorted_edges(const TriMesh &m) {
+  const size_t ne = m.tri.size();
+  std::vector<uint32_t> at(m.vertices() + 1, 0);
+  for (size_t e = 0; e < ne; e++) {
+    const size_t t = e / 3, i = e % 3;
+    at[std::min(m.tri[e], m.tri[3 * t + (i + 1) % 3]) + 1]++;
+  }
+  for (size_t v = 0; v < m.vertices(); v++)
+    at[v + 1] += at[v];
+  std::vector<uint64_t> edges(ne);
+  for (size_t t = 0; t < m.triangles(); t++)
+    for (int i = 0; i < 3; i++) {
+      const uint32_t a = m.tri[3 * t + i], b = m.tri[3 * t + (i + 1) % 3];
+      edges[at[std::min(a, b)]++] = directed_key(a, b);
+    }
+  // at[v] is now the end of vertex v's keys (the start of v + 1's)
+  for (size_t v = 0, begin = 0; v < m.vertices(); begin = at[v], v++) {
+    if (at[v] - begin > 32) { // a fan's hub (CAD meshes): no quadratic insertion
+      std::sort(edges.begin() + long(begin), edges.begin() + long(at[v]));
+      continue;
+    }
+    for (size_t j = begin + 1; j < at[v]; j++)
+      for (size_t k = j; k > begin && edges[k] < edges[k - 1]; k--)
+        std::swap(edges[k], edges[k - 1]);
+  }
+  return edges;
+}
+
 } // namespace
 
 void parse_stl(const char *data, size_t len, const std::string &name, TriMesh &out) {
@@ -279,14 +332,7 @@ void parse_stl(const char *data, size_t len, const std::string &name, TriMesh &o
 void check_solid(TriMesh &m, const std::string &name) {
   if (m.triangles() == 0) bad(name + ": the mesh has no triangles (an empty STL)");
   if (m.vertices() >= (size_t(1) << 31)) bad(name + ": too many vertices");
-  std::vector<uint64_t> edges(m.tri.size());
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, m.triangles(), 8192), [&](const tbb::blocked_range<size_t> &r) {
-        for (size_t t = r.begin(); t != r.end(); ++t)
-          for (int i = 0; i < 3; i++)
-            edges[3 * t + i] = directed_key(m.tri[3 * t + i], m.tri[3 * t + (i + 1) % 3]);
-      });
-  tbb::parallel_sort(edges.begin(), edges.end());
+  const std::vector<uint64_t> edges = sorted_edges(m);
   // Report the first bad edge in a fixed order (the smallest key).
   uint64_t open = UINT64_MAX, multi = UINT64_MAX, flipped = UINT64_MAX;
   size_t nopen = 0, nmulti = 0, nflipped = 0;

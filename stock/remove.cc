@@ -807,7 +807,14 @@ bool design_far(const Pass &p, ConstAcc &dacc, const Coord &o) {
 struct CubeCuts {
   struct Entry {
     uint32_t pair;
-    double d; ///< the cut's sdf at the cube's centre
+    double d;  ///< the cut's sdf at the cube's centre
+    int plane; ///< 1: sdf(q) >= d + g.(q - centre) for every q; 0: none; -1: not asked yet
+    double g[3];
+    /// The plane's bound at the cube's voxel l (block-local; +-h from the centre per axis).
+    double at(const Coord &l, double h) const {
+      return d + (l.x() & 1 ? h : -h) * g[0] + (l.y() & 1 ? h : -h) * g[1] +
+             (l.z() & 1 ? h : -h) * g[2];
+    }
   };
   std::vector<Entry> list[64];
   uint32_t next[64]; ///< the next pair to look at
@@ -832,10 +839,24 @@ struct CubeCuts {
                                   ((c & 3) << 1) + 0.5);
       const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
       if (d - rv + low[c] >= kMargin) continue;
-      list[c].push_back({i, d});
+      // a plane only outside the cut (its support function's rule)
+      const bool ask = p.support != nullptr && p.support[w.pairs[i].cut] != nullptr && d > 0.0;
+      list[c].push_back({i, d, ask ? -1 : 0, {0.0, 0.0, 0.0}});
     }
     e = list[c][k];
     return true;
+  }
+  /// Entry k of cube c (found by get) with its supporting plane, asked for now
+  /// if it was not yet (a voxel the Lipschitz bound could not decide).
+  const Entry &with_plane(const Pass &p, const Block &b, int c, size_t k) {
+    Entry &e = list[c][k];
+    if (e.plane >= 0) return e;
+    const RemoveScratch &w = p.s.scratch;
+    const swarf_stock_cut &cut = p.cuts[w.pairs[e.pair].cut];
+    const Vec3d q = block_point(p, b.origin, ((c >> 4) << 1) + 0.5, (((c >> 2) & 3) << 1) + 0.5,
+                                ((c & 3) << 1) + 0.5);
+    e.plane = p.support[w.pairs[e.pair].cut](cut.ctx, q.x(), q.y(), q.z(), &e.d, e.g) == 1;
+    return e;
   }
 };
 
@@ -856,7 +877,11 @@ struct CubeCuts {
 /// count as F, since their inside fraction is 1 and their depth a voxel, so a
 /// voxel starts at max(old, F). A voxel looks only at its 2^3 cube's cuts
 /// (CubeCuts: those that can raise some voxel of the cube), and passes over
-/// those whose bound from the cube's centre keeps it where it is; where the
+/// those whose bound from the cube's centre keeps it where it is, or, for a
+/// cut with a supporting plane there (3-axis moves, the centre outside the
+/// cut), whose plane does (asked for at the first voxel of the cube the
+/// Lipschitz bound leaves undecided; bear.nc at 0.2 mm: 26.1 M -> 14.6 M
+/// replay sdf calls, of which 12.6 M raise the voxel); where the
 /// cube's centre lies so deep in the cut that the voxel ends at or beyond S
 /// (half a voxel; a voxel with the design, where a depth also reads a
 /// voxel), it is emptied without evaluating the cut: its credit is its
@@ -903,6 +928,11 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
       const uint32_t i = e.pair;
       if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n]) || e.d - rv + v >= kMargin)
         continue; // the bounds from the block's and the cube's centres: no raise
+      if (e.plane != 0) {
+        const CubeCuts::Entry &pe = cubes.with_plane(p, b, cube, k);
+        if (pe.plane == 1 && pe.at(l, half) + v >= kMargin)
+          continue; // nor by the cut's supporting plane at the cube's centre
+      }
       const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
       double d, nv;
       if (-e.d - rv - kMargin >= deep) { // emptied, deeper than anything measured

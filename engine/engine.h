@@ -324,7 +324,7 @@ SWARF_API int swarf_char_gauss_slice(double dphi, const double v[3], const doubl
  * which must outlive it). The evaluator that applies and its per-move
  * constants live in `internal_`, opaque storage typed in engine_private.h
  * (swarf_sweep_data, which a static assertion keeps within it). */
-#define SWARF_SWEEP_STORAGE 17 /* doubles */
+#define SWARF_SWEEP_STORAGE 18 /* doubles */
 typedef struct {
   const swarf_cutter *cutter;
   const swarf_motion *motion;

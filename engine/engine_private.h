@@ -338,12 +338,15 @@ typedef struct {
  * |omega| and vd, wd of their alpha-derivatives; beyond `far` mm a lower
  * bound is returned. A ball end mill (ball = 1; sweep_rigid_ball.c): cv and
  * cvmin bound the speed |c'| of its centre c = t + U (0, 0, R) from above and
- * below, ca its acceleration |c''|, ck the part of c' along the tool axis. */
+ * below, ca its acceleration |c''|, ck the part of c' along the tool axis.
+ * id: this sweep's number for its motion's pose table (unique to each init:
+ * swarf_motion_pose_table_id). */
 typedef struct {
   double lo[3], hi[3];
   double v, w, vd, wd;
   double far;
   double cv, cvmin, ca, ck;
+  uint64_t id;
   int n;
   int ball;
 } swarf_sweep_rigid;

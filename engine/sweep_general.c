@@ -256,7 +256,7 @@ static double piece_min(const swarf_sweep *s, const swarf_profile_piece *pc, con
   h.best.g = upper;
   if (S < 1) S = 1;
   nc = (n + S - 1) / S;
-  swarf_motion_pose_table(s->motion, n, &table);
+  swarf_motion_pose_table_id(s->motion, n, swarf_sweep_cdata(s)->u.rigid.id, &table);
   for (int j = 0; j <= nc; j++)
     cs[j] = step_at(&h, table, j * S < n ? j * S : n, n);
   for (int j = 0; j < nc; j++) {

@@ -289,7 +289,8 @@ static double rsearch(const swarf_sweep *s, swarf_body_sdf_fn body, const void *
   h.s = s, h.body = body, h.body_ctx = ctx, h.p = p, h.floor = floor, h.evals = 0, h.nheap = 0;
   h.best.a = 0.0, h.best.g = upper, h.best.dg = 0.0, h.best.dist = 0.0;
   n = swarf_sweep_cdata(s)->u.rigid.n;
-  swarf_motion_pose_table(s->motion, n, &table); /* NULL when out of memory: poses computed */
+  /* NULL when out of memory: poses computed */
+  swarf_motion_pose_table_id(s->motion, n, swarf_sweep_cdata(s)->u.rigid.id, &table);
   n = rsteps(&h, table, n, smp, &lb);
   if (alpha != NULL) *alpha = h.best.a;
   if (n < 0) return fmin(lb, upper);

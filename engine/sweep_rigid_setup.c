@@ -94,7 +94,9 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
   double t[3], U[9], v[3], w[3], pv[3] = {0}, pw[3] = {0}, u[PROBE + 1][3], cp[PROBE + 1][3];
   double r = 0.5 * c->diameter, reach = hypot(r, c->length), tol = 0.1 * voxel;
   double V = 0, W = 0, VD = 0, WD = 0, step, travel, pad;
+  static atomic_uint_fast64_t next_id;
   sd->method = SWARF_SWEEP_RIGID;
+  x->id = atomic_fetch_add_explicit(&next_id, 1, memory_order_relaxed) + 1;
   for (int k = 0; k < 3; k++)
     x->lo[k] = INFINITY, x->hi[k] = -INFINITY;
   for (int i = 0; i <= PROBE; i++) {

@@ -131,10 +131,13 @@ int swarf_motion_is_null(const swarf_motion *m) {
 }
 
 void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose *out) {
+  const double *U = out->U, *w = out->omega;
   if (m->kind == SWARF_MOTION_RIGID) {
-    swarf_rigid_pose(m, alpha, out->t, out->U, NULL, out->v, out->omega);
-    return;
+    swarf_rigid_pose(m, alpha, out->t, out->U, out->tdot, out->v, out->omega);
+  } else {
+    swarf_motion_eval(m, alpha, out->t, out->U);
+    swarf_motion_velocity(m, alpha, out->tdot, out->v, out->omega);
   }
-  swarf_motion_eval(m, alpha, out->t, out->U);
-  swarf_motion_velocity(m, alpha, NULL, out->v, out->omega);
+  for (int i = 0; i < 3; i++) /* k' = U (omega x e_z) = U (omega_y, -omega_x, 0) */
+    out->kdot[i] = U[3 * i] * w[1] - U[3 * i + 1] * w[0];
 }

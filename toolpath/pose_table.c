@@ -10,7 +10,11 @@
  * were refilled 1.05 M times for 5.45 M lookups on the impeller's first 600
  * lines; 1024: 593 fills, one a move): ~350 KB a thread plus the poses,
  * which are kept to BUDGET bytes (over it every other slot is emptied).
- * Each thread's cache is freed when the thread ends.
+ * A caller that numbers its motions (swarf_motion_pose_table_id: a rigid
+ * sweep's number, new at each init) is served on the number alone, without
+ * the comparison (~110 instructions a lookup; the ball end mill's path looks
+ * up once a voxel and move). Each thread's cache is freed when the thread
+ * ends.
  */
 #include <pthread.h>
 #include <stdint.h>
@@ -24,6 +28,7 @@
 
 typedef struct {
   swarf_motion key; /* byte copy of the motion the table is for */
+  uint64_t id;      /* the caller's id for that motion (swarf_motion_pose_table_id), or 0 */
   int n;            /* the table holds n + 1 poses; 0: empty */
   int cap;          /* poses allocated */
   swarf_pose *poses;
@@ -85,20 +90,32 @@ static int slot_fill(pose_cache *c, pose_slot *s, const swarf_motion *m, int n) 
   return 0;
 }
 
-swarf_status swarf_motion_pose_table(const swarf_motion *m, int n, const swarf_pose **out) {
+/* The table of m's n + 1 poses: slot s's if it holds them (by id when id is
+ * not 0, else by a comparison of the contents), else s refilled. */
+static swarf_status lookup(pose_cache *c, pose_slot *s, const swarf_motion *m, int n, uint64_t id,
+                           const swarf_pose **out) {
+  if (s->n == n && ((id != 0 && s->id == id) || memcmp(&s->key, m, sizeof *m) == 0)) {
+    if (id != 0) s->id = id;
+    *out = s->poses;
+    return SWARF_OK;
+  }
+  s->n = 0, s->id = 0;
+  if (slot_fill(c, s, m, n) != 0) return SWARF_ERR_MEMORY;
+  s->id = id;
+  *out = s->poses;
+  return SWARF_OK;
+}
+
+swarf_status swarf_motion_pose_table_id(const swarf_motion *m, int n, uint64_t id,
+                                        const swarf_pose **out) {
   pose_cache *c;
-  pose_slot *s;
   if (out == NULL) return SWARF_ERR_ARG;
   *out = NULL;
   if (m == NULL || n < 1) return SWARF_ERR_ARG;
   if ((c = cache_get()) == NULL) return SWARF_ERR_MEMORY;
-  s = &c->slot[((uintptr_t)m / sizeof *m) % SLOTS];
-  if (s->n == n && memcmp(&s->key, m, sizeof *m) == 0) {
-    *out = s->poses;
-    return SWARF_OK;
-  }
-  s->n = 0;
-  if (slot_fill(c, s, m, n) != 0) return SWARF_ERR_MEMORY;
-  *out = s->poses;
-  return SWARF_OK;
+  return lookup(c, &c->slot[((uintptr_t)m / sizeof *m) % SLOTS], m, n, id, out);
+}
+
+swarf_status swarf_motion_pose_table(const swarf_motion *m, int n, const swarf_pose **out) {
+  return swarf_motion_pose_table_id(m, n, 0, out);
 }

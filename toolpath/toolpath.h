@@ -21,6 +21,7 @@
 #define SWARF_TOOLPATH_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "swarf_status.h"
 
@@ -135,10 +136,14 @@ SWARF_API void swarf_motion_velocity(const swarf_motion *m, double alpha, double
                                      double v[3], double omega[3]);
 
 /* Pose and velocities at one alpha, as swarf_motion_eval and
- * swarf_motion_velocity give them (tdot omitted). */
+ * swarf_motion_velocity give them, and the derivative of the tool axis
+ * k = U e_z (what a ball end mill's sweep needs per time step in the
+ * workpiece frame: sweep_rigid_ball.c). */
 typedef struct {
   double t[3], U[9];     /* pose: x' = t + U x */
   double v[3], omega[3]; /* moving-frame velocity and angular velocity, per unit alpha */
+  double tdot[3];        /* t' = U v, workpiece frame */
+  double kdot[3];        /* k' = U (omega x e_z), workpiece frame */
 } swarf_pose;
 
 /* swarf_motion_eval and swarf_motion_velocity in one evaluation (the table
@@ -153,6 +158,13 @@ SWARF_API void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose
  * SWARF_ERR_ARG for n < 1. Thread-safe (each thread has its own cache). */
 SWARF_API swarf_status swarf_motion_pose_table(const swarf_motion *m, int n,
                                                const swarf_pose **out);
+
+/* swarf_motion_pose_table, the table found by id (not 0) instead of a
+ * comparison of m's contents: the caller's number for m's current contents,
+ * which it must never give to other contents (a new number whenever m is
+ * changed or its place reused). id 0: as swarf_motion_pose_table. */
+SWARF_API swarf_status swarf_motion_pose_table_id(const swarf_motion *m, int n, uint64_t id,
+                                                  const swarf_pose **out);
 
 /* Axis-aligned bounds of the tip path t([0,1]), mm. */
 SWARF_API void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]);

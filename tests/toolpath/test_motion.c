@@ -87,7 +87,8 @@ static void test_bounds(void) {
     swarf_move mv = make_arc(1.0, 2.0, 1.0, ang, rise);
     swarf_motion m;
     double lo[3], hi[3], slo[3] = {1e9, 1e9, 1e9}, shi[3] = {-1e9, -1e9, -1e9}, t[3];
-    for (int k = 0; k < 3; k++) mv.normal[k] = n[k] / len;
+    for (int k = 0; k < 3; k++)
+      mv.normal[k] = n[k] / len;
     swarf_motion_from_move(&mv, &m, NULL);
     swarf_motion_bounds(&m, lo, hi);
     for (int i = 0; i <= 20000; i++) {
@@ -99,25 +100,31 @@ static void test_bounds(void) {
     }
     for (int k = 0; k < 3; k++) {
       CHECK(lo[k] <= slo[k] + 1e-9 && hi[k] >= shi[k] - 1e-9, "bounds contain the path");
-      CHECK(slo[k] - lo[k] < 1e-4 && hi[k] - shi[k] < 1e-4, "bounds are tight (trial %d k %d: %g %g / %g %g)",
-            trial, k, lo[k], slo[k], hi[k], shi[k]);
+      CHECK(slo[k] - lo[k] < 1e-4 && hi[k] - shi[k] < 1e-4,
+            "bounds are tight (trial %d k %d: %g %g / %g %g)", trial, k, lo[k], slo[k], hi[k],
+            shi[k]);
     }
   }
 }
 
 /* swarf_motion_pose_table: more motions than its slots (an array of them, as
  * a batch holds), each with more poses than its memory budget keeps for all,
- * asked for twice in two orders, and a motion changed in place: every table
- * holds the motion's own poses (swarf_motion_pose at i / n). */
-static int table_matches(const swarf_motion *m, int n) {
+ * asked for twice in two orders, and a motion changed in place, by contents
+ * and by number (swarf_motion_pose_table_id): every table holds the motion's
+ * own poses (swarf_motion_pose at i / n). */
+static int table_matches_id(const swarf_motion *m, int n, uint64_t id) {
   const swarf_pose *t;
   swarf_pose p;
-  if (swarf_motion_pose_table(m, n, &t) != SWARF_OK) return 0;
+  if (swarf_motion_pose_table_id(m, n, id, &t) != SWARF_OK) return 0;
   for (int i = 0; i <= n; i += n / 4) {
     swarf_motion_pose(m, (double)i / n, &p);
     if (memcmp(&p, &t[i], sizeof p) != 0) return 0;
   }
   return 1;
+}
+
+static int table_matches(const swarf_motion *m, int n) {
+  return table_matches_id(m, n, 0);
 }
 
 static void test_pose_table(void) {
@@ -136,6 +143,16 @@ static void test_pose_table(void) {
     bad += !table_matches(&ms[i], i % 2 ? N : 16);
   ms[7].p0[0] += 1.0; /* changed in place: recomputed */
   bad += !table_matches(&ms[7], N) + !table_matches(&ms[7], 16);
+  /* by number (swarf_motion_pose_table_id), mixed with the comparison: a
+   * table found by contents takes the number, a new number after a change */
+  for (int i = 0; i < NM; i++)
+    bad += !table_matches_id(&ms[i], 16, 1000 + i) + !table_matches(&ms[i], 16) +
+           !table_matches_id(&ms[i], 16, 1000 + i);
+  ms[9].p1[1] -= 2.0;
+  bad += !table_matches_id(&ms[9], 16, 5000) + !table_matches(&ms[9], 16);
+  ms[9].th1[0] += 0.5, ms[9].p1[1] += 1.0;
+  bad += !table_matches(&ms[9], 16) + !table_matches_id(&ms[9], 16, 5001) +
+         !table_matches_id(&ms[9], N, 5001);
   CHECK(bad == 0, "pose tables match their motions (%d do not)", bad);
   free(ms);
 }

@@ -210,40 +210,44 @@ inline bool local_range(const Tri &t, const Coord &o, double g, int lo[3], int h
 /// is below the best so far. A voxel is passed over when the box, or the
 /// triangle's plane, is already farther than its best, and in the second pass
 /// when the box is nearer than `near` (the first pass had it). The row's
-/// parts of the box and plane distances are taken once a row; the sums are
-/// those of box_dist2 and (pt - a).n term by term, so every test decides as
-/// before.
+/// parts of the box and plane distances are taken once a row (x's once for
+/// its rows), the box's distances without branches; the sums are those of
+/// box_dist2 and (pt - a).n term by term, so every test decides as before.
 inline void triangle_pass(const Tri &t, const Coord &o, const int lo[3], const int hi[3], double g2,
                           bool second, double near2, const uint8_t *rows, float *d2) {
-  for (int x = lo[0]; x <= hi[0]; x++)
+  // a coordinate's distance to the box's range: max(lo - p, p - hi, 0) is
+  // the same double as the three-way choice (lo <= hi), without branches
+  auto out = [](double p, double l, double h) { return std::max(0.0, std::max(l - p, p - h)); };
+  const unsigned range = (0xffu << lo[2]) & (0xffu >> (7 - hi[2])); // the box's voxels along z
+  for (int x = lo[0]; x <= hi[0]; x++) {
+    const double px = o[0] + x;
+    const double ex = out(px, t.lo[0], t.hi[0]), ex2 = ex * ex, pxn = (px - t.a[0]) * t.n[0];
     for (int y = lo[1]; y <= hi[1]; y++) {
       const int row = (x << 3) | y;
-      if (rows != nullptr && rows[row] == 0) continue;
+      unsigned bits = rows != nullptr ? rows[row] & range : range;
+      if (bits == 0) continue;
       // the row's voxels within g of the triangle's box
-      const double px = o[0] + x, py = o[1] + y;
-      const double ex = px < t.lo[0] ? t.lo[0] - px : px > t.hi[0] ? px - t.hi[0] : 0.0;
-      const double ey = py < t.lo[1] ? t.lo[1] - py : py > t.hi[1] ? py - t.hi[1] : 0.0;
-      const double r2 = g2 - ex * ex - ey * ey;
+      const double py = o[1] + y;
+      const double ey = out(py, t.lo[1], t.hi[1]);
+      const double r2 = g2 - ex2 - ey * ey;
       if (!(r2 > 0.0)) continue;
-      const double exy = ex * ex + ey * ey; // box_dist2's first two terms
-      const double pxy = (px - t.a[0]) * t.n[0] + (py - t.a[1]) * t.n[1];
-      // the row's voxels in the box's range (those beyond g of it fail bd < g2)
-      unsigned bits =
-          (rows != nullptr ? rows[row] : 0xffu) & (0xffu << lo[2]) & (0xffu >> (7 - hi[2]));
+      const double exy = ex2 + ey * ey;                // box_dist2's first two terms
+      const double pxy = pxn + (py - t.a[1]) * t.n[1]; // (pt - a).n's
+      float *best_of = d2 + (row << 3);
       for (; bits != 0; bits &= bits - 1) {
         const int z = __builtin_ctz(bits);
-        const openvdb::Index v = openvdb::Index((x << 6) | (y << 3) | z);
         const double pz = o[2] + z;
-        const double ez = pz < t.lo[2] ? t.lo[2] - pz : pz > t.hi[2] ? pz - t.hi[2] : 0.0;
-        const double best = double(d2[v]), bd = exy + ez * ez;
+        const double ez = out(pz, t.lo[2], t.hi[2]);
+        const double best = double(best_of[z]), bd = exy + ez * ez;
         if (!(bd < g2) || bd >= best || (second && bd < near2))
           continue; // beyond g, farther, or done in the first pass
         const double pd = pxy + (pz - t.a[2]) * t.n[2];
         if (pd * pd >= best) continue; // the plane is already farther
         const double e = tri_dist2(t, Vec3d(px, py, pz));
-        if (e < best) d2[v] = float(e);
+        if (e < best) best_of[z] = float(e);
       }
     }
+  }
 }
 
 /// Ask for a triangle's cache lines ahead of its use (a block's triangles lie

@@ -140,6 +140,19 @@ void column_crossings(const openvdb::Vec3s &A, const openvdb::Vec3s &B, const op
     }
 }
 
+/// floor and ceil of a double within the int range (index coordinates are
+/// below 2^29), without the library call (generic x86-64 has no rounding
+/// instruction; these are most of the band's inner loop otherwise).
+inline int ifloor(double v) {
+  const int i = int(v);
+  return i - (v < double(i));
+}
+
+inline int iceil(double v) {
+  const int i = int(v);
+  return i + (v > double(i));
+}
+
 /// A (block, triangle) pair; blocks by their origin's leaf coordinates.
 struct Pair {
   int32_t x, y, z;
@@ -154,7 +167,7 @@ inline bool pair_less(const Pair &a, const Pair &b) {
 }
 
 inline int32_t leaf_of(double v) {
-  return int32_t(std::floor(v / 8.0));
+  return ifloor(v / 8.0); // within the int range: check_mesh_size
 }
 
 /// Pairs of triangle t (number k) with the blocks within w voxels of it.
@@ -169,19 +182,6 @@ void block_pairs(const Tri &t, uint32_t k, double w, std::vector<Pair> &out) {
       for (int32_t z = lo[2]; z <= hi[2]; z++)
         if (few || tri_dist2(t, Vec3d(8.0 * x + 3.5, 8.0 * y + 3.5, 8.0 * z + 3.5)) <= reach)
           out.push_back({x, y, z, k});
-}
-
-/// floor and ceil of a double within the int range (index coordinates are
-/// below 2^29), without the library call (generic x86-64 has no rounding
-/// instruction; these are most of the band's inner loop otherwise).
-inline int ifloor(double v) {
-  const int i = int(v);
-  return i - (v < double(i));
-}
-
-inline int iceil(double v) {
-  const int i = int(v);
-  return i + (v > double(i));
 }
 
 /// Squared distance from p to the box [lo, hi].
@@ -379,20 +379,27 @@ template <typename T, typename Fn> std::vector<T> gather(size_t n, Fn fn) {
 /// when that box is too large).
 std::vector<Pair> sorted_pairs(const std::vector<Tri> &t, double w) {
   constexpr size_t kTris = 8192;
-  std::vector<std::vector<Pair>> parts((t.size() + kTris - 1) / kTris);
+  struct Part {
+    std::vector<Pair> pairs;
+    int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+  };
+  std::vector<Part> parts((t.size() + kTris - 1) / kTris);
   tbb::parallel_for(size_t(0), parts.size(), [&](size_t c) {
+    Part &part = parts[c];
     for (size_t k = c * kTris; k < std::min(t.size(), (c + 1) * kTris); k++)
-      block_pairs(t[k], uint32_t(k), w, parts[c]);
+      block_pairs(t[k], uint32_t(k), w, part.pairs);
+    for (const Pair &q : part.pairs) {
+      const int32_t b[3] = {q.x, q.y, q.z};
+      for (int a = 0; a < 3; a++)
+        part.lo[a] = std::min(part.lo[a], b[a]), part.hi[a] = std::max(part.hi[a], b[a]);
+    }
   });
   int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
   size_t total = 0;
-  for (const auto &part : parts) {
-    total += part.size();
-    for (const Pair &q : part) {
-      const int32_t c[3] = {q.x, q.y, q.z};
-      for (int a = 0; a < 3; a++)
-        lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
-    }
+  for (const Part &part : parts) {
+    total += part.pairs.size();
+    for (int a = 0; a < 3; a++)
+      lo[a] = std::min(lo[a], part.lo[a]), hi[a] = std::max(hi[a], part.hi[a]);
   }
   std::vector<Pair> out;
   out.reserve(total);
@@ -402,8 +409,8 @@ std::vector<Pair> sorted_pairs(const std::vector<Tri> &t, double w) {
     n[a] = uint64_t(int64_t(hi[a]) - lo[a] + 1),
     bins *= std::min<uint64_t>(n[a], uint64_t(1) << 30);
   if (bins > (uint64_t(1) << 26)) { // sparse: sort
-    for (const auto &part : parts)
-      out.insert(out.end(), part.begin(), part.end());
+    for (const Part &part : parts)
+      out.insert(out.end(), part.pairs.begin(), part.pairs.end());
     tbb::parallel_sort(out.begin(), out.end(), pair_less);
     return out;
   }
@@ -411,16 +418,16 @@ std::vector<Pair> sorted_pairs(const std::vector<Tri> &t, double w) {
     return (uint64_t(q.x - lo[0]) * n[1] + uint64_t(q.y - lo[1])) * n[2] + uint64_t(q.z - lo[2]);
   };
   std::vector<uint32_t> at(bins + 1, 0);
-  for (const auto &part : parts)
-    for (const Pair &q : part)
+  for (const Part &part : parts)
+    for (const Pair &q : part.pairs)
       at[bin(q) + 1]++;
   for (size_t b = 0; b < bins; b++)
     at[b + 1] += at[b];
   out.resize(total);
-  for (auto &part : parts) {
-    for (const Pair &q : part)
+  for (Part &part : parts) {
+    for (const Pair &q : part.pairs)
       out[at[bin(q)]++] = q;
-    std::vector<Pair>().swap(part);
+    std::vector<Pair>().swap(part.pairs);
   }
   return out;
 }

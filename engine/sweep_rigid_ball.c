@@ -29,7 +29,9 @@
  * modulus mu. When mu > 0 the sign of G' at the time steps (the pose table:
  * which side of each step's circle plane p lies on) brackets the one
  * minimiser, or it is an end; Illinois regula falsi on G' inside the
- * bracket (poses off the table) finds it, and the quadratic minorants of
+ * bracket finds it (at the table's step nearest its point while the bracket
+ * holds one, then poses off the table: 30 % fewer of those, ~850
+ * instructions each against ~80 for a step), and the quadratic minorants of
  * curvature mu through the bracket's ends certify the value (to TIGHT,
  * below the general search's 1e-6 mm). The two ends come first: the lesser
  * at or below lo, or their Lipschitz bound at or above hi, ends the work
@@ -38,7 +40,9 @@
  * by those alone, and the nearest instant is often an end); then the steps
  * (every sqrt(n)-th first on long moves), the bounds taken only over the
  * window of steps whose Lipschitz bound (the nearest point of the axis
- * segment moves at most cv + W (L - 2R)) is below the best step's value.
+ * segment moves at most cv + W (L - 2R)) is below the best step's value:
+ * over the window's coarse steps first (their spacing in the bounds), over
+ * all its steps only if those do not certify it.
  * Where convexity is not certified that Lipschitz bound may still put the
  * value at or above hi; otherwise (also: p above the top of the axis
  * segment at some time, a window of more than MAXW steps, no pose table, no
@@ -65,8 +69,10 @@ typedef struct {
 
 typedef struct {
   const double *p;
-  double R, seg; /* ball radius, axis segment length L - 2R */
-  double mu;     /* G'' >= mu > 0 over the move */
+  double R, seg;           /* ball radius, axis segment length L - 2R */
+  double mu;               /* G'' >= mu > 0 over the move */
+  const swarf_pose *table; /* the poses at the N + 1 time steps i / N */
+  int N;
 } bctx;
 
 typedef enum { B_VALUE, B_BELOW, B_ABOVE, B_FAIL } bkind;
@@ -122,6 +128,18 @@ static double bracket_lb(const bctx *b, const bsample *A, const bsample *B) {
   return min2(qmin(A->G, A->dG, A->a, mu, A->a, xs), qmin(B->G, B->dG, B->a, mu, xs, B->a));
 }
 
+/* The sample at the time step nearest x strictly inside (a0, a1), from
+ * the pose table; 0 if there is none (the bracket lies within one step). */
+static int table_step(const bctx *b, double a0, double a1, double x, bsample *M) {
+  double t1 = a1 * b->N; /* times in [0, 1]: (int) truncates as floor */
+  int i0 = (int)(a0 * b->N) + 1, i1 = (int)t1 - ((double)(int)t1 == t1), i = (int)(x * b->N + 0.5);
+  if (i1 > b->N - 1) i1 = b->N - 1;
+  i = i < i0 ? i0 : i > i1 ? i1 : i;
+  if (i0 > i1 || !((double)i / b->N > a0 && (double)i / b->N < a1)) return 0;
+  *M = bsample_at(b, (double)i / b->N, &b->table[i]);
+  return 1;
+}
+
 /* The minimum over the move, its minimiser inside [A.a, B.a] (A.dG < 0 <
  * B.dG): Illinois regula falsi on G' until the minorants certify the best
  * sample to TIGHT (B_VALUE), or it is at most lo (B_BELOW), or the bound is
@@ -147,9 +165,11 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
     if (it == ITER || !(B.a - A.a > 1e-15)) return B_FAIL;
     x = (A.a * gB - B.a * gA) / (gB - gA);
     if (!(x > A.a && x < B.a)) x = 0.5 * (A.a + B.a);
-    swarf_motion_pose(m, x, &P);
-    M = bsample_at(b, x, &P);
-    M.P = NULL; /* P ends with this iteration */
+    if (!table_step(b, A.a, B.a, x, &M)) {
+      swarf_motion_pose(m, x, &P);
+      M = bsample_at(b, x, &P);
+      M.P = NULL; /* P ends with this iteration */
+    }
     if (M.G < best.G) best = M;
     if (M.dG < 0.0) {
       A = M, gA = M.dG;
@@ -302,6 +322,10 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, const swarf_pose *table, int
     return *v <= lo ? B_BELOW : B_VALUE;
   }
   j0 = j0 < jb ? j0 : jb, j1 = j1 > jb ? j1 : jb;
+  if (S > 1) { /* convex over the coarse window: the refinement takes the steps it needs */
+    b->mu = curvature(x, b, &c[j0], j1 - j0, (double)S / n);
+    if (b->mu > 0.0) return bmin(b, s->motion, &c[j0], j1 - j0, lo, hi, v, at);
+  }
   j0 *= S, j1 = j1 * S < n ? j1 * S : n; /* now steps */
   if (j1 - j0 <= MAXW) {
     for (int i = j0; i <= j1; i++)
@@ -323,6 +347,7 @@ int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, d
   bkind kind;
   if (!x->ball || swarf_motion_pose_table_id(s->motion, n, x->id, &table) != SWARF_OK) return -1;
   b.p = p, b.R = 0.5 * s->cutter->diameter, b.seg = s->cutter->length - s->cutter->diameter;
+  b.table = table, b.N = n;
   /* the ends first: their bounds over the whole move often certify it */
   smp[0] = bsample_at(&b, 0.0, &table[0]);
   smp[1] = bsample_at(&b, 1.0, &table[n]);

@@ -9,8 +9,10 @@
  * D4 L30) and a longer one of the same kind, and adversarial ones: large turns (TCP, and the tip
  * held in joint mode while A turns 90 degrees), points at the ball's centre path, points where the
  * shank is nearest; short moves of the head machines in joint mode and of the dual table. Also the
- * window contract of swarf_sweep_sdf_range and the instant returned. Each case states how many
- * points the path certified itself (the rest fell back).
+ * window contract of swarf_sweep_sdf_range (also with windows that close just
+ * above the value: the lower bounds that end a call early must stay below
+ * it) and the instant returned. Each case states how many points the path
+ * certified itself (the rest fell back).
  */
 #include <math.h>
 #include <stdio.h>
@@ -117,6 +119,9 @@ static int run(const char *name, const swarf_cutter *c, const swarf_motion *m, d
       CHECK(fabs(vb - tr) <= TOL, "%s: ball path %.9g vs truth %.9g", name, vb, tr);
     }
     if (i % 4 == 0) check_windows(&s, p, tr, name);
+    /* a window closing just above the value: no lower bound may pass it */
+    v = swarf_sweep_sdf_range(&s, p, tr - 1.0, tr + 1e-5);
+    CHECK(fabs(v - tr) <= TOL, "%s: range just above the value: %.9g vs %.9g", name, v, tr);
   }
   printf("%-34s %3d steps: %3d of %3d points by the ball path; max |sweep - truth| %.2e mm, "
          "|sweep - general| %.2e mm\n",

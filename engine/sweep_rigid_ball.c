@@ -45,9 +45,9 @@
  * segment moves at most cv + W (L - 2R)) is below the best step's value:
  * over the window's coarse steps first (their spacing in the bounds), over
  * all its steps only if those do not certify it.
- * Where convexity is not certified that Lipschitz bound may still put the
- * value at or above hi; otherwise (also: p above the top of the axis
- * segment at some time, a window of more than MAXW steps, no pose table, no
+ * Where convexity is not certified that Lipschitz bound, or the concave
+ * minorants step by step, may still put the value at or above hi; otherwise (also: p above the top
+ * of the axis segment at some time, a window of more than MAXW steps, no pose table, no
  * convergence) the answer is -1 and the caller runs the general search, so
  * exactness never rests on this path's assumptions. The window (lo, hi) is
  * swarf_sweep_rigid_sdf_range's: a value at or below lo (a genuine one, from
@@ -247,17 +247,60 @@ static double curvature(const swarf_sweep_rigid *x, const bctx *b, const bsample
   return mu > 0.0 ? mu : 0.0;
 }
 
+/* K >= -G'' over [A.a, B.a] (w wide) from its ends (G semiconcave: the
+ * bounds of the header without the speed across the axis, P^2 >= 0):
+ * D >= |d| >= |e|, h <= hhi (as curvature), the ball's piece 2 D ca, the
+ * shank's 2 (2 W D ck + W^2 D^2 + D (ca + H (W^2 + W'))), H = min(hhi,
+ * L - 2R), and where p may lie above the axis segment's top
+ * t = c + (L - 2R) k (G = |p - t|^2) 2 (D + L - 2R) |t''|,
+ * |t''| <= ca + (L - 2R) (W^2 + W'). */
+static inline double semiconcavity(const swarf_sweep_rigid *x, const bctx *b, const bsample *A,
+                                   const bsample *B, double w) {
+  double W = x->w, D = sqrt(max2(A->f, B->f)) + 0.5 * x->cv * w, kk = W * W + x->wd;
+  double hhi = max2(A->h, B->h) + 0.5 * (W * D + x->ck) * w, H = min2(hhi, b->seg), K;
+  if (hhi <= 0.0) return 2.0 * D * x->ca;
+  K = 2.0 * (2.0 * W * D * x->ck + W * W * D * D + D * (x->ca + H * kk));
+  if (hhi >= b->seg) K = max2(K, 2.0 * (D + b->seg) * (x->ca + b->seg * kk));
+  return max2(K, 2.0 * D * x->ca);
+}
+
+/* Lower bound of G over [A.a, B.a] (w wide) with G'' >= -K: the least of the
+ * larger of the concave minorants T_A (t) = GA + GA' t - K t^2 / 2 and
+ * T_B (t) = GB - GB' (w - t) - K (w - t)^2 / 2 (each concave: at 0, w or
+ * where they cross, T_A - T_B being linear in t). */
+static inline double concave_lb(const bsample *A, const bsample *B, double K) {
+  double w = B->a - A->a, GA = A->G, gA = A->dG, GB = B->G, gB = B->dG, Kw = 0.5 * K * w, t;
+  double c1 = gA - gB - K * w, c0 = GA - GB + w * (gB + Kw);
+  double lb = min2(max2(GA, GB - w * (gB + Kw)), max2(GA + w * (gA - Kw), GB));
+  if (c1 != 0.0 && (t = -c0 / c1) > 0.0 && t < w)
+    lb = min2(lb, max2(GA + t * (gA - 0.5 * K * t), GB - (w - t) * (gB + 0.5 * K * (w - t))));
+  return lb;
+}
+
+/* The lower bound of sqrt(G) over [A.a, B.a] (w wide): the larger of the
+ * Lipschitz bound from sqrt(G) at the ends (sA, sB; lip: half the step's
+ * travel of the nearest axis point) and the concave minorants' (computed
+ * only where the first is below `need`). */
+static inline double interval_lb(const swarf_sweep_rigid *x, const bctx *b, const bsample *A,
+                                 const bsample *B, double w, double sA, double sB, double lip,
+                                 double need) {
+  double l = 0.5 * (sA + sB) - lip;
+  if (l >= need) return l;
+  return max2(l, sqrt(max2(concave_lb(A, B, semiconcavity(x, b, A, B, w)), 0.0)));
+}
+
 /* Without convexity: the least value at the steps smp[0..n] (w apart) if it
- * is at most lo (B_BELOW), or their Lipschitz bound over the move if it is
- * at least hi (B_ABOVE: the nearest point of the axis segment moves at most
- * cv + W (L - 2R)); else B_FAIL. */
+ * is at most lo (B_BELOW), or a lower bound over the move if it is at least
+ * hi (B_ABOVE: per step interval_lb, the nearest point of the axis segment
+ * moving at most cv + W (L - 2R)); else B_FAIL. */
 static bkind bbounds(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp, int n, double w,
                      double lo, double hi, double *v, double *at) {
   double lip = 0.5 * (x->cv + x->w * b->seg) * w, lb = INFINITY, s0 = sqrt(smp[0].G), best = s0;
   int ib = 0;
   for (int i = 0; i < n; i++) {
     double s1 = sqrt(smp[i + 1].G);
-    lb = min2(lb, 0.5 * (s0 + s1) - lip);
+    if (lb - b->R >= hi)
+      lb = min2(lb, interval_lb(x, b, &smp[i], &smp[i + 1], w, s0, s1, lip, hi + b->R));
     if (s1 < best) best = s1, ib = i + 1;
     s0 = s1;
   }
@@ -265,35 +308,6 @@ static bkind bbounds(const swarf_sweep_rigid *x, const bctx *b, const bsample *s
   if (*v <= lo) return B_BELOW;
   *v = lb - b->R;
   return *v >= hi ? B_ABOVE : B_FAIL;
-}
-
-/* K >= -G'' over the move from its ends (G semiconcave: the bounds of the
- * header without the speed across the axis, P^2 >= 0): D >= |d| >= |e|,
- * h <= hhi (as curvature), the ball's piece 2 D ca, the shank's
- * 2 (2 W D ck + W^2 D^2 + D (ca + H (W^2 + W'))), H = min(hhi, L - 2R), and
- * where p may lie above the axis segment's top t = c + (L - 2R) k (G =
- * |p - t|^2) 2 (D + L - 2R) |t''|, |t''| <= ca + (L - 2R) (W^2 + W'). */
-static double semiconcavity(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp) {
-  double W = x->w, D = sqrt(max2(smp[0].f, smp[1].f)) + 0.5 * x->cv, kk = W * W + x->wd;
-  double hhi = max2(smp[0].h, smp[1].h) + 0.5 * (W * D + x->ck), H = min2(hhi, b->seg), K;
-  if (hhi <= 0.0) return 2.0 * D * x->ca;
-  K = 2.0 * (2.0 * W * D * x->ck + W * W * D * D + D * (x->ca + H * kk));
-  if (hhi >= b->seg) K = max2(K, 2.0 * (D + b->seg) * (x->ca + b->seg * kk));
-  return max2(K, 2.0 * D * x->ca);
-}
-
-/* Lower bound of G over the move from its ends and G'' >= -K: the least of
- * the larger of the concave minorants T_0 (x) = G0 + G0' x - K x^2 / 2 and
- * T_1 (x) = G1 - G1' (1 - x) - K (1 - x)^2 / 2 (each concave: at 0, 1 or
- * where they cross, T_0 - T_1 being linear). */
-static double concave_lb(const bsample *smp, double K) {
-  double G0 = smp[0].G, g0 = smp[0].dG, G1 = smp[1].G, g1 = smp[1].dG;
-  double c1 = g0 - g1 - K, c0 = G0 - G1 + g1 + 0.5 * K, xc;
-  double lb = min2(max2(G0, G1 - g1 - 0.5 * K), max2(G0 + g0 - 0.5 * K, G1));
-  if (c1 != 0.0 && (xc = -c0 / c1) > 0.0 && xc < 1.0)
-    lb = min2(lb,
-              max2(G0 + xc * (g0 - 0.5 * K * xc), G1 - (1.0 - xc) * (g1 + 0.5 * K * (1.0 - xc))));
-  return lb;
 }
 
 /* The two ends alone, before any bound on G'' from below: the lesser at or
@@ -306,20 +320,9 @@ static bkind bends(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp
   int i = s1 < s0;
   *v = (i ? s1 : s0) - b->R, *at = smp[i].a;
   if (*v <= lo) return B_BELOW;
-  *v = 0.5 * (s0 + s1 - x->cv - x->w * b->seg) - b->R;
-  if (*v >= hi) return B_ABOVE;
-  *v = sqrt(max2(concave_lb(smp, semiconcavity(x, b, smp)), 0.0)) - b->R;
+  *v = interval_lb(x, b, &smp[0], &smp[1], 1.0, s0, s1, 0.5 * (x->cv + x->w * b->seg), hi + b->R) -
+       b->R;
   return *v >= hi ? B_ABOVE : B_FAIL;
-}
-
-/* The minimum from the steps smp[0..n] (w apart), if they certify convexity
- * over their span (b->mu set) or bound it out of the window; else B_FAIL. */
-static bkind bsteps(bctx *b, const swarf_sweep *s, const bsample *smp, int n, double w, double lo,
-                    double hi, double *v, double *at) {
-  const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
-  b->mu = curvature(x, b, smp, n, w);
-  if (b->mu > 0.0) return bmin(b, s->motion, smp, n, lo, hi, v, at);
-  return bbounds(x, b, smp, n, w, lo, hi, v, at);
 }
 
 /* Every S-th of the n steps into c[0..nc] and their distances to the axis
@@ -386,7 +389,8 @@ int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, d
   smp[0] = bsample_at(&b, 0.0, &table[0]);
   smp[1] = bsample_at(&b, 1.0, &table[n]);
   kind = bends(x, &b, smp, lo, hi, &v, &at);
-  if (kind == B_FAIL) kind = bsteps(&b, s, smp, 1, 1.0, lo, hi, &v, &at);
+  if (kind == B_FAIL && (b.mu = curvature(x, &b, smp, 1, 1.0)) > 0.0)
+    kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at);
   if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, table, n, lo, hi, &v, &at);
   if (kind == B_FAIL) return -1;
   *value = v;

@@ -140,6 +140,19 @@ void column_crossings(const openvdb::Vec3s &A, const openvdb::Vec3s &B, const op
     }
 }
 
+/// floor and ceil of a double within the int range (index coordinates are
+/// below 2^29), without the library call (generic x86-64 has no rounding
+/// instruction; these are most of the band's inner loop otherwise).
+inline int ifloor(double v) {
+  const int i = int(v);
+  return i - (v < double(i));
+}
+
+inline int iceil(double v) {
+  const int i = int(v);
+  return i + (v > double(i));
+}
+
 /// A (block, triangle) pair; blocks by their origin's leaf coordinates.
 struct Pair {
   int32_t x, y, z;
@@ -154,7 +167,7 @@ inline bool pair_less(const Pair &a, const Pair &b) {
 }
 
 inline int32_t leaf_of(double v) {
-  return int32_t(std::floor(v / 8.0));
+  return ifloor(v / 8.0); // within the int range: check_mesh_size
 }
 
 /// Pairs of triangle t (number k) with the blocks within w voxels of it.
@@ -169,19 +182,6 @@ void block_pairs(const Tri &t, uint32_t k, double w, std::vector<Pair> &out) {
       for (int32_t z = lo[2]; z <= hi[2]; z++)
         if (few || tri_dist2(t, Vec3d(8.0 * x + 3.5, 8.0 * y + 3.5, 8.0 * z + 3.5)) <= reach)
           out.push_back({x, y, z, k});
-}
-
-/// floor and ceil of a double within the int range (index coordinates are
-/// below 2^29), without the library call (generic x86-64 has no rounding
-/// instruction; these are most of the band's inner loop otherwise).
-inline int ifloor(double v) {
-  const int i = int(v);
-  return i - (v < double(i));
-}
-
-inline int iceil(double v) {
-  const int i = int(v);
-  return i + (v > double(i));
 }
 
 /// Squared distance from p to the box [lo, hi].
@@ -210,40 +210,44 @@ inline bool local_range(const Tri &t, const Coord &o, double g, int lo[3], int h
 /// is below the best so far. A voxel is passed over when the box, or the
 /// triangle's plane, is already farther than its best, and in the second pass
 /// when the box is nearer than `near` (the first pass had it). The row's
-/// parts of the box and plane distances are taken once a row; the sums are
-/// those of box_dist2 and (pt - a).n term by term, so every test decides as
-/// before.
+/// parts of the box and plane distances are taken once a row (x's once for
+/// its rows), the box's distances without branches; the sums are those of
+/// box_dist2 and (pt - a).n term by term, so every test decides as before.
 inline void triangle_pass(const Tri &t, const Coord &o, const int lo[3], const int hi[3], double g2,
                           bool second, double near2, const uint8_t *rows, float *d2) {
-  for (int x = lo[0]; x <= hi[0]; x++)
+  // a coordinate's distance to the box's range: max(lo - p, p - hi, 0) is
+  // the same double as the three-way choice (lo <= hi), without branches
+  auto out = [](double p, double l, double h) { return std::max(0.0, std::max(l - p, p - h)); };
+  const unsigned range = (0xffu << lo[2]) & (0xffu >> (7 - hi[2])); // the box's voxels along z
+  for (int x = lo[0]; x <= hi[0]; x++) {
+    const double px = o[0] + x;
+    const double ex = out(px, t.lo[0], t.hi[0]), ex2 = ex * ex, pxn = (px - t.a[0]) * t.n[0];
     for (int y = lo[1]; y <= hi[1]; y++) {
       const int row = (x << 3) | y;
-      if (rows != nullptr && rows[row] == 0) continue;
+      unsigned bits = rows != nullptr ? rows[row] & range : range;
+      if (bits == 0) continue;
       // the row's voxels within g of the triangle's box
-      const double px = o[0] + x, py = o[1] + y;
-      const double ex = px < t.lo[0] ? t.lo[0] - px : px > t.hi[0] ? px - t.hi[0] : 0.0;
-      const double ey = py < t.lo[1] ? t.lo[1] - py : py > t.hi[1] ? py - t.hi[1] : 0.0;
-      const double r2 = g2 - ex * ex - ey * ey;
+      const double py = o[1] + y;
+      const double ey = out(py, t.lo[1], t.hi[1]);
+      const double r2 = g2 - ex2 - ey * ey;
       if (!(r2 > 0.0)) continue;
-      const double exy = ex * ex + ey * ey; // box_dist2's first two terms
-      const double pxy = (px - t.a[0]) * t.n[0] + (py - t.a[1]) * t.n[1];
-      // the row's voxels in the box's range (those beyond g of it fail bd < g2)
-      unsigned bits =
-          (rows != nullptr ? rows[row] : 0xffu) & (0xffu << lo[2]) & (0xffu >> (7 - hi[2]));
+      const double exy = ex2 + ey * ey;                // box_dist2's first two terms
+      const double pxy = pxn + (py - t.a[1]) * t.n[1]; // (pt - a).n's
+      float *best_of = d2 + (row << 3);
       for (; bits != 0; bits &= bits - 1) {
         const int z = __builtin_ctz(bits);
-        const openvdb::Index v = openvdb::Index((x << 6) | (y << 3) | z);
         const double pz = o[2] + z;
-        const double ez = pz < t.lo[2] ? t.lo[2] - pz : pz > t.hi[2] ? pz - t.hi[2] : 0.0;
-        const double best = double(d2[v]), bd = exy + ez * ez;
+        const double ez = out(pz, t.lo[2], t.hi[2]);
+        const double best = double(best_of[z]), bd = exy + ez * ez;
         if (!(bd < g2) || bd >= best || (second && bd < near2))
           continue; // beyond g, farther, or done in the first pass
         const double pd = pxy + (pz - t.a[2]) * t.n[2];
         if (pd * pd >= best) continue; // the plane is already farther
         const double e = tri_dist2(t, Vec3d(px, py, pz));
-        if (e < best) d2[v] = float(e);
+        if (e < best) best_of[z] = float(e);
       }
     }
+  }
 }
 
 /// Ask for a triangle's cache lines ahead of its use (a block's triangles lie
@@ -375,20 +379,27 @@ template <typename T, typename Fn> std::vector<T> gather(size_t n, Fn fn) {
 /// when that box is too large).
 std::vector<Pair> sorted_pairs(const std::vector<Tri> &t, double w) {
   constexpr size_t kTris = 8192;
-  std::vector<std::vector<Pair>> parts((t.size() + kTris - 1) / kTris);
+  struct Part {
+    std::vector<Pair> pairs;
+    int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+  };
+  std::vector<Part> parts((t.size() + kTris - 1) / kTris);
   tbb::parallel_for(size_t(0), parts.size(), [&](size_t c) {
+    Part &part = parts[c];
     for (size_t k = c * kTris; k < std::min(t.size(), (c + 1) * kTris); k++)
-      block_pairs(t[k], uint32_t(k), w, parts[c]);
+      block_pairs(t[k], uint32_t(k), w, part.pairs);
+    for (const Pair &q : part.pairs) {
+      const int32_t b[3] = {q.x, q.y, q.z};
+      for (int a = 0; a < 3; a++)
+        part.lo[a] = std::min(part.lo[a], b[a]), part.hi[a] = std::max(part.hi[a], b[a]);
+    }
   });
   int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
   size_t total = 0;
-  for (const auto &part : parts) {
-    total += part.size();
-    for (const Pair &q : part) {
-      const int32_t c[3] = {q.x, q.y, q.z};
-      for (int a = 0; a < 3; a++)
-        lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
-    }
+  for (const Part &part : parts) {
+    total += part.pairs.size();
+    for (int a = 0; a < 3; a++)
+      lo[a] = std::min(lo[a], part.lo[a]), hi[a] = std::max(hi[a], part.hi[a]);
   }
   std::vector<Pair> out;
   out.reserve(total);
@@ -398,8 +409,8 @@ std::vector<Pair> sorted_pairs(const std::vector<Tri> &t, double w) {
     n[a] = uint64_t(int64_t(hi[a]) - lo[a] + 1),
     bins *= std::min<uint64_t>(n[a], uint64_t(1) << 30);
   if (bins > (uint64_t(1) << 26)) { // sparse: sort
-    for (const auto &part : parts)
-      out.insert(out.end(), part.begin(), part.end());
+    for (const Part &part : parts)
+      out.insert(out.end(), part.pairs.begin(), part.pairs.end());
     tbb::parallel_sort(out.begin(), out.end(), pair_less);
     return out;
   }
@@ -407,16 +418,16 @@ std::vector<Pair> sorted_pairs(const std::vector<Tri> &t, double w) {
     return (uint64_t(q.x - lo[0]) * n[1] + uint64_t(q.y - lo[1])) * n[2] + uint64_t(q.z - lo[2]);
   };
   std::vector<uint32_t> at(bins + 1, 0);
-  for (const auto &part : parts)
-    for (const Pair &q : part)
+  for (const Part &part : parts)
+    for (const Pair &q : part.pairs)
       at[bin(q) + 1]++;
   for (size_t b = 0; b < bins; b++)
     at[b + 1] += at[b];
   out.resize(total);
-  for (auto &part : parts) {
-    for (const Pair &q : part)
+  for (Part &part : parts) {
+    for (const Pair &q : part.pairs)
       out[at[bin(q)]++] = q;
-    std::vector<Pair>().swap(part);
+    std::vector<Pair>().swap(part.pairs);
   }
   return out;
 }

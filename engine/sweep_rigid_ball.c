@@ -71,9 +71,10 @@ typedef struct {
 
 typedef struct {
   const double *p;
-  double R, seg;           /* ball radius, axis segment length L - 2R */
-  double mu;               /* G'' >= mu > 0 over the move */
-  const swarf_pose *table; /* the poses at the N + 1 time steps i / N */
+  double R, seg;                 /* ball radius, axis segment length L - 2R */
+  double mu;                     /* G'' >= mu > 0 over the move */
+  const swarf_pose *table;       /* the poses at the N + 1 time steps i / N */
+  const swarf_pose_rates *rates; /* and their rates */
   int N;
 } bctx;
 
@@ -87,11 +88,12 @@ static inline double max2(double a, double b) {
   return a > b ? a : b;
 }
 
-/* The sample at time a from the pose there: c = t + R k, c' = t' + R k'
+/* The sample at time a from the pose there and its rates: c = t + R k, c' = t' + R k'
  * (U (omega x (0, 0, R))), h' = k' . d - k . c' = k' . d - v_z (k . t' = v_z,
  * k . k' = 0). */
-static bsample bsample_at(const bctx *b, double a, const swarf_pose *P) {
-  const double *U = P->U, *td = P->tdot, *kd = P->kdot, *p = b->p, R = b->R;
+static bsample bsample_at(const bctx *b, double a, const swarf_pose *P,
+                          const swarf_pose_rates *Pr) {
+  const double *U = P->U, *td = Pr->tdot, *kd = Pr->kdot, *p = b->p, R = b->R;
   const double k[3] = {U[2], U[5], U[8]};
   const double d[3] = {p[0] - P->t[0] - R * k[0], p[1] - P->t[1] - R * k[1],
                        p[2] - P->t[2] - R * k[2]};
@@ -110,6 +112,11 @@ static bsample bsample_at(const bctx *b, double a, const swarf_pose *P) {
     if (r.G < 0.0) r.G = 0.0;
   }
   return r;
+}
+
+/* The sample at time step i (of the N + 1 in the pose table). */
+static bsample bstep(const bctx *b, int i) {
+  return bsample_at(b, (double)i / b->N, &b->table[i], &b->rates[i]);
 }
 
 /* Minimum over [l, r] of the parabola f0 + g0 (x - x0) + mu/2 (x - x0)^2. */
@@ -138,7 +145,7 @@ static int table_step(const bctx *b, double a0, double a1, double x, bsample *M)
   if (i1 > b->N - 1) i1 = b->N - 1;
   i = i < i0 ? i0 : i > i1 ? i1 : i;
   if (i0 > i1 || !((double)i / b->N > a0 && (double)i / b->N < a1)) return 0;
-  *M = bsample_at(b, (double)i / b->N, &b->table[i]);
+  *M = bstep(b, i);
   return 1;
 }
 
@@ -154,6 +161,7 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
   for (int it = 0;; it++) {
     double lb = sqrt(max2(bracket_lb(b, &A, &B), 0.0)) - b->R, vb = sqrt(best.G) - b->R, x;
     swarf_pose P;
+    swarf_pose_rates Pr;
     bsample M;
     *at = best.a;
     if (vb <= lo || vb - lb <= TIGHT) {
@@ -169,7 +177,8 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
     if (!(x > A.a && x < B.a)) x = 0.5 * (A.a + B.a);
     if (!table_step(b, A.a, B.a, x, &M)) {
       swarf_motion_pose(m, x, &P);
-      M = bsample_at(b, x, &P);
+      swarf_pose_rates_of(&P, &Pr);
+      M = bsample_at(b, x, &P, &Pr);
       M.P = NULL; /* P ends with this iteration */
     }
     if (M.G < best.G) best = M;
@@ -327,12 +336,11 @@ static bkind bends(const swarf_sweep_rigid *x, const bctx *b, const bsample *smp
 
 /* Every S-th of the n steps into c[0..nc] and their distances to the axis
  * segment into sq; returns the index of the least. */
-static int bcoarse(const bctx *b, const swarf_pose *table, int n, int S, int nc, bsample *c,
-                   double *sq) {
+static int bcoarse(const bctx *b, int n, int S, int nc, bsample *c, double *sq) {
   int jb = 0;
   for (int j = 0; j <= nc; j++) {
     int i = j * S < n ? j * S : n;
-    c[j] = bsample_at(b, (double)i / n, &table[i]);
+    c[j] = bstep(b, i);
     sq[j] = sqrt(c[j].G);
     if (j == 0 || sq[j] < sq[jb]) jb = j;
   }
@@ -344,14 +352,14 @@ static int bcoarse(const bctx *b, const swarf_pose *table, int n, int S, int nc,
  * interval whose Lipschitz bound is below the best coarse value (and the
  * best step). Where more than MAXW steps remain or convexity over them is
  * not certified, the coarse steps' bounds decide if they can (bbounds). */
-static bkind bwindow(bctx *b, const swarf_sweep *s, const swarf_pose *table, int n, double lo,
-                     double hi, double *v, double *at) {
+static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi, double *v,
+                     double *at) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
   int S = n <= COARSE ? 1 : (int)sqrt((double)n), nc = (n + S - 1) / S, jb, j0 = -1, j1 = -1;
   bsample c[MAXC + 1], smp[MAXW + 1];
   double sq[MAXC + 1], lip = 0.5 * (x->cv + x->w * b->seg) * S / n;
   if (nc < 1 || nc > MAXC) return B_FAIL;
-  jb = bcoarse(b, table, n, S, nc, c, sq);
+  jb = bcoarse(b, n, S, nc, c, sq);
   for (int j = 0; j < nc; j++)
     if (0.5 * (sq[j] + sq[j + 1]) - lip < sq[jb]) j0 = j0 < 0 ? j : j0, j1 = j + 1;
   if (j0 < 0) { /* nothing between the steps below the best: it is the minimum */
@@ -366,7 +374,7 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, const swarf_pose *table, int
   j0 *= S, j1 = j1 * S < n ? j1 * S : n; /* now steps */
   if (j1 - j0 <= MAXW) {
     for (int i = j0; i <= j1; i++)
-      smp[i - j0] = bsample_at(b, (double)i / n, &table[i]);
+      smp[i - j0] = bstep(b, i);
     b->mu = curvature(x, b, smp, j1 - j0, 1.0 / n);
     if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at);
   }
@@ -377,21 +385,23 @@ int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, d
                            double *value, double *alpha) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
   const swarf_pose *table;
+  const swarf_pose_rates *rates;
   bsample smp[2];
   double v, at;
   int n = x->n;
   bctx b;
   bkind kind;
-  if (!x->ball || swarf_motion_pose_table_id(s->motion, n, x->id, &table) != SWARF_OK) return -1;
+  if (!x->ball || swarf_motion_pose_table_rates(s->motion, n, x->id, &table, &rates) != SWARF_OK)
+    return -1;
   b.p = p, b.R = 0.5 * s->cutter->diameter, b.seg = s->cutter->length - s->cutter->diameter;
-  b.table = table, b.N = n;
+  b.table = table, b.rates = rates, b.N = n;
   /* the ends first: their bounds over the whole move often certify it */
-  smp[0] = bsample_at(&b, 0.0, &table[0]);
-  smp[1] = bsample_at(&b, 1.0, &table[n]);
+  smp[0] = bsample_at(&b, 0.0, &table[0], &rates[0]);
+  smp[1] = bsample_at(&b, 1.0, &table[n], &rates[n]);
   kind = bends(x, &b, smp, lo, hi, &v, &at);
   if (kind == B_FAIL && (b.mu = curvature(x, &b, smp, 1, 1.0)) > 0.0)
     kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at);
-  if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, table, n, lo, hi, &v, &at);
+  if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, n, lo, hi, &v, &at);
   if (kind == B_FAIL) return -1;
   *value = v;
   if (alpha != NULL) *alpha = at;

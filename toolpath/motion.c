@@ -131,13 +131,18 @@ int swarf_motion_is_null(const swarf_motion *m) {
 }
 
 void swarf_motion_pose(const swarf_motion *m, double alpha, swarf_pose *out) {
-  const double *U = out->U, *w = out->omega;
   if (m->kind == SWARF_MOTION_RIGID) {
-    swarf_rigid_pose(m, alpha, out->t, out->U, out->tdot, out->v, out->omega);
-  } else {
-    swarf_motion_eval(m, alpha, out->t, out->U);
-    swarf_motion_velocity(m, alpha, out->tdot, out->v, out->omega);
+    swarf_rigid_pose(m, alpha, out->t, out->U, NULL, out->v, out->omega);
+    return;
   }
-  for (int i = 0; i < 3; i++) /* k' = U (omega x e_z) = U (omega_y, -omega_x, 0) */
-    out->kdot[i] = U[3 * i] * w[1] - U[3 * i + 1] * w[0];
+  swarf_motion_eval(m, alpha, out->t, out->U);
+  swarf_motion_velocity(m, alpha, NULL, out->v, out->omega);
+}
+
+void swarf_pose_rates_of(const swarf_pose *p, swarf_pose_rates *out) {
+  const double *U = p->U, *v = p->v, *w = p->omega;
+  for (int i = 0; i < 3; i++) {
+    out->tdot[i] = U[3 * i] * v[0] + U[3 * i + 1] * v[1] + U[3 * i + 2] * v[2];
+    out->kdot[i] = U[3 * i] * w[1] - U[3 * i + 1] * w[0]; /* U (omega_y, -omega_x, 0) */
+  }
 }

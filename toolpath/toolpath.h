@@ -136,15 +136,21 @@ SWARF_API void swarf_motion_velocity(const swarf_motion *m, double alpha, double
                                      double v[3], double omega[3]);
 
 /* Pose and velocities at one alpha, as swarf_motion_eval and
- * swarf_motion_velocity give them, and the derivative of the tool axis
- * k = U e_z (what a ball end mill's sweep needs per time step in the
- * workpiece frame: sweep_rigid_ball.c). */
+ * swarf_motion_velocity give them (tdot omitted). */
 typedef struct {
   double t[3], U[9];     /* pose: x' = t + U x */
   double v[3], omega[3]; /* moving-frame velocity and angular velocity, per unit alpha */
-  double tdot[3];        /* t' = U v, workpiece frame */
-  double kdot[3];        /* k' = U (omega x e_z), workpiece frame */
 } swarf_pose;
+
+/* A pose's rates in the workpiece frame: t' = U v and the derivative of the
+ * tool axis k = U e_z, k' = U (omega x e_z) (what a ball end mill's sweep
+ * needs per time step: sweep_rigid_ball.c). */
+typedef struct {
+  double tdot[3], kdot[3];
+} swarf_pose_rates;
+
+/* The rates of pose p. */
+SWARF_API void swarf_pose_rates_of(const swarf_pose *p, swarf_pose_rates *out);
 
 /* swarf_motion_eval and swarf_motion_velocity in one evaluation (the table
  * rotation's sines and cosines once). */
@@ -165,6 +171,13 @@ SWARF_API swarf_status swarf_motion_pose_table(const swarf_motion *m, int n,
  * changed or its place reused). id 0: as swarf_motion_pose_table. */
 SWARF_API swarf_status swarf_motion_pose_table_id(const swarf_motion *m, int n, uint64_t id,
                                                   const swarf_pose **out);
+
+/* swarf_motion_pose_table_id and the poses' rates (swarf_pose_rates_of),
+ * kept beside the table once asked for (the table alone keeps its size for
+ * the callers that need only the poses). */
+SWARF_API swarf_status swarf_motion_pose_table_rates(const swarf_motion *m, int n, uint64_t id,
+                                                     const swarf_pose **poses,
+                                                     const swarf_pose_rates **rates);
 
 /* Axis-aligned bounds of the tip path t([0,1]), mm. */
 SWARF_API void swarf_motion_bounds(const swarf_motion *m, double lo[3], double hi[3]);

@@ -6,12 +6,13 @@
  *   - the general certified search (swarf_sweep_rigid_body_sdf with the
  *     cutter's sdf as a body: sweep_rigid.c, which the path falls back to).
  * Moves: short 5-axis moves from the LinuxCNC impeller (xyzac-trt, TCP, ball
- * D4 L30), and adversarial ones: large turns (TCP, and the tip held in joint
- * mode while A turns 90 degrees), points at the ball's centre path, points
- * where the shank is nearest; short moves of the head machines in joint mode
- * and of the dual table. Also the window contract of
- * swarf_sweep_sdf_range and the instant returned. Each case states how many
- * points the path certified itself (the rest fell back).
+ * D4 L30) and a longer one of the same kind, and adversarial ones: large turns (TCP, and the tip
+ * held in joint mode while A turns 90 degrees), points at the ball's centre path, points where the
+ * shank is nearest; short moves of the head machines in joint mode and of the dual table. Also the
+ * window contract of swarf_sweep_sdf_range (also with windows that close just
+ * above the value: the lower bounds that end a call early must stay below
+ * it) and the instant returned. Each case states how many points the path
+ * certified itself (the rest fell back).
  */
 #include <math.h>
 #include <stdio.h>
@@ -118,6 +119,9 @@ static int run(const char *name, const swarf_cutter *c, const swarf_motion *m, d
       CHECK(fabs(vb - tr) <= TOL, "%s: ball path %.9g vs truth %.9g", name, vb, tr);
     }
     if (i % 4 == 0) check_windows(&s, p, tr, name);
+    /* a window closing just above the value: no lower bound may pass it */
+    v = swarf_sweep_sdf_range(&s, p, tr - 1.0, tr + 1e-5);
+    CHECK(fabs(v - tr) <= TOL, "%s: range just above the value: %.9g vs %.9g", name, v, tr);
   }
   printf("%-34s %3d steps: %3d of %3d points by the ball path; max |sweep - truth| %.2e mm, "
          "|sweep - general| %.2e mm\n",
@@ -142,6 +146,13 @@ static void test_impeller(void) {
     took += run(name, &c, &m, 0.2, NEAR_SURFACE, 150, 11 + k);
   }
   CHECK(took > 500, "the ball path takes most impeller points (%d of 600)", took);
+  /* a longer move (A 12, C 26 degrees; 55 steps): the ends rarely certify
+   * it, the coarse steps (every 7th) mostly do, and the refinement takes the
+   * table's steps before poses off it */
+  static const double far[6] = {2.0, -16.0, 20.0, -60.0, 0, -10.0};
+  swarf_motion m = make("xyzac-trt", line[0], far);
+  took = run("longer move, A 12 and C 26 degrees", &c, &m, 0.2, NEAR_SURFACE, 100, 15);
+  CHECK(took > 90, "the ball path takes most points of the longer move (%d of 100)", took);
 }
 
 static void test_adversarial(void) {

@@ -99,12 +99,14 @@ static void check_velocity(const swarf_motion *m) {
     CHECK_NEAR(S[7], w[0], 1e-6, "omega x");
     CHECK_NEAR(S[2], w[1], 1e-6, "omega y");
     CHECK_NEAR(S[3], w[2], 1e-6, "omega z");
-    /* swarf_motion_pose: the same, with t' and the tool axis's derivative k' */
+    /* swarf_motion_pose: the same; its rates t' and the tool axis's derivative k' */
     swarf_pose P;
+    swarf_pose_rates Pr;
     swarf_motion_pose(m, a, &P);
+    swarf_pose_rates_of(&P, &Pr);
     for (int k = 0; k < 3; k++) {
-      CHECK_NEAR(P.tdot[k], td[k], 1e-12, "pose tdot");
-      CHECK_NEAR(P.kdot[k], dU[3 * k + 2], 1e-6, "pose kdot = d(U e_z)/da");
+      CHECK_NEAR(Pr.tdot[k], td[k], 1e-12, "pose rates: tdot");
+      CHECK_NEAR(Pr.kdot[k], dU[3 * k + 2], 1e-6, "pose rates: kdot = d(U e_z)/da");
       CHECK_NEAR(P.v[k], v[k], 1e-12, "pose v");
       CHECK_NEAR(P.omega[k], w[k], 1e-12, "pose omega");
     }

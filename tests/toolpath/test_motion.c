@@ -110,8 +110,9 @@ static void test_bounds(void) {
 /* swarf_motion_pose_table: more motions than its slots (an array of them, as
  * a batch holds), each with more poses than its memory budget keeps for all,
  * asked for twice in two orders, and a motion changed in place, by contents
- * and by number (swarf_motion_pose_table_id): every table holds the motion's
- * own poses (swarf_motion_pose at i / n). */
+ * and by number (swarf_motion_pose_table_id), with rates
+ * (swarf_motion_pose_table_rates): every table holds the motion's own poses
+ * (swarf_motion_pose at i / n) and their rates. */
 static int table_matches_id(const swarf_motion *m, int n, uint64_t id) {
   const swarf_pose *t;
   swarf_pose p;
@@ -125,6 +126,22 @@ static int table_matches_id(const swarf_motion *m, int n, uint64_t id) {
 
 static int table_matches(const swarf_motion *m, int n) {
   return table_matches_id(m, n, 0);
+}
+
+/* The table with its rates (swarf_motion_pose_table_rates): the poses as
+ * above, each rate that of its pose (swarf_pose_rates_of). */
+static int rates_match(const swarf_motion *m, int n, uint64_t id) {
+  const swarf_pose *t;
+  const swarf_pose_rates *r;
+  swarf_pose p;
+  swarf_pose_rates q;
+  if (swarf_motion_pose_table_rates(m, n, id, &t, &r) != SWARF_OK) return 0;
+  for (int i = 0; i <= n; i += n / 4) {
+    swarf_motion_pose(m, (double)i / n, &p);
+    swarf_pose_rates_of(&p, &q);
+    if (memcmp(&p, &t[i], sizeof p) != 0 || memcmp(&q, &r[i], sizeof q) != 0) return 0;
+  }
+  return 1;
 }
 
 static void test_pose_table(void) {
@@ -153,6 +170,12 @@ static void test_pose_table(void) {
   ms[9].th1[0] += 0.5, ms[9].p1[1] += 1.0;
   bad += !table_matches(&ms[9], 16) + !table_matches_id(&ms[9], 16, 5001) +
          !table_matches_id(&ms[9], N, 5001);
+  /* with rates, after refills by the other lookups (a table refilled has none) */
+  for (int i = 0; i < NM; i += 3)
+    bad += !rates_match(&ms[i], 16, 9000 + i) + !table_matches(&ms[i], N) +
+           !rates_match(&ms[i], 16, 9000 + i) + !rates_match(&ms[i], N, 0);
+  ms[11].th0[1] += 0.25;
+  bad += !rates_match(&ms[11], N, 0) + !rates_match(&ms[11], N, 7777);
   CHECK(bad == 0, "pose tables match their motions (%d do not)", bad);
   free(ms);
 }

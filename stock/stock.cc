@@ -13,6 +13,7 @@
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -395,6 +396,19 @@ extern "C" swarf_status swarf_stock_set_threads(swarf_stock *s, int n, swarf_err
 
 extern "C" int swarf_stock_threads(const swarf_stock *s) {
   return s ? s->threads : 0;
+}
+
+extern "C" void swarf_stock_limit_threads(int n) {
+  static std::mutex lock;
+  static tbb::global_control *limit = nullptr; /* kept to the end (reachable) */
+  try {
+    std::lock_guard<std::mutex> hold(lock);
+    delete limit;
+    limit = nullptr;
+    if (n >= 1 && n <= 4096)
+      limit = new tbb::global_control(tbb::global_control::max_allowed_parallelism, size_t(n));
+  } catch (...) {
+  }
 }
 
 extern "C" swarf_status swarf_stock_set_tick(swarf_stock *s, swarf_stock_tick_fn fn, void *user,

@@ -163,6 +163,12 @@ SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_
 SWARF_API swarf_status swarf_stock_set_threads(swarf_stock *s, int n, swarf_error *err);
 SWARF_API int swarf_stock_threads(const swarf_stock *s); /* 0: all cores */
 
+/* At most n threads (n >= 1; 0: no limit, the default) for every stock pass
+ * of this process, including those no handle's threads govern (building a
+ * box or cylinder, the volume, writing a .vdb, reading a design): a
+ * program's --threads N. Process-wide; call it before the work starts. */
+SWARF_API void swarf_stock_limit_threads(int n);
+
 /* A long removal pass tells `tick` how far it is (done: 0..1 of its blocks)
  * at least every `every` seconds (0: after every chunk of blocks; chunks
  * aim at every / 5 s), from the calling thread, between chunks (no worker

@@ -93,7 +93,7 @@ static const char help[] =
     "  --image FILE.png a shaded picture of it (OpenVDB's level-set ray tracer;\n"
     "                   with --design, coloured by the deviation, with a legend)\n"
     "  --quiet          no progress bar and no summary\n"
-    "  --threads N      threads for the stock passes (default 0: all cores)\n"
+    "  --threads N      threads for the whole run (default 0: all cores)\n"
     "  --stamp MM       benchmark baseline: stamp the cutter every MM along each move\n"
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "  --balance N      after the run, how evenly 2 to N processes would share the\n"
@@ -576,6 +576,8 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   const int parts = mpi->comm.size > 1, rank = mpi->comm.rank;
   int rc = parse_args(&o, argc, argv);
   if (rc == 1) return 0;
+  if (rc == 0 && o.cfg.threads > 0) /* all of the run's passes, not only the removal's */
+    swarf_stock_limit_threads(o.cfg.threads);
   if (rc == 0 && o.stock.file == NULL) rc = check_size(&o.cfg);
   if (rc == 0 && parts && o.balance) rc = usage_error("--balance: run it on one process");
   if (rc == 0 && parts) rc = check_program(o.program);

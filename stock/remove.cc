@@ -866,6 +866,11 @@ struct CubeCuts {
     }
     return bound + low[c] >= kMargin;
   }
+  /// The world position of cube c's centre in block b.
+  static Vec3d centre(const Pass &p, const Block &b, int c) {
+    return block_point(p, b.origin, ((c >> 4) << 1) + 0.5, (((c >> 2) & 3) << 1) + 0.5,
+                       ((c & 3) << 1) + 0.5);
+  }
   void reset(const Block &b) {
     for (int c = 0; c < 64; c++) {
       list[c].clear();
@@ -884,8 +889,7 @@ struct CubeCuts {
       if (planes != nullptr && octant_keeps_below(p, planes->at(octant_of(c), i - b.begin), c))
         continue;
       const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-      const Vec3d q = block_point(p, b.origin, ((c >> 4) << 1) + 0.5, (((c >> 2) & 3) << 1) + 0.5,
-                                  ((c & 3) << 1) + 0.5);
+      const Vec3d q = centre(p, b, c);
       const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
       if (d - rv + low[c] >= kMargin) continue;
       // a plane only outside the cut (its support function's rule)
@@ -902,8 +906,7 @@ struct CubeCuts {
     if (e.plane >= 0) return e;
     const RemoveScratch &w = p.s.scratch;
     const swarf_stock_cut &cut = p.cuts[w.pairs[e.pair].cut];
-    const Vec3d q = block_point(p, b.origin, ((c >> 4) << 1) + 0.5, (((c >> 2) & 3) << 1) + 0.5,
-                                ((c & 3) << 1) + 0.5);
+    const Vec3d q = centre(p, b, c);
     e.plane = p.support[w.pairs[e.pair].cut](cut.ctx, q.x(), q.y(), q.z(), &e.d, e.g) == 1;
     return e;
   }

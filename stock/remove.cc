@@ -422,9 +422,11 @@ struct OctantPlanes {
   };
   std::vector<Entry> e;
   uint32_t count = 0;
+  /// Room for n cuts; the octants' visits write every entry (a memset of
+  /// them all here was 4 % of a measured run's instructions).
   void reset(uint32_t n) {
     count = n;
-    e.assign(8 * size_t(n), Entry{kOut, 0.0, {0.0, 0.0, 0.0}});
+    if (e.size() < 8 * size_t(n)) e.resize(8 * size_t(n));
   }
   Entry &at(int octant, uint32_t k) { return e[size_t(octant) * count + k]; }
 };
@@ -556,6 +558,15 @@ private:
   uint32_t hn_, ns_ = 0;
 };
 
+/// A thread's scratch for the octants' visits (taken once per task: a
+/// thread_local in this module is a call to __tls_get_addr, 2.5 % of a
+/// measured run when each octant asked for its own).
+struct OctScratch {
+  std::vector<OctOrder::Key> keys;
+  std::vector<uint32_t> order;
+  std::vector<CutAt> oct;
+};
+
 /// Pass 4 for the 2^3 voxels at (x0, y0, z0) of the block and one cut whose
 /// sdf at the cube's centre is dcube: a voxel is evaluated unless the bound
 /// from the centre keeps it below its value; all are cleared when the cube lies
@@ -671,7 +682,8 @@ void visit_cube_cuts(const Pass &p, const Block &b, OctOrder &oct, int x0, int y
 /// the summaries let through on bear.nc and tiger.nc); the octant's eight
 /// cubes are then visited one after another with all of them, deepest first.
 void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockValues &bv,
-                  CutAt *oct) {
+                  OctScratch &os) {
+  CutAt *oct = os.oct.data();
   const RemoveScratch &w = p.s.scratch;
   const double omin = bv.omin[((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2)];
   const Vec3d c = block_point(p, b.origin, x0 + 1.5, y0 + 1.5, z0 + 1.5);
@@ -686,8 +698,12 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
         oct_hi, kMargin - bv.cmin[(((x0 >> 1) + (k >> 2)) << 4) |
                                   (((y0 >> 1) + ((k >> 1) & 1)) << 2) | ((z0 >> 1) + (k & 1))]);
   uint32_t n = 0;
+  const int octant = ((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2);
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-    if (w.centre_sdf[i] + omin >= kMargin) continue; // a NaN sdf: visited
+    if (w.centre_sdf[i] + omin >= kMargin) { // a NaN sdf: visited
+      if (bv.planes != nullptr) bv.planes->at(octant, i - b.begin).state = OctantPlanes::kOut;
+      continue;
+    }
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
     const swarf_stock_support_fn f = p.support ? p.support[w.pairs[i].cut] : nullptr;
     CutAt &o = oct[n++];
@@ -695,18 +711,15 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
     o.plane = f != nullptr && f(cut.ctx, c.x(), c.y(), c.z(), &o.d, o.g) == 1;
     if (f == nullptr) o.d = cut_value(p, cut, c, oct_lo, oct_hi);
     if (bv.planes != nullptr) {
-      OctantPlanes::Entry &r =
-          bv.planes->at(((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2), i - b.begin);
+      OctantPlanes::Entry &r = bv.planes->at(octant, i - b.begin);
       r.state = o.plane ? OctantPlanes::kPlane : OctantPlanes::kNoPlane;
       r.d = o.d;
       std::copy(o.g, o.g + 3, r.g);
     }
   }
   if (n == 0) return;
-  thread_local std::vector<OctOrder::Key> keys;
-  thread_local std::vector<uint32_t> order;
-  if (keys.size() < n) keys.resize(n), order.resize(n);
-  OctOrder ord(oct, n, keys.data(), order.data());
+  if (os.keys.size() < n) os.keys.resize(n), os.order.resize(n);
+  OctOrder ord(oct, n, os.keys.data(), os.order.data());
   for (int sx = x0; sx < x0 + 4; sx += 2)
     for (int sy = y0; sy < y0 + 4; sy += 2)
       for (int sz = z0; sz < z0 + 4; sz += 2)
@@ -757,7 +770,7 @@ inline void collapse_if_uniform(const Leaf &leaf, Block &b) {
 /// raised. Marks the block kCollapse (with its tile value) if no voxel is left
 /// in the band. arg (measured): where each voxel's final value came from
 /// (BlockValues::arg), left as it was for voxels no cut raised.
-void visit_leaf(const Pass &p, Leaf &leaf, Block &b, uint32_t *arg = nullptr,
+void visit_leaf(const Pass &p, Leaf &leaf, Block &b, OctScratch &os, uint32_t *arg = nullptr,
                 OctantPlanes *planes = nullptr) {
   const RemoveScratch &w = p.s.scratch;
   const float bgf = p.bgf;
@@ -771,13 +784,12 @@ void visit_leaf(const Pass &p, Leaf &leaf, Block &b, uint32_t *arg = nullptr,
     for (uint32_t i = b.begin; i < b.begin + b.count; i++)
       visit_flat(p, b, p.cuts[w.pairs[i].cut], w.centre_sdf[i], bv);
   } else {
-    thread_local std::vector<CutAt> oct;
-    if (oct.size() < b.count) oct.resize(b.count);
+    if (os.oct.size() < b.count) os.oct.resize(b.count);
     leaf_summaries(p, bv);
     for (int x = 0; x < 8; x += 4)
       for (int y = 0; y < 8; y += 4)
         for (int z = 0; z < 8; z += 4)
-          visit_octant(p, b, x, y, z, bv, oct.data());
+          visit_octant(p, b, x, y, z, bv, os);
   }
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const float old = data[n];
@@ -912,6 +924,22 @@ struct CubeCuts {
   }
 };
 
+/// A thread's scratch for the visits (remove_cuts takes it once per task).
+struct VisitScratch {
+  OctScratch oct;
+  OctantPlanes planes;
+  CubeCuts cubes;
+  std::unique_ptr<Leaf> tile; ///< a tile's block, until it proves a leaf
+};
+
+/// This thread's VisitScratch. Not inlined: GCC otherwise propagates the
+/// thread_local into the visit and asks __tls_get_addr for its address at
+/// each use in the loops (4 % of a measured run's instructions).
+__attribute__((noinline)) VisitScratch &visit_scratch() {
+  thread_local VisitScratch vs;
+  return vs;
+}
+
 /// Pass 4, measured: the block's final values by the plain visit (the
 /// maximum does not depend on the cuts' order), then each cut credited, in
 /// program order, with the inside fraction it removed, and checked for a
@@ -942,21 +970,22 @@ struct CubeCuts {
 /// (half a voxel; a voxel with the design, where a depth also reads a
 /// voxel), it is emptied without evaluating the cut: its credit is its
 /// remaining fraction, its depth min(-value, voxel).
-void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design, ConstAcc *dacc) {
+void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design, ConstAcc *dacc,
+                         VisitScratch &vs) {
   RemoveScratch &w = p.s.scratch;
   const float *data = leaf.buffer().data();
   float old[Leaf::SIZE];
   std::memcpy(old, data, sizeof old);
   uint32_t arg[Leaf::SIZE]; // the cut each changed voxel's final value came from
   std::fill_n(arg, Leaf::SIZE, UINT32_MAX);
-  thread_local OctantPlanes planes;
+  OctantPlanes &planes = vs.planes;
   planes.reset(b.count);
-  visit_leaf(p, leaf, b, arg, &planes);
+  visit_leaf(p, leaf, b, vs.oct, arg, &planes);
   const double half = 0.5 * p.voxel, bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel;
   const swarf_stock *ds = p.measure->design;
   if (design && dacc && design_far(p, *dacc, b.origin)) design = nullptr;
   const double floor = design ? -p.voxel : -half, deep = design ? p.voxel : half;
-  thread_local CubeCuts cubes;
+  CubeCuts &cubes = vs.cubes;
   cubes.reset(b);
   cubes.planes = p.flat ? nullptr : &planes;
   auto changed = [&](openvdb::Index n) {
@@ -1303,7 +1332,8 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, cons
     std::unique_ptr<ConstAcc> dacc;
     if (measure && measure->design) design.reset(new GridProbe(*measure->design, s));
     if (design && design->aligned()) dacc.reset(new ConstAcc(measure->design->grid->constTree()));
-    thread_local std::unique_ptr<Leaf> scratch; // a tile's block, until it proves a leaf
+    VisitScratch &vs = visit_scratch();
+    std::unique_ptr<Leaf> &scratch = vs.tile;
     for (size_t i = r.begin(); i != r.end(); ++i) {
       Block &b = w.blocks[w.visit[i]];
       const bool was_tile = b.action == kVisitTile;
@@ -1315,9 +1345,9 @@ void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, cons
         leaf = scratch.get();
       }
       if (measure)
-        visit_leaf_measured(p, *leaf, b, design.get(), dacc.get());
+        visit_leaf_measured(p, *leaf, b, design.get(), dacc.get(), vs);
       else
-        visit_leaf(p, *leaf, b);
+        visit_leaf(p, *leaf, b, vs.oct);
       if (was_tile && b.action != kCollapse) w.fresh[i].reset(new Leaf(*leaf));
     }
   });

@@ -455,8 +455,15 @@ struct MeshSurface {
   struct Box {
     double lo[3], hi[3];
   };
-  std::vector<Box> chunks; ///< bounds of sorted[kChunk i, kChunk (i + 1))
+  /// An implicit binary tree of bounds over the chunks sorted[kChunk c,
+  /// kChunk (c + 1)): node 1 the root, node i's children 2i and 2i + 1, chunk
+  /// c's leaf node `leaves + c` (empty leaves hold an empty box, at infinite
+  /// distance). Morton order keeps a node's chunks together, so its box is
+  /// tight and a query visits few nodes.
+  std::vector<Box> nodes;
+  size_t leaves = 0; ///< a power of two, at least the chunks' count
   void order();
+  void build_tree();
 };
 
 /// The triangles in Morton order, in chunks with their bounds; the mesh
@@ -483,14 +490,31 @@ void MeshSurface::order() {
   sorted.reserve(t.size());
   for (const auto &k : key)
     sorted.push_back(t[k.second]);
-  for (size_t c = 0; c < sorted.size(); c += kChunk) {
-    MeshSurface::Box b = {{sorted[c].lo[0], sorted[c].lo[1], sorted[c].lo[2]},
-                          {sorted[c].hi[0], sorted[c].hi[1], sorted[c].hi[2]}};
-    for (size_t k = c; k < std::min(c + kChunk, sorted.size()); k++)
+  build_tree();
+}
+
+/// The chunks' bounds as the tree's leaves, then each node's as the union of
+/// its children's (in floating point too a parent is never farther from a
+/// point than its children: the pruning only ever skips what the chunks'
+/// own boxes would).
+void MeshSurface::build_tree() {
+  const size_t chunks = (sorted.size() + kChunk - 1) / kChunk;
+  leaves = 1;
+  while (leaves < chunks)
+    leaves *= 2;
+  const double inf = std::numeric_limits<double>::infinity();
+  nodes.assign(2 * leaves, Box{{inf, inf, inf}, {-inf, -inf, -inf}});
+  for (size_t c = 0; c < chunks; c++) {
+    Box &b = nodes[leaves + c];
+    for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, sorted.size()); k++)
       for (int a = 0; a < 3; a++)
         b.lo[a] = std::min(b.lo[a], sorted[k].lo[a]), b.hi[a] = std::max(b.hi[a], sorted[k].hi[a]);
-    chunks.push_back(b);
   }
+  for (size_t i = leaves - 1; i >= 1; i--)
+    for (int a = 0; a < 3; a++) {
+      nodes[i].lo[a] = std::min(nodes[2 * i].lo[a], nodes[2 * i + 1].lo[a]);
+      nodes[i].hi[a] = std::max(nodes[2 * i].hi[a], nodes[2 * i + 1].hi[a]);
+    }
 }
 
 std::shared_ptr<MeshSurface> mesh_surface(std::vector<openvdb::Vec3s> pts,
@@ -507,11 +531,36 @@ double mesh_surface_distance(MeshSurface &m, const openvdb::Vec3d &p) {
   // query of the caller's parallel loop while it holds the flag.
   std::call_once(m.once, [&] { tbb::this_task_arena::isolate([&] { m.order(); }); });
   double best = std::numeric_limits<double>::infinity();
-  for (size_t c = 0; c < m.chunks.size(); c++) {
-    if (box_dist2(m.chunks[c].lo, m.chunks[c].hi, p) >= best) continue;
-    for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, m.sorted.size()); k++)
-      if (box_dist2(m.sorted[k].lo, m.sorted[k].hi, p) < best)
-        best = std::min(best, tri_dist2(m.sorted[k], p));
+  if (m.sorted.empty()) return best;
+  // Depth first, the nearer child first (its triangles lower the best soon),
+  // a node passed over when its box is no nearer than the best found.
+  struct Entry {
+    size_t node;
+    double d2;
+  };
+  Entry stack[64]; // the tree's depth is below 40 (2^32 triangles at most)
+  size_t top = 0;
+  stack[top++] = {1, box_dist2(m.nodes[1].lo, m.nodes[1].hi, p)};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.d2 >= best) continue;
+    if (e.node >= m.leaves) {
+      const size_t c = e.node - m.leaves;
+      for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, m.sorted.size()); k++)
+        if (box_dist2(m.sorted[k].lo, m.sorted[k].hi, p) < best)
+          best = std::min(best, tri_dist2(m.sorted[k], p));
+      continue;
+    }
+    const size_t a = 2 * e.node, b = a + 1;
+    const double da = box_dist2(m.nodes[a].lo, m.nodes[a].hi, p),
+                 db = box_dist2(m.nodes[b].lo, m.nodes[b].hi, p);
+    if (da <= db) {
+      stack[top++] = {b, db};
+      stack[top++] = {a, da};
+    } else {
+      stack[top++] = {a, da};
+      stack[top++] = {b, db};
+    }
   }
   return std::sqrt(best);
 }

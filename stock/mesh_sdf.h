@@ -26,8 +26,10 @@ std::shared_ptr<MeshSurface> mesh_surface(std::vector<openvdb::Vec3s> points,
 
 /// Exact distance (index units) from the index-space point p to the surface:
 /// triangles in chunks of 32 along a Morton curve (sorted at the first call,
-/// thread-safe), chunks whose bounding box is farther than the best found
-/// skipped.
+/// thread-safe) under a binary tree of bounding boxes, searched depth first,
+/// nearer box first, boxes no nearer than the best found skipped (bear's
+/// design at 0.2 mm, 1.36 M triangles: ~10^4 queries/s a thread near the
+/// surface, where a scan of all chunks managed ~500).
 double mesh_surface_distance(MeshSurface &m, const openvdb::Vec3d &p);
 
 /// A level set of the solid bounded by the mesh: points in index space

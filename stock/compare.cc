@@ -70,7 +70,14 @@ struct Found {
   double volume = 0.0, missing = 0.0;  ///< inside fractions, voxels
   double depth = 0.0;                  ///< deepest (mm), 0 none
   Vec3d at = Vec3d(0.0);
+  bool clamped = false; ///< a depth read the design at its band's edge (a lower bound)
 };
+
+/// True if a design value is at its band's edge (background bg): beyond it,
+/// the distance is at least that.
+inline bool at_edge(double d, float bg) {
+  return std::fabs(d) >= double(bg) * (1.0 - 1e-6);
+}
 
 /// What the passes share.
 struct Frame {
@@ -78,11 +85,25 @@ struct Frame {
   const swarf_stock *initial;
   double tol;
   bool same_lattice;  ///< design and stock: same voxel and origin
-  /// The tolerance reaches beyond the design's band (a design read from a
-  /// mesh): design values at the band's edge are measured on its triangles.
+  /// The values the volumes need reach beyond the design's band (a design
+  /// read from a mesh; exact_needed): design values at the band's edge are
+  /// measured on its triangles.
   bool exact_far;
   bool initial_same;  ///< the initial stock and the design: same voxel and origin
 };
+
+/// True if a design (read from a mesh, band `bg` mm) must be measured on its
+/// triangles at its band's edge to compare at tolerance `tol`. On one
+/// lattice (design values read at the stock's voxel centres) the volumes
+/// take inside_fraction(d -/+ tol), which is 0 or 1 beyond |d| = tol + half
+/// a voxel, and the band's edge reads as +-bg, on the same side: exact
+/// values are needed up to there only (depths beyond the band are measured
+/// anyway: beyond_band). Sampled trilinearly (another lattice) a value mixes
+/// eight voxels a voxel away: as before, a voxel's margin.
+bool exact_needed(double bg, double tol, double vs, double vd, bool aligned) {
+  if (aligned) return bg < tol + 0.5 * vs;
+  return tol + std::max(vs, vd) >= bg;
+}
 
 /// Design values at the band's edge of one block when the frame is
 /// exact_far: blocks whose centre is farther from the design's surface than
@@ -120,6 +141,7 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
     out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile, v) - inside_fraction(d - f.tol, v));
     const double h = d + vouched_radius(-double(w.tile), v);
     if (h > f.tol) out.depth = h, out.at = index_to_world(f.s, w.origin.offsetBy(4));
+    out.clamped = w.tile < 0.0f && d > 0.0 && at_edge(d, f.design.background);
     return;
   }
   FarValues far{f, block_centre(f.s, w.origin), v};
@@ -129,9 +151,11 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
     const Coord ijk = w.origin + Leaf::offsetToLocalCoord(n);
     const Vec3d q = index_to_world(f.s, ijk);
     // one index space: the design's voxel ijk, as design.at(q) would round to
-    const double d = far.at(f.same_lattice ? double(design.at_index(ijk)) : design.at(q), q);
+    const double raw = f.same_lattice ? double(design.at_index(ijk)) : design.at(q);
+    const double d = far.at(raw, q);
     out.volume += std::max(0.0, inside_fraction(s, v) - inside_fraction(d - f.tol, v));
     if (!(s < 0.0)) continue;
+    if (raw > 0.0 && at_edge(raw, f.design.background)) out.clamped = true;
     const double h = d + vouched_radius(-s, v);
     if (h > f.tol && h > out.depth) out.depth = h, out.at = q;
   }
@@ -146,11 +170,13 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
     out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile + f.tol, v) - inside_fraction(s, v));
     const double g = -double(w.tile) + vouched_radius(s, v);
     if (s > 0.0 && g > f.tol) out.depth = g, out.at = index_to_world(f.design, w.origin.offsetBy(4));
+    out.clamped = s > 0.0 && w.tile < 0.0f && at_edge(w.tile, f.design.background);
     return;
   }
   FarValues far{f, block_centre(f.design, w.origin), v};
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-    double d = w.leaf ? w.leaf->getValue(n) : w.tile;
+    const double raw = w.leaf ? w.leaf->getValue(n) : w.tile;
+    double d = raw;
     if (!f.exact_far && !(inside_fraction(d + f.tol, v) > 0.0)) continue;
     const Coord ijk = w.origin + Leaf::offsetToLocalCoord(n);
     const Vec3d q = index_to_world(f.design, ijk);
@@ -167,6 +193,7 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
     out.volume += std::max(0.0, std::min(in, had) - inside_fraction(s, f.s.voxel));
     out.missing += std::max(0.0, in - had);
     if (!(s > 0.0) || !(s0 < 0.0)) continue;
+    if (raw < 0.0 && at_edge(raw, f.design.background)) out.clamped = true;
     const double g = -d + vouched_radius(std::min(s, -s0), f.s.voxel);
     if (g > f.tol && g > out.depth) out.depth = g, out.at = q;
   }
@@ -189,26 +216,35 @@ template <class Fn> Found sum_blocks(const std::vector<Work> &blocks, Fn &&fn, s
 }
 
 /// A voxel near the band's edge: its depth is the exact distance to the
-/// design's surface at q plus r.
+/// design's surface at q (`known`, the band's value, unless NaN: measured on
+/// the triangles) plus r.
 struct Beyond {
   Vec3d q;
   double r;
+  double known;
 };
 
 /// The deepest point where the design's band ran out (a design read from a
-/// mesh): blocks whose finding reached the reach, taken by decreasing upper
-/// bound (the exact distance at the block's centre plus its radius and a
-/// voxel), the voxels of those that can still beat the best measured
+/// mesh): blocks whose finding may be deeper than found, taken by decreasing
+/// upper bound (the exact distance at the block's centre plus its radius and
+/// a voxel), the voxels of those that can still beat the best measured
 /// exactly. `collect(state, work, out)` lists a block's voxels near the
-/// band's edge; `grid` is the one the blocks come from.
+/// band's edge; `grid` is the one the blocks come from. A block may be
+/// deeper when it read the design at the band's edge (`clamped`: design
+/// values read on one lattice, `by_clamp`), else (values interpolated from
+/// eight voxels, which mixes the edge in unseen) when its finding reached
+/// the reach. The first keeps a narrow band cheap: a finding deeper than the
+/// band but of band values only is exact as it is.
 template <class Pass, class Collect>
-Found beyond_band(const swarf_stock &design, const swarf_stock &grid, const std::vector<Work> &blocks,
-                  const std::vector<Found> &found, Found total, const Pass &pass, Collect collect) {
+Found beyond_band(const swarf_stock &design, const swarf_stock &grid,
+                  const std::vector<Work> &blocks, const std::vector<Found> &found, Found total,
+                  const Pass &pass, bool by_clamp, Collect collect) {
   const double reach = design.background, v = grid.voxel;
   std::vector<size_t> idx;
   Found best;  // the exact findings: blocks that stayed within the band
   for (size_t i = 0; i < found.size(); i++) {
-    if (found[i].depth >= reach) idx.push_back(i);
+    if (by_clamp ? found[i].clamped : found[i].depth >= reach)
+      idx.push_back(i);
     else if (found[i].depth > best.depth) best.depth = found[i].depth, best.at = found[i].at;
   }
   if (idx.empty() || !design.surface) return total;
@@ -231,7 +267,7 @@ Found beyond_band(const swarf_stock &design, const swarf_stock &grid, const std:
     list.clear();
     collect(*state, blocks[idx[k]], list);
     for (const Beyond &b : list) {
-      const double d = surface_distance(design, b.q) + b.r;
+      const double d = (std::isnan(b.known) ? surface_distance(design, b.q) : b.known) + b.r;
       if (d > best.depth) best.depth = d, best.at = b.q;
     }
   }
@@ -297,9 +333,10 @@ void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock 
   const bool same = GridProbe::lattices_coincide(s, design) && (s.origin - design.origin).length() <= 1e-9 * s.voxel;
   const bool initial_same = initial != nullptr && GridProbe::lattices_coincide(*initial, design) &&
                             (initial->origin - design.origin).length() <= 1e-9 * s.voxel;
-  const Frame f{s, design, initial, tol, same,
-                design.surface != nullptr && tol + std::max(s.voxel, design.voxel) >= double(design.background),
-                initial_same};
+  const bool exact_far = design.surface != nullptr &&
+                         exact_needed(double(design.background), tol, s.voxel, design.voxel,
+                                      GridProbe::lattices_coincide(s, design));
+  const Frame f{s, design, initial, tol, same, exact_far, initial_same};
   // Voxels within a voxel of the band's edge may be the deepest of a block
   // that reached it: they are measured on the triangles too.
   const double edge = double(design.background) - design.voxel;
@@ -307,25 +344,37 @@ void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock 
   const std::vector<Work> sblocks = blocks_below(s, 0.0f), dblocks = blocks_below(design, 0.0f);
   const ExcessPass xp{f};
   Found ex = sum_blocks(sblocks, xp, found);
-  ex = beyond_band(design, s, sblocks, found, ex, xp, [&](ExcessPass::State &st, const Work &w, std::vector<Beyond> &l) {
-    for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-      const double sv = w.leaf ? w.leaf->getValue(n) : w.tile;
-      if (!(sv < 0.0)) continue;
-      const Vec3d q = index_to_world(s, w.origin + Leaf::offsetToLocalCoord(n));
-      if (st.design.at(q) >= edge) l.push_back({q, vouched_radius(-sv, s.voxel)});
-    }
-  });
+  // On one lattice a value inside the band is exact as it is (the band's).
+  const bool aligned = GridProbe::lattices_coincide(s, design);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto known = [&](double d) {
+    return aligned && !at_edge(d, design.background) ? std::fabs(d) : nan;
+  };
+  ex = beyond_band(design, s, sblocks, found, ex, xp, aligned,
+                   [&](ExcessPass::State &st, const Work &w, std::vector<Beyond> &l) {
+                     for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+                       const double sv = w.leaf ? w.leaf->getValue(n) : w.tile;
+                       if (!(sv < 0.0)) continue;
+                       const Vec3d q = index_to_world(s, w.origin + Leaf::offsetToLocalCoord(n));
+                       const double d = st.design.at(q);
+                       if (d >= edge) l.push_back({q, vouched_radius(-sv, s.voxel), known(d)});
+                     }
+                   });
   const GougePass gp{f};
   Found go = sum_blocks(dblocks, gp, found);
-  go = beyond_band(design, design, dblocks, found, go, gp, [&](GougePass::State &st, const Work &w, std::vector<Beyond> &l) {
-    for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-      const double d = w.leaf ? w.leaf->getValue(n) : w.tile;
-      if (!(d <= -edge)) continue;
-      const Vec3d q = index_to_world(design, w.origin + Leaf::offsetToLocalCoord(n));
-      const double sv = st.stock.at(q), s0 = st.initial ? st.initial->at(q) : -1e30;
-      if (sv > 0.0 && s0 < 0.0) l.push_back({q, vouched_radius(std::min(sv, -s0), s.voxel)});
-    }
-  });
+  go = beyond_band(design, design, dblocks, found, go, gp, aligned,
+                   [&](GougePass::State &st, const Work &w, std::vector<Beyond> &l) {
+                     for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+                       const double d = w.leaf ? w.leaf->getValue(n) : w.tile;
+                       if (!(d <= -edge)) continue;
+                       const Vec3d q =
+                           index_to_world(design, w.origin + Leaf::offsetToLocalCoord(n));
+                       const double sv = st.stock.at(q),
+                                    s0 = st.initial ? st.initial->at(q) : -1e30;
+                       if (sv > 0.0 && s0 < 0.0)
+                         l.push_back({q, vouched_radius(std::min(sv, -s0), s.voxel), known(d)});
+                     }
+                   });
   // Beyond the band: exact when the design came from a mesh, else clamped to it.
   const double reach = design.surface ? std::numeric_limits<double>::infinity() : design.background;
   const double vs = std::pow(s.voxel, 3), vd = std::pow(design.voxel, 3);
@@ -364,4 +413,22 @@ extern "C" swarf_status swarf_stock_compare(const swarf_stock *s, const swarf_st
     *out = swarf_stock_deviation{};
     swarf::compare(*s, *design, initial, tolerance > 0.0 ? tolerance : 0.5 * s->voxel, *out);
   });
+}
+
+extern "C" int swarf_stock_design_band(const swarf_stock *stock, double voxel, double tolerance,
+                                       int views) {
+  if (stock != nullptr) voxel = stock->voxel;
+  if (views || !(voxel > 0.0) || !std::isfinite(voxel) || !std::isfinite(tolerance))
+    return SWARF_STOCK_DESIGN_BAND;
+  if (stock != nullptr) // a design read from a mesh has its origin at (0, 0, 0)
+    for (int k = 0; k < 3; k++) {
+      const double o = stock->origin[k] / voxel;
+      if (!(std::fabs(o - std::round(o)) <= 1e-6)) return SWARF_STOCK_DESIGN_BAND;
+    }
+  const double tol = tolerance > 0.0 ? tolerance : 0.5 * voxel;
+  int h = 1;
+  while (h < 64 &&
+         swarf::exact_needed(double(swarf::band_background(h, voxel)), tol, voxel, voxel, true))
+    h++;
+  return h;
 }

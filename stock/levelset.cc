@@ -362,13 +362,18 @@ extern "C" swarf_status swarf_stock_resample(const swarf_stock *s, double voxel,
 
 extern "C" swarf_status swarf_stock_read_design(const char *path, double voxel, swarf_stock **out,
                                                 swarf_error *err) {
+  return swarf_stock_read_design_band(path, voxel, SWARF_STOCK_DESIGN_BAND, out, err);
+}
+
+extern "C" swarf_status swarf_stock_read_design_band(const char *path, double voxel, int half_width,
+                                                     swarf_stock **out, swarf_error *err) {
   if (out) *out = nullptr;
   return swarf::guard(err, path, [&] {
     if (out == nullptr) throw Error(SWARF_ERR_ARG, "out is NULL");
     swarf::check_path(path);
     const std::string ext = swarf::lower_extension(path);
     if (ext == "stl") {
-      *out = swarf::read_stl(path, nullptr, voxel, SWARF_STOCK_DESIGN_BAND, /*keep_surface=*/true);
+      *out = swarf::read_stl(path, nullptr, voxel, half_width, /*keep_surface=*/true);
     } else if (ext == "vdb") {
       *out = swarf::read_vdb(path, nullptr, voxel, 0).release();
     } else {

@@ -584,6 +584,8 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
   rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial);
   if ((rc = swarf_cli_mpi_agree(mpi, rc))) return swarf_stock_free(initial), rc;
+  o.verify.frame = initial;
+  o.verify.views = o.mesh != NULL || o.image != NULL;
   rc = swarf_verify_prepare(&o.verify, &o.cfg);
   if ((rc = swarf_cli_mpi_agree(mpi, rc)))
     return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;

@@ -260,7 +260,9 @@ int swarf_cli_compare(int argc, char **argv) {
   if (rc == 1) return 0;
   if (rc) return rc;
   if (swarf_stock_read_vdb(o.a, NULL, 0.0, 0, &a, &err) != SWARF_OK) return read_error("A", &err);
-  if (swarf_stock_read_design(o.b, swarf_stock_voxel(a), &b, &err) != SWARF_OK) {
+  const int band = swarf_stock_design_band(a, swarf_stock_voxel(a), o.tolerance,
+                                           o.image != NULL || o.mesh != NULL);
+  if (swarf_stock_read_design_band(o.b, swarf_stock_voxel(a), band, &b, &err) != SWARF_OK) {
     swarf_stock_free(a);
     return read_error("B", &err);
   }

@@ -139,7 +139,9 @@ static int read_design(swarf_verify *v, double voxel) {
   char msg[1024];
   swarf_error_init(&err);
   const double t0 = process_seconds();
-  const swarf_status st = swarf_stock_read_design(v->design_path, voxel, &v->design, &err);
+  const int band = swarf_stock_design_band(v->frame, voxel, v->tolerance, v->views);
+  const swarf_status st =
+      swarf_stock_read_design_band(v->design_path, voxel, band, &v->design, &err);
   v->design_read_s = process_seconds() - t0;
   if (st == SWARF_OK) return 0;
   swarf_error_format(&err, msg, sizeof msg);

@@ -36,6 +36,9 @@ typedef struct {
   const char *stock_spec, *machine_spec;
   const char *tool_specs[SWARF_SIM_MAX_TOOLS];
   int ntools;
+  /* what the design is read for (its band: swarf_stock_design_band) */
+  const swarf_stock *frame; /* the stock given (NULL: one made at the run's voxel) */
+  int views;                /* the design also colours a picture or mesh */
   /* the run */
   swarf_stock *design;
   double design_read_s; /* CPU time (all threads) reading the design, s */
@@ -51,7 +54,8 @@ extern const char swarf_verify_help[];
 int swarf_verify_option(swarf_verify *v, const char *flag, const char *val, int *i);
 
 /* Before the run: refuses an unwritable --report folder, reads the design at
- * the stock's voxel, puts the setup and design into cfg. 0, or the exit
+ * the stock's voxel with the band its uses need (frame, views, tolerance),
+ * puts the setup and design into cfg. 0, or the exit
  * status (2 bad input, 1 internal) after a message. */
 int swarf_verify_prepare(swarf_verify *v, swarf_sim_config *cfg);
 

@@ -121,10 +121,10 @@ struct FarValues {
     if (!f.exact_far || std::fabs(d) < double(f.design.background) * (1.0 - 1e-6)) return d;
     if (state == 0) {
       const double reach = f.tol + 0.5 * voxel, r = 3.5 * std::sqrt(3.0) * voxel;
-      state = surface_distance(f.design, centre) - r >= reach ? 1 : 2;
+      state = surface_distance_exact(f.design, centre) - r >= reach ? 1 : 2;
       far = std::max(double(f.design.background), reach);
     }
-    const double e = state == 1 ? far : surface_distance(f.design, q);
+    const double e = state == 1 ? far : surface_distance_exact(f.design, q);
     return d < 0.0 ? -e : e;
   }
 };
@@ -229,17 +229,25 @@ struct Beyond {
 /// upper bound (the exact distance at the block's centre plus its radius and
 /// a voxel), the voxels of those that can still beat the best measured
 /// exactly. `collect(state, work, out)` lists a block's voxels near the
-/// band's edge; `grid` is the one the blocks come from. A block may be
-/// deeper when it read the design at the band's edge (`clamped`: design
-/// values read on one lattice, `by_clamp`), else (values interpolated from
-/// eight voxels, which mixes the edge in unseen) when its finding reached
-/// the reach. The first keeps a narrow band cheap: a finding deeper than the
-/// band but of band values only is exact as it is.
+/// band's edge; `grid` is the one the blocks come from.
+///
+/// On one lattice (`by_clamp`) a block may be deeper than found when it read
+/// the design at the band's edge (`clamped`); a finding deeper than the band
+/// but of band values only is exact as it is, which keeps a narrow band
+/// cheap. Its voxels' values are then those of a band wide enough
+/// (surface_distance), each block's deepest its first in voxel order, and
+/// the result the first deepest in block order: what the block pass gives
+/// with such a band, where (ties) included. Otherwise (values interpolated
+/// from eight voxels, which mixes the edge in unseen) a block may be deeper
+/// when its finding reached the reach, and the deepest is the first found.
 template <class Pass, class Collect>
 Found beyond_band(const swarf_stock &design, const swarf_stock &grid,
                   const std::vector<Work> &blocks, const std::vector<Found> &found, Found total,
                   const Pass &pass, bool by_clamp, Collect collect) {
   const double reach = design.background, v = grid.voxel;
+  auto dist = [&](const Vec3d &q) {
+    return by_clamp ? surface_distance(design, q) : surface_distance_exact(design, q);
+  };
   std::vector<size_t> idx;
   Found best;  // the exact findings: blocks that stayed within the band
   for (size_t i = 0; i < found.size(); i++) {
@@ -249,29 +257,52 @@ Found beyond_band(const swarf_stock &design, const swarf_stock &grid,
   }
   if (idx.empty() || !design.surface) return total;
   std::vector<double> ub(idx.size()), lb(idx.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, idx.size(), 4), [&](const tbb::blocked_range<size_t> &r) {
-    for (size_t k = r.begin(); k != r.end(); ++k) {
-      ub[k] = surface_distance(design, block_centre(grid, blocks[idx[k]].origin)) + (3.5 * std::sqrt(3.0) + 1.0) * v;
-      lb[k] = surface_distance(design, found[idx[k]].at);
-    }
-  });
-  for (size_t k = 0; k < idx.size(); k++)
-    if (lb[k] > best.depth) best.depth = lb[k], best.at = found[idx[k]].at;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, idx.size(), 4),
+                    [&](const tbb::blocked_range<size_t> &r) {
+                      for (size_t k = r.begin(); k != r.end(); ++k) {
+                        ub[k] = dist(block_centre(grid, blocks[idx[k]].origin)) +
+                                (3.5 * std::sqrt(3.0) + 1.0) * v;
+                        lb[k] = dist(found[idx[k]].at);
+                      }
+                    });
   std::vector<size_t> order(idx.size());
   for (size_t k = 0; k < order.size(); k++) order[k] = k;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return ub[a] > ub[b]; });
   auto state = pass.make();
   std::vector<Beyond> list;
-  for (size_t k : order) {
-    if (ub[k] <= best.depth) break;
+  auto measure = [&](size_t k, Found &out) {
     list.clear();
     collect(*state, blocks[idx[k]], list);
     for (const Beyond &b : list) {
-      const double d = (std::isnan(b.known) ? surface_distance(design, b.q) : b.known) + b.r;
-      if (d > best.depth) best.depth = d, best.at = b.q;
+      const double d = (std::isnan(b.known) ? dist(b.q) : b.known) + b.r;
+      if (d > out.depth) out.depth = d, out.at = b.q;
     }
+  };
+  if (!by_clamp) {
+    for (size_t k = 0; k < idx.size(); k++)
+      if (lb[k] > best.depth) best.depth = lb[k], best.at = found[idx[k]].at;
+    for (size_t k : order) {
+      if (ub[k] <= best.depth) break;
+      measure(k, best);
+    }
+    total.depth = best.depth, total.at = best.at;
+    return total;
   }
-  total.depth = best.depth, total.at = best.at;
+  double bound = best.depth; // the deepest is at least this
+  for (size_t k = 0; k < idx.size(); k++)
+    bound = std::max(bound, lb[k]);
+  std::vector<Found> exact(idx.size()); // depth 0: passed over (it cannot reach the deepest)
+  for (size_t k : order) {
+    if (ub[k] < bound) break;
+    measure(k, exact[k]);
+    bound = std::max(bound, exact[k].depth);
+  }
+  Found deepest;
+  for (size_t i = 0, k = 0; i < found.size(); i++) {
+    const Found &b = k < idx.size() && idx[k] == i ? exact[k++] : found[i];
+    if (b.depth > deepest.depth) deepest.depth = b.depth, deepest.at = b.at;
+  }
+  total.depth = deepest.depth, total.at = deepest.at;
   return total;
 }
 

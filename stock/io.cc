@@ -227,7 +227,7 @@ size_t write_mesh_file(const swarf_stock &s, const char *path, const swarf_stock
       double d = sampler.wsSample(openvdb::Vec3d(m.points[i]));
       // Near or beyond the band of a design read from a mesh: its triangles.
       if (opt.design->surface && std::fabs(d) > double(opt.design->background) - opt.design->voxel)
-        d = std::copysign(surface_distance(*opt.design, openvdb::Vec3d(m.points[i])), d);
+        d = std::copysign(surface_distance_exact(*opt.design, openvdb::Vec3d(m.points[i])), d);
       dev[i] = float(d);
       float c[3];
       deviation_colour(dev[i], tol, range, c);

@@ -513,24 +513,20 @@ void MeshSurface::order() {
       lo = openvdb::math::minComponent(lo, Vec3d(pts[t[c]])),
       hi = openvdb::math::maxComponent(hi, Vec3d(pts[t[c]]));
   std::vector<std::pair<uint64_t, uint32_t>> key(tris.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 4096),
-                    [&](const tbb::blocked_range<size_t> &r) {
-                      for (size_t k = r.begin(); k != r.end(); ++k) {
-                        uint64_t code = 0;
-                        for (int a = 0; a < 3; a++) {
-                          const double p0 = pts[tris[k][0]][a], p1 = pts[tris[k][1]][a],
-                                       p2 = pts[tris[k][2]][a];
-                          const double c = (std::min(p0, std::min(p1, p2)) +
-                                            std::max(p0, std::max(p1, p2))) *
-                                           0.5,
-                                       span = hi[a] - lo[a];
-                          code |= spread3(uint64_t(span > 0.0 ? (c - lo[a]) / span * 2097151.0
-                                                              : 0.0))
-                                  << a;
-                        }
-                        key[k] = {code, uint32_t(k)};
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, tris.size(), 4096), [&](const tbb::blocked_range<size_t> &r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) {
+          uint64_t code = 0;
+          for (int a = 0; a < 3; a++) {
+            const double p0 = pts[tris[k][0]][a], p1 = pts[tris[k][1]][a], p2 = pts[tris[k][2]][a];
+            const double c = (std::min(p0, std::min(p1, p2)) + std::max(p0, std::max(p1, p2))) *
+                             0.5,
+                         span = hi[a] - lo[a];
+            code |= spread3(uint64_t(span > 0.0 ? (c - lo[a]) / span * 2097151.0 : 0.0)) << a;
+          }
+          key[k] = {code, uint32_t(k)};
+        }
+      });
   tbb::parallel_sort(key.begin(), key.end());
   sorted.resize(tris.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, key.size(), 4096),
@@ -575,7 +571,8 @@ std::shared_ptr<MeshSurface> mesh_surface(std::vector<openvdb::Vec3s> pts,
   return m;
 }
 
-double mesh_surface_distance(MeshSurface &m, const openvdb::Vec3d &p) {
+/// The squared distance (index units) of mesh_surface_distance.
+double mesh_surface_distance2(MeshSurface &m, const openvdb::Vec3d &p) {
   // Ordered at the first query (most designs are never asked beyond their
   // band); isolated, so that the sort's thread does not take up another
   // query of the caller's parallel loop while it holds the flag.
@@ -612,11 +609,28 @@ double mesh_surface_distance(MeshSurface &m, const openvdb::Vec3d &p) {
       stack[top++] = {b, db};
     }
   }
-  return std::sqrt(best);
+  return best;
+}
+
+double mesh_surface_distance(MeshSurface &m, const openvdb::Vec3d &p) {
+  return std::sqrt(mesh_surface_distance2(m, p));
+}
+
+double surface_distance_exact(const swarf_stock &d, const openvdb::Vec3d &w) {
+  return mesh_surface_distance(*d.surface, (w - d.origin) / d.voxel) * d.voxel;
 }
 
 double surface_distance(const swarf_stock &d, const openvdb::Vec3d &w) {
-  return mesh_surface_distance(*d.surface, (w - d.origin) / d.voxel) * d.voxel;
+  // within SWARF_STOCK_DESIGN_BAND voxels, what mesh_band stores there: the
+  // squared distance as a float, its root in mm as a float
+  Vec3d p = (w - d.origin) / d.voxel; // the voxel's index, as mesh_band's
+  for (int a = 0; a < 3; a++)
+    if (std::fabs(p[a] - std::round(p[a])) < 1e-6) p[a] = std::round(p[a]);
+  const double e2 = mesh_surface_distance2(*d.surface, p);
+  const float f2 = float(e2);
+  constexpr double kBand2 = double(SWARF_STOCK_DESIGN_BAND) * SWARF_STOCK_DESIGN_BAND;
+  if (double(f2) < kBand2) return double(float(std::sqrt(double(f2)) * d.voxel));
+  return std::sqrt(e2) * d.voxel;
 }
 
 openvdb::FloatGrid::Ptr mesh_band(const std::vector<openvdb::Vec3s> &pts,

@@ -29,6 +29,12 @@ struct MeshSurface;  // mesh_sdf.h
 
 /// Exact distance (mm, >= 0) from world point w to the surface of design d
 /// (d.surface non-null; mesh_sdf.cc).
+double surface_distance_exact(const swarf_stock &d, const openvdb::Vec3d &w);
+/// The same at a voxel centre w of d, rounded as a band of
+/// SWARF_STOCK_DESIGN_BAND voxels stores it within that band (a float, from
+/// the float squared distance): a design read with a narrower band (its
+/// values beyond measured here) gives the depths, and their ties, of one read
+/// with that band bit for bit; exact (double) beyond.
 double surface_distance(const swarf_stock &d, const openvdb::Vec3d &w);
 
 /// One (block, cut) pair of a removal: the index origin of a leaf-aligned 8^3

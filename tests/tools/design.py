@@ -111,6 +111,24 @@ vk.check(gouges(r) == [] and r.report["summary"]["design"]["gouge_mm3"] < 0.05,
          "--tolerance 0.35 hides the 0.3 mm gouge: %s, %s mm^3" %
          (gouges(r), r.report["summary"]["design"]["gouge_mm3"]))
 
+# tolerances beyond half a voxel: the design's band grows with the tolerance
+# (swarf_stock_design_band: 2 voxels at 0.15 to 0.3, 3 at 0.35), so that every
+# voxel the volumes weigh (within the tolerance and half a voxel of the
+# design's surface) is exact: gouge (0.3 - t) x the pass's footprint, excess
+# (1 - t) x the unfaced area; a band too narrow for t reads deeper voxels as
+# its edge and loses part of both
+for t in (0.15, 0.25, 0.3, 0.35):
+    r = run(prog, faced, ["--tolerance", str(t)])
+    des = r.report["summary"]["design"]
+    vol = max(0.0, 0.3 - t) * (40 * 6)
+    vk.near(des["gouge_mm3"], vol, 0.03 * (0.3 - VOX / 2) * (40 * 6),
+            "--tolerance %g: gouge volume = footprint x (0.3 - t)" % t)
+    r = run(text, faced, ["--tolerance", str(t)])
+    des = r.report["summary"]["design"]
+    vk.near(des["excess_mm3"], 40 * 15 * (1.0 - t), 0.01 * exc,
+            "--tolerance %g: excess volume 40 x 15 x (1 - t)" % t)
+    vk.near(des["excess_mm"], 1.0, 0.01, "--tolerance %g: largest excess 1 mm" % t)
+
 # --fail-on gouge: status 4, outputs written
 r = run(prog, faced, ["--fail-on", "gouge"])
 vk.check(r.status == 4 and os.path.exists(r.out) and r.report is not None,

@@ -353,15 +353,33 @@ void sign_tiles(openvdb::FloatTree &tree, const std::vector<Crossing> &cross, fl
   openvdb::tools::signedFloodFill(tree, true, 1, openvdb::FloatTree::RootNodeType::LEVEL);
 }
 
-/// Triangle k of the mesh with what the distance needs.
-void make_tri(const std::vector<openvdb::Vec3s> &pts, const openvdb::Vec3I &tri, Tri &t) {
-  t.a = Vec3d(pts[tri[0]]), t.b = Vec3d(pts[tri[1]]), t.c = Vec3d(pts[tri[2]]);
+/// The triangle (A, B, C) with what the distance needs.
+void make_tri(const openvdb::Vec3s &A, const openvdb::Vec3s &B, const openvdb::Vec3s &C, Tri &t) {
+  t.a = Vec3d(A), t.b = Vec3d(B), t.c = Vec3d(C);
   const Vec3d n = (t.b - t.a).cross(t.c - t.a);
   const double len = n.length();
   t.n = len > 0.0 && std::isfinite(len) ? n / len : Vec3d(0.0);
   for (int a = 0; a < 3; a++) {
     t.lo[a] = std::min(t.a[a], std::min(t.b[a], t.c[a]));
     t.hi[a] = std::max(t.a[a], std::max(t.b[a], t.c[a]));
+  }
+}
+
+void make_tri(const std::vector<openvdb::Vec3s> &pts, const openvdb::Vec3I &tri, Tri &t) {
+  make_tri(pts[tri[0]], pts[tri[1]], pts[tri[2]], t);
+}
+
+/// A triangle's corners, as the queries keep them (36 bytes, not Tri's 120:
+/// the ordering writes less, and a query makes the few Tri it measures).
+struct Corners {
+  openvdb::Vec3s p[3];
+};
+
+/// The bounds of c, as make_tri's.
+inline void corners_box(const Corners &c, double lo[3], double hi[3]) {
+  for (int a = 0; a < 3; a++) {
+    const double x = c.p[0][a], y = c.p[1][a], z = c.p[2][a];
+    lo[a] = std::min(x, std::min(y, z)), hi[a] = std::max(x, std::max(y, z));
   }
 }
 
@@ -485,7 +503,7 @@ struct MeshSurface {
   std::vector<openvdb::Vec3s> pts; ///< the mesh, until ordered
   std::vector<openvdb::Vec3I> tris;
   std::once_flag once;
-  std::vector<Tri> sorted; ///< in Morton order of their centroids
+  std::vector<Corners> sorted; ///< in Morton order of their centroids
   struct Box {
     double lo[3], hi[3];
   };
@@ -531,8 +549,10 @@ void MeshSurface::order() {
   sorted.resize(tris.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, key.size(), 4096),
                     [&](const tbb::blocked_range<size_t> &r) {
-                      for (size_t k = r.begin(); k != r.end(); ++k)
-                        make_tri(pts, tris[key[k].second], sorted[k]);
+                      for (size_t k = r.begin(); k != r.end(); ++k) {
+                        const openvdb::Vec3I &t = tris[key[k].second];
+                        sorted[k] = Corners{{pts[t[0]], pts[t[1]], pts[t[2]]}};
+                      }
                     });
   std::vector<openvdb::Vec3s>().swap(pts);
   std::vector<openvdb::Vec3I>().swap(tris);
@@ -552,9 +572,12 @@ void MeshSurface::build_tree() {
   nodes.assign(2 * leaves, Box{{inf, inf, inf}, {-inf, -inf, -inf}});
   for (size_t c = 0; c < chunks; c++) {
     Box &b = nodes[leaves + c];
-    for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, sorted.size()); k++)
+    for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, sorted.size()); k++) {
+      double lo[3], hi[3];
+      corners_box(sorted[k], lo, hi);
       for (int a = 0; a < 3; a++)
-        b.lo[a] = std::min(b.lo[a], sorted[k].lo[a]), b.hi[a] = std::max(b.hi[a], sorted[k].hi[a]);
+        b.lo[a] = std::min(b.lo[a], lo[a]), b.hi[a] = std::max(b.hi[a], hi[a]);
+    }
   }
   for (size_t i = leaves - 1; i >= 1; i--)
     for (int a = 0; a < 3; a++) {
@@ -593,9 +616,14 @@ double mesh_surface_distance2(MeshSurface &m, const openvdb::Vec3d &p) {
     if (e.d2 >= best) continue;
     if (e.node >= m.leaves) {
       const size_t c = e.node - m.leaves;
-      for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, m.sorted.size()); k++)
-        if (box_dist2(m.sorted[k].lo, m.sorted[k].hi, p) < best)
-          best = std::min(best, tri_dist2(m.sorted[k], p));
+      for (size_t k = c * kChunk; k < std::min((c + 1) * kChunk, m.sorted.size()); k++) {
+        double lo[3], hi[3];
+        corners_box(m.sorted[k], lo, hi);
+        if (!(box_dist2(lo, hi, p) < best)) continue;
+        Tri t;
+        make_tri(m.sorted[k].p[0], m.sorted[k].p[1], m.sorted[k].p[2], t);
+        best = std::min(best, tri_dist2(t, p));
+      }
       continue;
     }
     const size_t a = 2 * e.node, b = a + 1;

@@ -356,7 +356,7 @@ SWARF_API swarf_status swarf_stock_read_design_band(const char *path, double vox
  * apart) it needs exact values only up to the tolerance and half a voxel
  * (the volumes' inside fractions; depths beyond are measured), and at least
  * one voxel (the removal passes over blocks where the design is a voxel
- * away): max(1, ceil(tolerance / voxel + 1/2)), which makes the read ~1.8x
+ * away): max(1, ceil(tolerance / voxel + 1/2)), which makes the read ~1.7x
  * cheaper at the default tolerance (bear, 0.2 mm). Elsewhere (another lattice: the
  * design sampled trilinearly), or with `views` nonzero (pictures and .ply
  * colours sample the band), SWARF_STOCK_DESIGN_BAND. */

@@ -422,8 +422,8 @@ struct OctantPlanes {
   };
   std::vector<Entry> e;
   uint32_t count = 0;
-  /// Room for n cuts; the octants' visits write every entry (a memset of
-  /// them all here was 4 % of a measured run's instructions).
+  /// Room for n cuts; the octants' visits write every entry, so none is
+  /// cleared here.
   void reset(uint32_t n) {
     count = n;
     if (e.size() < 8 * size_t(n)) e.resize(8 * size_t(n));
@@ -558,9 +558,9 @@ private:
   uint32_t hn_, ns_ = 0;
 };
 
-/// A thread's scratch for the octants' visits (taken once per task: a
-/// thread_local in this module is a call to __tls_get_addr, 2.5 % of a
-/// measured run when each octant asked for its own).
+/// A thread's scratch for the octants' visits, taken once per task with
+/// the rest of VisitScratch (a thread_local in this module costs a call to
+/// __tls_get_addr at each access).
 struct OctScratch {
   std::vector<OctOrder::Key> keys;
   std::vector<uint32_t> order;

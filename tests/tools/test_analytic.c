@@ -126,13 +126,31 @@ static double helix_lower_bound(const double p[3]) {
   return combine(fabs(hypot(p[0] - 20, p[1] - 15) - 8) - 2, -5 - p[2]);
 }
 
+/* The helix's samples i / HELIX_N, computed once per helix_turns. */
+static const double *helix_samples(void) {
+  static double *pts = NULL;
+  static int turns = 0;
+  if (turns != helix_turns) {
+    free(pts);
+    pts = malloc(sizeof(double) * 3 * (HELIX_N + 1));
+    if (pts == NULL) abort();
+    for (int i = 0; i <= HELIX_N; i++)
+      helix_at((double)i / HELIX_N, &pts[3 * i]);
+    turns = helix_turns;
+  }
+  return pts;
+}
+
 static double helix_min(const double p[3], int ball) {
   double best = 1e30, ba = 0, t[3], lb = helix_lower_bound(p);
   if (lb > PRUNE) return lb;
+  const double *pts = helix_samples();
   for (int i = 0; i <= HELIX_N; i++) {
-    helix_at((double)i / HELIX_N, t);
-    double dh = hypot(p[0] - t[0], p[1] - t[1]);
-    double d = ball ? ball_column(dh, p[2], t[2], t[2], 2) : flat_column(dh, p[2], t[2], t[2], 2);
+    const double *s = &pts[3 * i], dx = p[0] - s[0], dy = p[1] - s[1];
+    /* both columns lie within radius 2 of their axis: distance >= dh - 2 */
+    if (best + 2 > 0 && dx * dx + dy * dy >= (best + 2) * (best + 2)) continue;
+    double dh = hypot(dx, dy);
+    double d = ball ? ball_column(dh, p[2], s[2], s[2], 2) : flat_column(dh, p[2], s[2], s[2], 2);
     if (d < best) best = d, ba = (double)i / HELIX_N;
   }
   /* golden refinement around the best sample */
@@ -177,13 +195,18 @@ static double helix_volume(int ball) {
   for (int s = ns - 20000; s <= ns; s++) {
     helix_at((double)s / ns, t);
     int i0 = (int)((t[0] - 2 - x0) / cell), j0 = (int)((t[1] - 2 - y0) / cell);
-    for (int i = i0; i <= i0 + (int)(4 / cell) + 1; i++)
-      for (int j = j0; j <= j0 + (int)(4 / cell) + 1; j++) {
-        double x = x0 + (i + 0.5) * cell, y = y0 + (j + 0.5) * cell, d = hypot(x - t[0], y - t[1]);
-        if (d > 2 || i < 0 || j < 0 || i >= n || j >= n) continue;
-        double z = ball ? t[2] + 2 - sqrt(4 - d * d) : t[2];
+    for (int i = i0; i <= i0 + (int)(4 / cell) + 1; i++) {
+      double dx = x0 + (i + 0.5) * cell - t[0];
+      if (dx * dx > 4 || i < 0 || i >= n) continue;
+      double h = sqrt(4 - dx * dx); /* the disk's half chord at this column */
+      int ja = (int)((t[1] - h - y0) / cell) - 1, jb = (int)((t[1] + h - y0) / cell) + 1;
+      for (int j = ja > j0 ? ja : j0; j <= jb && j <= j0 + (int)(4 / cell) + 1; j++) {
+        double dy = y0 + (j + 0.5) * cell - t[1], d2 = dx * dx + dy * dy;
+        if (d2 > 4 || j < 0 || j >= n) continue;
+        double z = ball ? t[2] + 2 - sqrt(4 - d2) : t[2];
         if (z < low[i * n + j]) low[i * n + j] = z;
       }
+    }
   }
   for (int i = 0; i < n * n; i++)
     vol += -low[i] * cell * cell;

@@ -82,8 +82,16 @@ static double body_sdf(const piece *k, const double q[3]) {
   const int N = 240;
   double rho = hypot(q[0], q[1]), z = q[2], best = -1e300, ba = 0;
 #define SLACK(t) (rho * sin(t) + z * cos(t) - support(k, (double[3]){sin(t), 0, cos(t)}))
+  static double st[241], ct[241]; /* sin and cos of the scan's angles, taken once */
+  static int tabled;
+  if (!tabled) {
+    for (int i = 0; i <= N; i++)
+      st[i] = sin(M_PI * i / N), ct[i] = cos(M_PI * i / N);
+    tabled = 1;
+  }
   for (int i = 0; i <= N; i++) {
-    double t = M_PI * i / N, v = SLACK(t);
+    double t = M_PI * i / N;
+    double v = rho * st[i] + z * ct[i] - support(k, (double[3]){st[i], 0, ct[i]});
     if (v > best) best = v, ba = t;
   }
   double lo = fmax(0, ba - M_PI / N), hi = fmin(M_PI, ba + M_PI / N);

@@ -65,18 +65,26 @@ ok "the same run without the limit writes all three" '[ $? -eq 0 ] && ! cmp -s m
 "$swarf" simulate p.ngc $S --out o.vdb --report no-such-folder/r.json 2> err
 ok "--report in a missing folder refused before the run" '[ $? -eq 2 ] && grep -q -- "--report: cannot write" err'
 ok "no temporary after the report failures" '[ -z "$(ls | grep "\.tmp\.")" ]'
-# kill -9 and SIGTERM during runs that write (finer voxel: a longer write): no temporary left.
+# kill -9, SIGTERM and SIGINT during runs that write (finer voxel: a longer
+# write): no temporary left. A background job of a script starts with SIGINT
+# ignored, which swarf keeps (as under nohup): env --default-signal gives it
+# the default back, or the INT runs would go to their end unkilled.
 K="--stock box:0,0,-10,40,40,0 --tool T1=ball,D3 --voxel 0.08 --quiet"
+killed_late=""
 for sig in KILL TERM INT; do
   for delay in 0.3 0.8 1.5 2.5; do
-    "$swarf" simulate q.ngc $K --out k.vdb --mesh k.stl 2> /dev/null &
+    env --default-signal=INT "$swarf" simulate q.ngc $K --out k.vdb --mesh k.stl 2> /dev/null &
     pid=$!
     sleep $delay
     kill -$sig $pid 2> /dev/null
     wait $pid 2> /dev/null
+    rc=$?
+    [ $rc -gt 128 ] || killed_late="$killed_late $sig@$delay:$rc"
   done
   ok "no temporary after kill -$sig" '[ -z "$(ls | grep "\.tmp\.")" ]'
 done
+# Each run was still going when its signal came (it ended by the signal).
+ok "every run ended by its signal (${killed_late:-all})" '[ -z "$killed_late" ]'
 # A stale temporary of a dead swarf is swept by the next write there.
 sh -c 'exit 0' &
 dead=$!

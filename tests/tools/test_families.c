@@ -79,10 +79,12 @@ static double support(const piece *k, const double *n) {
  * (rho m_r + z m_z - h(m)), h its support (m_r >= 0 suffices, rho >= 0):
  * 720 angles, golden polish around the best. */
 static double body_sdf(const piece *k, const double q[3]) {
-  const int N = 240;
+  enum { N = 240 };
   double rho = hypot(q[0], q[1]), z = q[2], best = -1e300, ba = 0;
-#define SLACK(t) (rho * sin(t) + z * cos(t) - support(k, (double[3]){sin(t), 0, cos(t)}))
-  static double st[241], ct[241]; /* sin and cos of the scan's angles, taken once */
+  /* the slack at the unit normal (s, c) = (sin t, cos t) of the meridian plane */
+#define SLACK_SC(s, c) (rho * (s) + z * (c) - support(k, (double[3]){(s), 0, (c)}))
+#define SLACK(t) SLACK_SC(sin(t), cos(t))
+  static double st[N + 1], ct[N + 1]; /* sin and cos of the scan's angles, taken once */
   static int tabled;
   if (!tabled) {
     for (int i = 0; i <= N; i++)
@@ -90,9 +92,8 @@ static double body_sdf(const piece *k, const double q[3]) {
     tabled = 1;
   }
   for (int i = 0; i <= N; i++) {
-    double t = M_PI * i / N;
-    double v = rho * st[i] + z * ct[i] - support(k, (double[3]){st[i], 0, ct[i]});
-    if (v > best) best = v, ba = t;
+    double v = SLACK_SC(st[i], ct[i]);
+    if (v > best) best = v, ba = M_PI * i / N;
   }
   double lo = fmax(0, ba - M_PI / N), hi = fmin(M_PI, ba + M_PI / N);
   for (int it = 0; it < 40; it++) {
@@ -104,6 +105,7 @@ static double body_sdf(const piece *k, const double q[3]) {
     best = fmax(best, fmax(v1, v2));
   }
 #undef SLACK
+#undef SLACK_SC
   return best;
 }
 

@@ -3,7 +3,8 @@
 # (stock/write_leaves.cc) against OpenVDB's own serial loop
 # (SWARF_VDB_SERIAL_WRITE=1): the files must be the same byte for byte but
 # for the header's random UUID (bytes 22-57). An 80 x 80 x 20 mm box at
-# 0.1 mm (over 16384 leaves: more than one round of buffers) cut by a slot, a
+# 0.1 mm (over 16384 leaves: more than one round of buffers; 0.18 mm with
+# SWARF_TEST_FAST=1, below) cut by a slot, a
 # ramp and an arc, on one and on two threads; pyopenvdb then reads the
 # parallel file and must find the stock grid with its leaves.
 #   vdb_write.sh SWARF
@@ -19,7 +20,7 @@ run() { # run NAME THREADS SERIAL
     { echo "FAIL: $1: $(cat "$tmp/err")"; exit 1; }
 }
 # SWARF_TEST_FAST=1 (the sanitized suite: 20 s a run there, most of it
-# building the 0.1 mm box): 0.18 mm (19,000 leaves: still two rounds) and the
+# building the 0.1 mm box): 0.18 mm (18,230 leaves: still two rounds) and the
 # two-thread write only; the one-thread one is the same code.
 files="par2 par1" voxel=0.1
 [ "${SWARF_TEST_FAST:-}" = 1 ] && files=par2 voxel=0.18

@@ -354,16 +354,20 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   if (block_outside(p, acc, b.origin, &leaf)) return;
   const Vec3d c = block_point(p, b.origin, 3.5, 3.5, 3.5);
   uint32_t kept = 0;
+  int clear = -1; // whether the design is clear of the block (asked once, when needed)
+  auto design_clear_here = [&] {
+    if (clear < 0) clear = p.measure->design == nullptr || design_clear(p, dacc, b.origin);
+    return clear == 1;
+  };
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
     const double d = cut_value(p, cut, c, -p.reach - kMargin, p.reach + kMargin);
     if (d > p.reach) continue; // untouched (a NaN is kept: its voxels decide)
-    if (-d > p.reach && p.measure == nullptr) {
-      b.action = kClear;
+    if (-d > p.reach && (p.measure == nullptr || (!p.measure->volumes && design_clear_here()))) {
+      b.action = kClear; // (gouges only: none can be found in the block)
       return;
     }
-    if (-d > p.reach && kept == 0 &&
-        (p.measure->design == nullptr || design_clear(p, dacc, b.origin))) {
+    if (-d > p.reach && kept == 0 && design_clear_here()) {
       // Measured: the first cut reaching the block clears it and removes all of it.
       w.pairs[b.begin] = w.pairs[i];
       w.removed[b.begin] = block_material(p, acc, b.origin, leaf);
@@ -812,9 +816,10 @@ inline double gouge_depth(const swarf_stock &design, double dq, double r, double
 
 /// True if no voxel of the block at o (stock index) can gouge the design by
 /// more than the tolerance: design and stock share a lattice and every design
-/// value over the block is at least a voxel (a gouge's depth is -value plus at
-/// most a voxel: <= 0 there). dacc: the design's tree.
-bool design_far(const Pass &p, ConstAcc &dacc, const Coord &o) {
+/// value over the block is at least `far` (a gouge's depth is -value plus at
+/// most a voxel: with far = a voxel, <= 0 there; with gouge_floor's, at most
+/// the tolerance). dacc: the design's tree.
+bool design_far(const Pass &p, ConstAcc &dacc, const Coord &o, double far) {
   const swarf_stock &d = *p.measure->design;
   const Vec3d off = (p.s.origin - d.origin) / p.voxel;
   const Coord lo(o.x() + int(std::lround(off[0])), o.y() + int(std::lround(off[1])),
@@ -826,7 +831,7 @@ bool design_far(const Pass &p, ConstAcc &dacc, const Coord &o) {
         const Coord c(x, y, z);
         const Leaf *leaf = dacc.probeConstLeaf(c);
         if (leaf == nullptr) {
-          if (!(double(dacc.getValue(c)) >= p.voxel)) return false;
+          if (!(double(dacc.getValue(c)) >= far)) return false;
           continue;
         }
         // the part of this leaf under the block
@@ -836,9 +841,20 @@ bool design_far(const Pass &p, ConstAcc &dacc, const Coord &o) {
         for (int i = a.x(); i <= e.x(); i++)
           for (int j = a.y(); j <= e.y(); j++)
             for (int k = a.z(); k <= e.z(); k++)
-              if (!(double(v[Leaf::coordToOffset(Coord(i, j, k))]) >= p.voxel)) return false;
+              if (!(double(v[Leaf::coordToOffset(Coord(i, j, k))]) >= far)) return false;
       }
   return true;
+}
+
+/// The design value at and above which a voxel cannot be gouged by more than
+/// the tolerance: its depth, -value plus at most a voxel, is then within it
+/// (a hair above voxel - tolerance, so that the rounding of that sum cannot
+/// make it exceed it), and the value is not the band's edge, beyond which a
+/// mesh's depth is measured on its triangles. The gouges-only replay passes
+/// such voxels over.
+inline double gouge_floor(const Pass &p) {
+  const double edge = -double(p.measure->design->background) * (1.0 - 1e-6);
+  return std::max(p.voxel - p.measure->tolerance, edge) + 1e-9;
 }
 
 /// The cuts that may change a block's 2^3 cubes, in program order, found
@@ -970,9 +986,25 @@ __attribute__((noinline)) VisitScratch &visit_scratch() {
 /// (half a voxel; a voxel with the design, where a depth also reads a
 /// voxel), it is emptied without evaluating the cut: its credit is its
 /// remaining fraction, its depth min(-value, voxel).
+///
+/// Gouges only (Measure::volumes false): a block where the design cannot be
+/// gouged (design_far at gouge_floor) gets the plain visit alone, and the
+/// replay takes only the voxels that went from material to air (a gouge needs
+/// material before the step and the cut at the centre) where the design value
+/// is below gouge_floor, each until it has no material left. Such a voxel's
+/// replay is step for step the full one's up to there (its cube's lists hold
+/// every cut that can raise it: they are cut by a lowest value at most its
+/// own), so every gouge, depth and place is the full measurement's.
 void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design, ConstAcc *dacc,
                          VisitScratch &vs) {
   RemoveScratch &w = p.s.scratch;
+  const bool volumes = p.measure->volumes;
+  const double far = volumes ? p.voxel : gouge_floor(p);
+  if (design && dacc && design_far(p, *dacc, b.origin, far)) design = nullptr;
+  if (!volumes && design == nullptr) { // gouges only, and none can be found here
+    visit_leaf(p, leaf, b, vs.oct);
+    return;
+  }
   const float *data = leaf.buffer().data();
   float old[Leaf::SIZE];
   std::memcpy(old, data, sizeof old);
@@ -983,34 +1015,43 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
   visit_leaf(p, leaf, b, vs.oct, arg, &planes);
   const double half = 0.5 * p.voxel, bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel;
   const swarf_stock *ds = p.measure->design;
-  if (design && dacc && design_far(p, *dacc, b.origin)) design = nullptr;
   const double floor = design ? -p.voxel : -half, deep = design ? p.voxel : half;
   CubeCuts &cubes = vs.cubes;
   cubes.reset(b);
   cubes.planes = p.flat ? nullptr : &planes;
-  auto changed = [&](openvdb::Index n) {
-    return data[n] > old[n] && old[n] < half && data[n] > -half;
-  };
   auto cube_of = [](openvdb::Index n) {
     return int(((n >> 7) << 4) | (((n >> 4) & 3) << 2) | ((n >> 1) & 3)); // x>>1, y>>1, z>>1
   };
-  uint16_t list[Leaf::SIZE]; // the voxels whose fraction changed
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  uint16_t list[Leaf::SIZE]; // the voxels to replay
+  double dqs[Leaf::SIZE];    // gouges only: their design values (else NaN: asked when needed)
   size_t count = 0;
-  for (openvdb::Index n = 0; n < Leaf::SIZE; n++)
-    if (changed(n)) {
-      double &lo = cubes.low[cube_of(n)];
-      lo = std::min(lo, std::max(double(old[n]), floor));
-      list[count++] = uint16_t(n);
+  for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+    double dq = nan;
+    if (volumes) { // the voxels whose fraction changed
+      if (!(data[n] > old[n] && old[n] < half && data[n] > -half)) continue;
+    } else { // those that crossed from material to air where the design may be gouged
+      if (!(old[n] < 0.0f && data[n] > 0.0f)) continue;
+      const Coord l = Leaf::offsetToLocalCoord(n);
+      dq = design->at(block_point(p, b.origin, l.x(), l.y(), l.z()));
+      if (!(dq < far)) continue;
     }
+    double &lo = cubes.low[cube_of(n)];
+    lo = std::min(lo, std::max(double(old[n]), floor));
+    dqs[count] = dq;
+    list[count++] = uint16_t(n);
+  }
   for (size_t at = 0; at < count; at++) {
     const openvdb::Index n = list[at];
     const Coord l = Leaf::offsetToLocalCoord(n);
     const int cube = cube_of(n);
     const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
-    double v = std::max(double(old[n]), floor), dq = std::numeric_limits<double>::quiet_NaN();
+    double v = std::max(double(old[n]), floor), dq = dqs[at];
+    bool dq_exact = false; // dq made exact beyond the band, if it is
     // No cut raises the voxel beyond its final value (the maximum the plain
-    // visit stored): the replay ends there, or where the voxel is empty.
-    const double end = std::min(half, double(data[n]));
+    // visit stored): the replay ends there, or where the voxel is empty; for
+    // the gouges only, where it has no material left (a gouge needs some).
+    const double end = volumes ? std::min(half, double(data[n])) : 0.0;
     CubeCuts::Entry e;
     for (size_t k = 0; v < end && cubes.get(p, b, cube, k, e); k++) {
       const uint32_t i = e.pair;
@@ -1041,11 +1082,12 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
         w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
       }
       if (design && v < 0.0 && d > 0.0) {
-        if (std::isnan(dq)) {
-          dq = design->at(q);
+        if (!dq_exact) {
+          if (std::isnan(dq)) dq = design->at(q);
           // Beyond the band of a design read from a mesh: its exact depth.
           if (ds->surface && dq <= -double(ds->background) * (1.0 - 1e-6))
             dq = -surface_distance(*ds, q);
+          dq_exact = true;
         }
         const double depth = gouge_depth(*ds, dq, std::min(d, -v), p.voxel);
         if (depth > p.measure->tolerance && depth > w.gouge[i])
@@ -1078,6 +1120,7 @@ void report_effects(const Pass &p, size_t ncuts) {
           c.gouge_at[k] = w.gouge_at[i][k];
       }
     }
+  if (!p.measure->volumes) return; // gouges only: no volumes (left 0)
   for (size_t i = 0; i < ncuts; i++)
     e[i].removed_voxels = removed[i], e[i].removed = removed[i] * v3;
 }
@@ -1475,11 +1518,12 @@ swarf_stock_remove_batch_measured(swarf_stock *s, const swarf_stock_cut *cuts, s
                                                    effects, err);
 }
 
-extern "C" swarf_status
-swarf_stock_remove_batch_measured_support(swarf_stock *s, const swarf_stock_cut *cuts,
-                                          const swarf_stock_support_fn *support, size_t ncuts,
-                                          const swarf_stock *design, double tolerance,
-                                          swarf_stock_cut_effect *effects, swarf_error *err) {
+namespace {
+
+swarf_status remove_measured(swarf_stock *s, const swarf_stock_cut *cuts,
+                             const swarf_stock_support_fn *support, size_t ncuts,
+                             const swarf_stock *design, double tolerance,
+                             swarf_stock_cut_effect *effects, bool volumes, swarf_error *err) {
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock is NULL");
     if (ncuts == 0) return;
@@ -1490,7 +1534,33 @@ swarf_stock_remove_batch_measured_support(swarf_stock *s, const swarf_stock_cut 
       throw swarf::Error(SWARF_ERR_ARG, "tolerance must be finite and >= 0");
     for (size_t i = 0; i < ncuts; i++)
       check_cut(cuts[i], i);
-    const swarf::Measure m{design, tolerance, effects};
+    swarf::Measure m{design, tolerance, effects};
+    m.volumes = volumes;
+    if (!volumes && design == nullptr) { // nothing to measure: the plain removal
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      for (size_t i = 0; i < ncuts; i++)
+        effects[i] = {0.0, 0.0, 0.0, {nan, nan, nan}};
+      swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, nullptr, support); });
+      return;
+    }
     swarf::in_arena(*s, [&] { swarf::remove_cuts(*s, cuts, ncuts, &m, support); });
   });
+}
+
+} // namespace
+
+extern "C" swarf_status
+swarf_stock_remove_batch_measured_support(swarf_stock *s, const swarf_stock_cut *cuts,
+                                          const swarf_stock_support_fn *support, size_t ncuts,
+                                          const swarf_stock *design, double tolerance,
+                                          swarf_stock_cut_effect *effects, swarf_error *err) {
+  return remove_measured(s, cuts, support, ncuts, design, tolerance, effects, true, err);
+}
+
+extern "C" swarf_status
+swarf_stock_remove_batch_gouges_support(swarf_stock *s, const swarf_stock_cut *cuts,
+                                        const swarf_stock_support_fn *support, size_t ncuts,
+                                        const swarf_stock *design, double tolerance,
+                                        swarf_stock_cut_effect *effects, swarf_error *err) {
+  return remove_measured(s, cuts, support, ncuts, design, tolerance, effects, false, err);
 }

@@ -454,6 +454,17 @@ SWARF_API swarf_status swarf_stock_remove_batch_measured_support(
     size_t ncuts, const swarf_stock *design, double tolerance, swarf_stock_cut_effect *effects,
     swarf_error *err);
 
+/* swarf_stock_remove_batch_measured_support for the gouges alone: the same
+ * grid and the same gouge_depth and gouge_at per cut, bit for bit, but
+ * removed and removed_voxels are 0. It replays only the voxels a design can
+ * be gouged at (a design NULL: the plain removal), so a run with a design
+ * and without per-line volumes costs little more than a plain one where the
+ * program stays off the design. */
+SWARF_API swarf_status swarf_stock_remove_batch_gouges_support(
+    swarf_stock *s, const swarf_stock_cut *cuts, const swarf_stock_support_fn *support,
+    size_t ncuts, const swarf_stock *design, double tolerance, swarf_stock_cut_effect *effects,
+    swarf_error *err);
+
 /* ==== Outputs with views and deviation colours ================================ */
 
 typedef enum {

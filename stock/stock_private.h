@@ -75,6 +75,9 @@ struct Measure {
   const swarf_stock *design;  ///< may be NULL: no gouges
   double tolerance;           ///< mm
   swarf_stock_cut_effect *effects;  ///< one per cut, filled
+  /// false: the gouges only (swarf_stock_remove_batch_gouges_support): no
+  /// volumes (removed left 0), and voxels that cannot gouge are not replayed
+  bool volumes = true;
 };
 
 /// Call openvdb::initialize() once per process (thread-safe).

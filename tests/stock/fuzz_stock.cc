@@ -67,6 +67,7 @@ void exercise(swarf_stock *s) {
   refused(swarf_stock_gouge(s, design, &cut, 0.0, &depth, nullptr, &err), err);
   swarf_stock_cut_effect e;
   refused(swarf_stock_remove_batch_measured(s, &cut, 1, design, 0.0, &e, &err), err);
+  refused(swarf_stock_remove_batch_gouges_support(s, &cut, nullptr, 1, design, 0.0, &e, &err), err);
   swarf_stock_free(design);
   const std::string mesh = temp_name(".ply");
   refused(swarf_stock_write_mesh(s, mesh.c_str(), nullptr, nullptr, &err), err);

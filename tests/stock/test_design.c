@@ -19,6 +19,8 @@
  *    swarf_stock_remove_batch's (also with cleared blocks);
  *  - with the initial stock: a design wider than the stock gives `missing`
  *    (analytic), not gouge;
+ *  - gouges only (no volumes): per cut the full measurement's gouges, bit for
+ *    bit, on random capsules, with the design on the stock's lattice and off it;
  *  - a design elsewhere: SWARF_ERR_ARG.
  */
 #include <math.h>
@@ -206,6 +208,91 @@ static void test_cleared_blocks(void) {
   swarf_stock_free(s);
 }
 
+static double uniform(unsigned *seed, double a, double b) {
+  *seed = *seed * 1103515245u + 12345u;
+  return a + (b - a) * (double)((*seed >> 8) & 0xffffff) / 16777216.0;
+}
+
+/* Gouges only (swarf_stock_remove_batch_gouges_support) against the full
+ * measurement: 48 random capsules over the design's top and through its
+ * sides, in 4 batches, with the design on the stock's lattice and off it
+ * (read at 0.07 mm: sampled trilinearly), at two tolerances. Per cut the
+ * same gouge depth and place, bit for bit, no volumes, and the grids bit for
+ * bit the same; without a design, the plain removal. */
+static void test_gouges_only(void) {
+  const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, -1.45};
+  enum { N = 48, B = 12 };
+  swarf_error err;
+  CHECK(stl_box_write("design_box.stl", lo, hi, 0, STL_GOOD) == 0, "write");
+  for (int lattice = 0; lattice < 2; lattice++)
+    for (int ti = 0; ti < 2; ti++) {
+      swarf_stock *d = NULL, *full = stock_box(), *only = stock_box();
+      const double tol = ti ? 0.12 : T;
+      CHECK(swarf_stock_read_design("design_box.stl", lattice ? 0.07 : V, &d, &err) == SWARF_OK,
+            "design: %s", err.message);
+      capsule_shape caps[N];
+      swarf_stock_cut cuts[N];
+      swarf_stock_cut_effect ef[N], eo[N];
+      unsigned seed = 20261203u + 7u * (unsigned)(2 * lattice + ti);
+      for (int i = 0; i < N; i++) {
+        for (int k = 0; k < 2; k++) {
+          caps[i].a[k] = uniform(&seed, -1, 11);
+          caps[i].b[k] = caps[i].a[k] + uniform(&seed, -4, 4);
+        }
+        caps[i].a[2] = uniform(&seed, -2.4, 0.5);
+        caps[i].b[2] = caps[i].a[2] + uniform(&seed, -0.5, 0.5);
+        caps[i].r = uniform(&seed, 0.3, 1.5);
+        cuts[i] = capsule_cut(&caps[i]);
+      }
+      for (int b = 0; b < N / B; b++) {
+        CHECK(swarf_stock_remove_batch_measured_support(full, cuts + B * b, NULL, B, d, tol,
+                                                        ef + B * b, &err) == SWARF_OK,
+              "%s", err.message);
+        CHECK(swarf_stock_remove_batch_gouges_support(only, cuts + B * b, NULL, B, d, tol,
+                                                      eo + B * b, &err) == SWARF_OK,
+              "%s", err.message);
+      }
+      int gouging = 0, same = 0, novolume = 0;
+      double deepest = 0;
+      for (int i = 0; i < N; i++) {
+        int at = 1;
+        for (int k = 0; k < 3; k++)
+          at &= ef[i].gouge_at[k] == eo[i].gouge_at[k] ||
+                (isnan(ef[i].gouge_at[k]) && isnan(eo[i].gouge_at[k]));
+        same += ef[i].gouge_depth == eo[i].gouge_depth && at;
+        novolume += eo[i].removed == 0 && eo[i].removed_voxels == 0;
+        gouging += ef[i].gouge_depth > 0;
+        if (ef[i].gouge_depth > deepest) deepest = ef[i].gouge_depth;
+      }
+      printf("gouges only (design %s, tolerance %.2f): %d of %d cuts gouge (deepest %.4f), the "
+             "same in %d\n",
+             lattice ? "off the lattice" : "on the lattice", tol, gouging, N, deepest, same);
+      CHECK(same == N, "every cut's gouge the full measurement's: %d of %d", same, N);
+      CHECK(novolume == N, "no volumes: %d of %d", novolume, N);
+      CHECK(gouging >= 8 && gouging <= N - 8, "a mix of gouging and clear cuts: %d", gouging);
+      CHECK(stock_differences(full, only) == 0, "the same grid bit for bit");
+      swarf_stock_free(d);
+      swarf_stock_free(only);
+      swarf_stock_free(full);
+    }
+  /* Without a design: the plain removal, no gouge, no volume. */
+  swarf_stock *s = stock_box(), *plain = stock_box();
+  capsule_shape c = {{1, 1, -1}, {9, 8, -2}, 1.2};
+  swarf_stock_cut cut = capsule_cut(&c);
+  swarf_stock_cut_effect e;
+  CHECK(swarf_stock_remove_batch_gouges_support(s, &cut, NULL, 1, NULL, T, &e, &err) == SWARF_OK,
+        "%s", err.message);
+  CHECK(swarf_stock_remove_batch(plain, &cut, 1, NULL) == SWARF_OK, "call failed");
+  CHECK(stock_differences(s, plain) == 0, "no design: the plain removal");
+  CHECK(e.removed == 0 && e.gouge_depth == 0 && isnan(e.gouge_at[0]),
+        "no design: nothing measured");
+  CHECK(swarf_stock_remove_batch_gouges_support(s, NULL, NULL, 1, NULL, T, &e, &err) ==
+            SWARF_ERR_ARG,
+        "NULL cuts refused");
+  swarf_stock_free(plain);
+  swarf_stock_free(s);
+}
+
 static void test_missing_and_elsewhere(void) {
   swarf_stock *s = stock_box(), *initial = copy(s);
   const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {12, 9.95, -1.45};
@@ -244,6 +331,7 @@ int main(void) {
   test_excess_layer();
   test_deep_gouge();
   test_cleared_blocks();
+  test_gouges_only();
   test_missing_and_elsewhere();
   return check_done();
 }

@@ -12,6 +12,7 @@ written here (a faced box; a box with a pocket).
   0.5 mm below the floor and a pass 0.4 mm into a wall gouge 0.5 and 0.4 mm
   at their lines; each gouge is told once per program line, by the move that
   first cut into the design (a later move through the same place is not).
+- without --report (only the gouges measured): the same warnings and summary.
 - --fail-on gouge: exit status 4, outputs still written; --tolerance;
   the report's gouge alarms; a design that misses the stock is an error
   (exit 2, nothing written).
@@ -29,9 +30,21 @@ stock = "box:0,0,-10,40,30,0"
 tool = "T1=flat,D6,L20"
 
 
-def run(program, design, extra=()):
+def run(program, design, extra=(), report=True):
     return vk.Run(swarf, program, ["--stock", stock, "--tool", tool, "--voxel", str(VOX),
-                                   "--design", design] + list(extra), d)
+                                   "--design", design] + list(extra), d, report=report)
+
+
+def same_without_report(r, program, design, what, extra=()):
+    """Without --report only the gouges are measured (swarf_stock_remove_batch_gouges_support):
+    the same warnings, line for line, depth for depth, and the same summary's design lines."""
+    q = run(program, design, extra, report=False)
+    design_lines = lambda t: [l for l in t.splitlines() if "design" in l and "CPU" not in l]
+    vk.check(q.status == r.status and q.stderr == r.stderr and gouges(q) == gouges(r),
+             "%s without --report: the same warnings\n%s\n---\n%s" % (what, q.stderr, r.stderr))
+    vk.check(design_lines(q.stdout) == design_lines(r.stdout) and design_lines(q.stdout),
+             "%s without --report: the same summary of the design\n%s\n---\n%s" %
+             (what, q.stdout, r.stdout))
 
 
 def gouges(r):
@@ -95,6 +108,7 @@ al = [a for a in r.report["alarms"] if a["kind"] == "gouge"]
 vk.check(len(al) == 1 and al[0]["line"] == deep_line, "one gouge alarm in the report: %s" % al)
 vk.check(re.search(r"gouge .* deepest 0\.30\d mm", r.stdout) is not None,
          "summary gives the deepest gouge:\n" + r.stdout)
+same_without_report(r, prog, faced, "pass at Z-1.3")
 
 # excess: face only y >= 15 (passes at 18..33 cover y 15..36); the rest (y 0..15) keeps 1 mm
 text, _ = facing(-1, [18, 22, 26, 30, 33])
@@ -168,6 +182,7 @@ vk.check([x[0] for x in g] == [w[0] for w in want], "gouges at lines %s: %s" % (
 for got, (line, depth) in zip(g, want):
     vk.near(got[2], depth, 0.002, "line %d: gouge depth (flat floor, flat wall: exact)" % line)
 vk.check(r.report["summary"]["alarm_counts"]["gouge"] >= 2, "gouge alarms counted")
+same_without_report(r, pocket_program(extra), pocket, "pocket plunge and wall")
 
 # a design that misses the stock: exit 2, nothing written
 far = os.path.join(d, "far.stl")

@@ -103,14 +103,19 @@ static void raise_gouge(swarf_sim *s, int i) {
   swarf_sim_raise(s, &a);
 }
 
-/* The batch, measuring each cut: its removed volume goes to its line, a
- * gouge into the design raises an alarm (in program order). */
+/* The batch, measuring each cut: its removed volume goes to its line (if
+ * asked for: else the gouges alone are measured), a gouge into the design
+ * raises an alarm (in program order). */
 static int flush_measured(swarf_sim *s) {
   swarf_error err;
   swarf_error_init(&err);
-  if (swarf_stock_remove_batch_measured_support(s->stock, s->cuts, s->supports, (size_t)s->n,
-                                                s->cfg.design, s->tolerance, s->effects,
-                                                &err) != SWARF_OK) {
+  swarf_status st =
+      s->cfg.line_volumes && s->cfg.cb.line != NULL
+          ? swarf_stock_remove_batch_measured_support(s->stock, s->cuts, s->supports, (size_t)s->n,
+                                                      s->cfg.design, s->tolerance, s->effects, &err)
+          : swarf_stock_remove_batch_gouges_support(s->stock, s->cuts, s->supports, (size_t)s->n,
+                                                    s->cfg.design, s->tolerance, s->effects, &err);
+  if (st != SWARF_OK) {
     swarf_sim_fail(s, err.status, 0, 0, "%s", err.message);
     return 1;
   }

@@ -133,11 +133,19 @@ with open(bear) as f, open(prog, "w") as g:
     g.write("G0 Z5\nG0 X10 Y70\nG1 Z-3 F300\nG1 X70\nG0 Z-6 X40 Y75\nG0 Z20\nM30\n")
 design = os.path.join(d, "design.stl")
 vk.write_stl(design, vk.box_triangles((2, 2, -20), (78, 78, -2.5)))
-ref = case("alarms", [prog, "--stock", "box:0,0,-20,80,80,0", "--tool", "T1=ball,D3.175,L6,S12,N3.175",
-                      "--voxel", "0.5", "--design", design, "--collision-depths", "20"], report=True)
+ALARMS = [prog, "--stock", "box:0,0,-20,80,80,0", "--tool", "T1=ball,D3.175,L6,S12,N3.175",
+          "--voxel", "0.5", "--design", design, "--collision-depths", "20"]
+ref = case("alarms", ALARMS, report=True)
 kinds = " ".join(ref[1])
 vk.check("rapid" in kinds and "shank" in kinds and "gouge" in kinds,
          "alarms: rapid, shank and gouge warnings all present")
+# without --report each part measures the gouges only: the same warnings
+p = run(2, ALARMS + ["--out", os.path.join(d, "alarms-gouges.vdb")])
+vk.check(p.returncode == 0 and ours(p.stderr) == ref[1],
+         "alarms -n 2 without --report (gouges only): the same warning lines%s" % (
+             "" if ours(p.stderr) == ref[1] else ":\n%s\nvs\n%s" % (ours(p.stderr)[:5], ref[1][:5])))
+same_grid(os.path.join(d, "alarms-1.vdb"), os.path.join(d, "alarms-gouges.vdb"),
+          "alarms -n 2 without --report")
 
 # ---- failures ----------------------------------------------------------------
 bad = os.path.join(d, "bad.ngc")

@@ -110,7 +110,7 @@ static int flush_measured(swarf_sim *s) {
   swarf_error err;
   swarf_error_init(&err);
   swarf_status st =
-      s->cfg.line_volumes && s->cfg.cb.line != NULL
+      s->volumes
           ? swarf_stock_remove_batch_measured_support(s->stock, s->cuts, s->supports, (size_t)s->n,
                                                       s->cfg.design, s->tolerance, s->effects, &err)
           : swarf_stock_remove_batch_gouges_support(s->stock, s->cuts, s->supports, (size_t)s->n,

@@ -102,7 +102,8 @@ swarf_status swarf_sim_design_init(swarf_sim *s, swarf_error *err) {
   static const swarf_stock_placement same = {{0, 0, 0}, {0, 0, 0}};
   swarf_status st;
   s->tolerance = s->cfg.tolerance > 0 ? s->cfg.tolerance : 0.5 * swarf_stock_voxel(s->stock);
-  s->measured = s->cfg.design != NULL || (s->cfg.line_volumes && s->cfg.cb.line != NULL);
+  s->volumes = s->cfg.line_volumes && s->cfg.cb.line != NULL;
+  s->measured = s->cfg.design != NULL || s->volumes;
   if (s->cfg.design == NULL) return SWARF_OK;
   st = swarf_stock_check_design(s->stock, s->cfg.design, err);
   if (st == SWARF_OK) st = swarf_stock_place(s->stock, &same, &s->initial, err);

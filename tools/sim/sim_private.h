@@ -50,6 +50,7 @@ struct swarf_sim {
   long *cut_id;  /* batch: the line each cut belongs to (measured removal) */
   swarf_stock_cut_effect *effects; /* batch: what each cut did (measured removal) */
   int measured;  /* removal measures each cut (line volumes or a design) */
+  int volumes;   /* the measured removal gives each cut's volume (lines report them) */
   double tolerance; /* gouges deeper than this, mm */
   swarf_stock *initial; /* the stock before the run, for the design comparison */
   /* the workpiece frame: machine = Rz(frame_rot) workpiece + frame_origin */

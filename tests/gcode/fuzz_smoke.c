@@ -1,6 +1,6 @@
 /* fuzz_smoke.c -- a plain driver for the fuzz entry (no libFuzzer needed).
  *
- * Usage: fuzz_smoke [-n mutations] [-t seconds] [-k] <dir-or-file>...
+ * Usage: fuzz_smoke [-n mutations] [-t seconds] [-k] [-o optional-dir]... <dir-or-file>...
  * Runs LLVMFuzzerTestOneInput (fuzz_gcode.c) on every seed file, then on
  * `mutations` inputs made from random windows of the seeds by byte flips,
  * insertions of G-code fragments, deletions and splices, with a fixed seed
@@ -8,7 +8,8 @@
  * seed's head: the first line when the seed starts with ';' (the dialect
  * line of fuzz_gcode.c: ";fanuc", ";haas", ";grbl"), and with -k the first
  * byte (the reader selector of fuzz_inputs.c). A breach of the entry's
- * checks aborts; a missing seed folder fails.
+ * checks aborts; a missing seed folder fails, but for one given with -o (the
+ * corpus in ../shared, which a plain clone does not have).
  */
 #include <dirent.h>
 #include <stdint.h>
@@ -153,7 +154,10 @@ int main(int argc, char **argv) {
       seconds = atof(argv[++i]);
     else if (strcmp(argv[i], "-k") == 0)
       keep_first_byte = 1;
-    else if (!load_path(argv[i])) {
+    else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
+      if (!load_path(argv[++i])) /* optional: the corpus beside a checkout */
+        printf("fuzz_smoke: no seeds from %s (not here), the others only\n", argv[i]);
+    } else if (!load_path(argv[i])) {
       fprintf(stderr, "fuzz_smoke: cannot read seeds from %s\n", argv[i]);
       return 1;
     }

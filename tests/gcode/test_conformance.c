@@ -525,8 +525,11 @@ int main(int argc, char **argv) {
   }
   snprintf(readme, sizeof readme, "%s/real/canon/README.md", argv[1]);
   probe = fopen(readme, "r");
-  CHECK(probe != NULL, "conformance folder missing: %s", readme);
-  if (probe == NULL) return check_done();
+  if (probe == NULL) { /* a clone without ../shared beside it */
+    printf("SKIPPED: the conformance corpus is not here (%s): it lives in ../shared beside a "
+           "checkout\n", readme);
+    return 77;
+  }
   fclose(probe);
   for (size_t i = 0; i < sizeof supported / sizeof supported[0]; i++)
     conform(argv[1], supported[i]);

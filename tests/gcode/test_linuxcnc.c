@@ -151,8 +151,11 @@ int main(int argc, char **argv) {
   }
   snprintf(probe, sizeof probe, "%s/linuxcnc/INDEX.md", argv[1]);
   index = canon_slurp(probe, &n);
-  CHECK(index != NULL, "conformance folder missing: %s", probe);
-  if (index == NULL) return check_done();
+  if (index == NULL) { /* a clone without ../shared beside it */
+    printf("SKIPPED: the conformance corpus is not here (%s): it lives in ../shared beside a "
+           "checkout\n", probe);
+    return 77;
+  }
   free(index);
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
     run_case(argv[1], &cases[i]);

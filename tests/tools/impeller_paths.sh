@@ -13,6 +13,10 @@
 # characteristic circles, engine/sweep_rigid_ball.c, against the general search).
 set -u
 swarf=$1 real=$2 voxel=$3 env=$4 what=$5
+[ -d "$real" ] || {
+  echo "SKIPPED: the conformance corpus is not here ($real): it lives in ../shared beside a checkout"
+  exit 77
+}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 head -600 "$real/lcnc-impeller-7bl-xyzac.ngc" > "$tmp/imp600.ngc"

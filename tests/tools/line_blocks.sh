@@ -11,6 +11,10 @@
 #   line_blocks.sh SWARF REAL_DIR
 set -u
 swarf=$1 real=$2
+[ -d "$real" ] || {
+  echo "SKIPPED: the conformance corpus is not here ($real): it lives in ../shared beside a checkout"
+  exit 77
+}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 { head -1 "$real/camotics-tiger.nc"; echo F300; sed -n 17011,19010p "$real/camotics-tiger.nc"; } \

@@ -1,16 +1,19 @@
 #!/usr/bin/python3
-"""mpi_runs.py SWARF REAL_DIR MPIRUN -- `swarf simulate` under mpirun (issue 13).
+"""mpi_runs.py SWARF FIXTURES MPIRUN -- `swarf simulate` under mpirun (issue 13).
 
 Each case runs one process (no launcher) and then `mpirun --oversubscribe -n
 2` and `-n 3` with the same command line, and checks that the written grids
 are the same voxel for voxel (pyopenvdb, same_grid.py: max difference 0,
 same active topology, same leaves), that the summaries agree line for line
-(but for wall times) and that the warnings (alarms) are the same lines:
-  bear      camotics-bear.nc at 0.5 mm (a rapid move cutting material at its end);
-  impeller  the LinuxCNC impeller's first 600 lines on its 5-axis machine;
-  alarms    bear's first 1500 lines and a few moves of our own on a tool
-            whose shank enters the material (collisions, depths measured by
-            bisection), a rapid through material, and a design the moves
+(but for wall times) and that the warnings (alarms) are the same lines. The
+programs are in the tree (a plain clone runs every case):
+  demo      fixtures/demo.ngc at 0.5 mm, two tools, and a rapid move that
+            cuts material at its end;
+  rotary    a 5-axis program of our own on xyzac-trt (A tilts, C turns; a
+            ball end mill grooving a cylinder through the table's rotation);
+  alarms    the demo's pocket and the first part of its ball-end work on a
+            tool whose shank enters the material (collisions, depths measured
+            by bisection), a rapid through material, and a design the moves
             gouge (per-move gouges, per-line volumes in the JSON report,
             compared field for field but for times).
 Then the failures: bad G-code under mpirun (one message, exit status 2,
@@ -20,6 +23,7 @@ Exits 77 (skipped) when mpirun is missing or swarf was built without MPI.
 """
 import hashlib
 import json
+import math
 import os
 import re
 import shutil
@@ -31,7 +35,7 @@ import time
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import verifykit as vk  # noqa: E402
 
-swarf, real, mpirun = sys.argv[1], sys.argv[2], sys.argv[3]
+swarf, fixtures, mpirun = sys.argv[1], sys.argv[2], sys.argv[3]
 if mpirun == "NO-MPI":
     print("SKIP: swarf was built without MPI (SWARF_MPI OFF: no libopenmpi-dev at configure)")
     sys.exit(77)
@@ -115,25 +119,35 @@ def case(name, args, report=False):
     return ref
 
 
-bear = os.path.join(real, "camotics-bear.nc")
-BEAR = ["--stock", "box:0,0,-20,80,80,0", "--tool", "T1=ball,D3.175,L12.7", "--voxel", "0.5",
-        "--quiet"]
-ref = case("bear", [bear] + BEAR[:-1])
-vk.check(any("rapid" in l for l in ref[1]), "bear: its rapid move through material is warned")
+with open(os.path.join(fixtures, "demo.ngc")) as f:
+    demo_lines = [l for l in f if l.strip() not in ("M30", "%")]
+demo = os.path.join(d, "demo.ngc")
+with open(demo, "w") as g:
+    g.writelines(demo_lines)
+    g.write("G0 Z5\nG0 X40 Y30\nG0 Z-4\nG0 X60\nG0 Z20\nM30\n")
+DEMO = ["--stock", "box:0,0,-20,80,60,0", "--tool", "T1=flat,D6,L24", "--tool",
+        "T2=ball,D3.175,L20", "--voxel", "0.5"]
+ref = case("demo", [demo] + DEMO)
+vk.check(any("rapid" in l for l in ref[1]), "demo: its rapid move through material is warned")
 
-imp = os.path.join(d, "impeller600.ngc")
-with open(os.path.join(real, "lcnc-impeller-7bl-xyzac.ngc")) as f, open(imp, "w") as g:
-    g.writelines(f.readlines()[:600])
-case("impeller", [imp, "--machine", "xyzac-trt", "--stock", "cylinder:z,42,0,30",
-                  "--tool", "T1=ball,D4,L30", "--voxel", "0.5"])
+rot = os.path.join(d, "rotary.ngc")
+with open(rot, "w") as g:
+    g.write("G21 G90 G94\nG0 X24 Y0 Z40 A0 C0\nG1 Z26 F600\n")
+    for i in range(1, 145):
+        g.write("G1 X%.3f Z%.3f A%.3f C%.3f F1500\n" % (
+            20.5 + 0.01 * i, 26 - 0.02 * i, 12 * math.sin(i / 9.0), 5 * i))
+    g.write("G0 Z60\nM30\n")
+case("rotary", [rot, "--machine", "xyzac-trt", "--stock", "cylinder:z,42,0,30",
+                "--tool", "T1=ball,D4,L30", "--voxel", "0.5"])
 
 prog = os.path.join(d, "alarms.ngc")
-with open(bear) as f, open(prog, "w") as g:
-    g.writelines(f.readlines()[:1500])
-    g.write("G0 Z5\nG0 X10 Y70\nG1 Z-3 F300\nG1 X70\nG0 Z-6 X40 Y75\nG0 Z20\nM30\n")
+with open(prog, "w") as g:
+    g.writelines(demo_lines[:1200])
+    g.write("G0 Z5\nG0 X10 Y50\nG1 Z-8 F300\nG1 X70\nG0 Z-6 X40 Y55\nG0 Z20\nM30\n")
 design = os.path.join(d, "design.stl")
-vk.write_stl(design, vk.box_triangles((2, 2, -20), (78, 78, -2.5)))
-ALARMS = [prog, "--stock", "box:0,0,-20,80,80,0", "--tool", "T1=ball,D3.175,L6,S12,N3.175",
+vk.write_stl(design, vk.box_triangles((2, 2, -20), (78, 58, -2.5)))
+ALARMS = [prog, "--stock", "box:0,0,-20,80,60,0", "--tool", "T1=flat,D6,L24",
+          "--tool", "T2=ball,D3.175,L6,S12,N3.175",
           "--voxel", "0.5", "--design", design, "--collision-depths", "20"]
 ref = case("alarms", ALARMS, report=True)
 kinds = " ".join(ref[1])
@@ -168,12 +182,24 @@ p = run(2, [bad, "--stock", "box:0,0,-10,40,30,0", "--tool", "T1=ball,D3",
 vk.check(p.returncode == 2 and len([l for l in ours(p.stderr) if "--out" in l]) == 1,
          "an unwritable --out under mpirun: one message, exit 2")
 
-# A rank killed mid-run: bear at 0.25 mm over an existing output.
-out = os.path.join(d, "bear-1.vdb")
+# A rank killed mid-run, over an existing output. The job is a long raster
+# of full-depth slots (a few MB of G-code); rank 1 is killed once it is seen,
+# while stopped (SIGSTOP), reading that program past its first chunk and
+# before its end: mid-run by construction, however fast the machine.
+out = os.path.join(d, "demo-1.vdb")
 with open(out, "rb") as f:
     before = hashlib.sha256(f.read()).hexdigest()
+longprog = os.path.join(d, "long.ngc")
+with open(longprog, "w") as f:
+    f.write("G21 G90 G0 Z5\nG0 X-5 Y0\nG1 Z-8 F1000\n")
+    for i in range(120000):
+        y = (i % 400) * 0.2
+        f.write("G1 X%s Y%.1f\nG1 Y%.1f\n" % ("85" if i % 2 == 0 else "-5", y, y + 0.1))
+    f.write("G0 Z5\nM30\n")
+size = os.path.getsize(longprog)
 tag = "swarf-mpi-test-%d" % os.getpid()
-proc = run(2, [bear] + BEAR[:4] + ["--voxel", "0.25", "--quiet", "--out", out], tag=tag, wait=False)
+proc = run(2, [longprog, "--stock", "box:0,0,-20,80,80,0", "--tool", "T1=flat,D6,L30",
+               "--voxel", "0.25", "--quiet", "--out", out], tag=tag, wait=False)
 
 
 def rank_pid(rank):
@@ -191,20 +217,45 @@ def rank_pid(rank):
     return None
 
 
-victim, t0 = None, time.time()
-while victim is None and time.time() - t0 < 120 and proc.poll() is None:
-    victim = rank_pid(1)
-    time.sleep(0.05)
-time.sleep(1.0)  # into the run
-killed = victim is not None and proc.poll() is None
-if killed:
-    os.kill(victim, signal.SIGKILL)
+def reading_at(pid, path):
+    """The offsets of pid's open descriptors on path."""
+    at = []
+    try:
+        for fd in os.listdir("/proc/%d/fd" % pid):
+            try:
+                if os.readlink("/proc/%d/fd/%s" % (pid, fd)) != path:
+                    continue
+                with open("/proc/%d/fdinfo/%s" % (pid, fd)) as f:
+                    at += [int(l.split()[1]) for l in f if l.startswith("pos:")]
+            except OSError:
+                continue
+    except OSError:
+        pass
+    return at
+
+
+victim, killed, t0 = None, False, time.time()
+while not killed and time.time() - t0 < TIMEOUT and proc.poll() is None:
+    victim = victim or rank_pid(1)
+    if victim is None:
+        time.sleep(0.01)
+        continue
+    try:
+        os.kill(victim, signal.SIGSTOP)
+    except ProcessLookupError:
+        break
+    if any(128 * 1024 <= a < size for a in reading_at(victim, os.path.realpath(longprog))):
+        os.kill(victim, signal.SIGKILL)
+        killed = True
+    else:
+        os.kill(victim, signal.SIGCONT)
+        time.sleep(0.01)
 _, err = proc.communicate(timeout=TIMEOUT)
 vk.check(killed, "a rank was found and killed mid-run")
 vk.check(proc.returncode != 0, "a killed rank: mpirun exits non-zero (%d)" % proc.returncode)
 with open(out, "rb") as f:
     vk.check(hashlib.sha256(f.read()).hexdigest() == before, "a killed rank: the output is intact")
-vk.check(not [x for x in os.listdir(d) if x.startswith("bear-1.vdb.") or ".tmp" in x],
+vk.check(not [x for x in os.listdir(d) if x.startswith("demo-1.vdb.") or ".tmp" in x],
          "a killed rank: no temporary file left")
 rc = vk.done()
 shutil.rmtree(d, ignore_errors=True)

@@ -67,10 +67,14 @@ swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double
   double r;
   if (c == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no cutter to fill");
   if (!isfinite(diameter) || diameter <= 0.0) return fail(err, "D", "the diameter must be > 0");
+  if (diameter < SWARF_CUTTER_MIN_MM || diameter > SWARF_CUTTER_MAX_MM)
+    return fail(err, "D", "the diameter must be between 0.001 and 1000 mm (a typo or a unit slip)");
   r = corner_for(shape, diameter, corner_radius, err);
   if (r < 0.0) return SWARF_ERR_TOOL;
   if (isnan(length) || length == INFINITY)
     return fail(err, "L", "the length must be a finite number");
+  if (length > SWARF_CUTTER_MAX_MM)
+    return fail(err, "L", "the length must be at most 1000 mm (a typo or a unit slip)");
   if (length <= 0.0) length = 4.0 * diameter;
   if (shape == SWARF_CUTTER_BALL && length < r)
     return fail(err, "L", "the cutting length of a ball cutter must be at least its radius");

@@ -240,8 +240,26 @@ static swarf_status classic(swarf_cutter *c, const swarf_cutter_spec *s, swarf_e
   return SWARF_OK;
 }
 
+/* The sizes every family shares: none beyond a metre, a diameter of at least
+ * a micrometre, a length given > 0 (left out, it takes the default). */
+static swarf_status check_sizes(const swarf_cutter_spec *s, swarf_error *err) {
+  const double v[] = {s->d, s->r, s->length, s->tip, s->e, s->f, s->h, s->neck};
+  static const char *const letter[] = {"D", "R", "L", "T", "E", "F", "H", "K"};
+  for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
+    if (given(v[i]) && isfinite(v[i]) && fabs(v[i]) > SWARF_CUTTER_MAX_MM)
+      return bad(err, letter[i], "%g mm is beyond any cutter (at most %g mm; a typo or a unit slip)",
+                 v[i], SWARF_CUTTER_MAX_MM);
+  if (given(s->d) && s->d > 0 && s->d < SWARF_CUTTER_MIN_MM)
+    return bad(err, "D", "the diameter %g mm is below %g mm (a typo or a unit slip)", s->d,
+               SWARF_CUTTER_MIN_MM);
+  if (given(s->length) && !(s->length > 0))
+    return bad(err, "L", "the length must be > 0 (got %g); leave L out for the default", s->length);
+  return SWARF_OK;
+}
+
 swarf_status swarf_cutter_make(swarf_cutter *c, const swarf_cutter_spec *s, swarf_error *err) {
   if (c == NULL || s == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no cutter or spec");
+  if (s->shape != SWARF_CUTTER_QSS && check_sizes(s, err) != SWARF_OK) return SWARF_ERR_TOOL;
   switch (s->shape) {
   case SWARF_CUTTER_FLAT:
   case SWARF_CUTTER_BALL:

@@ -133,12 +133,18 @@ typedef struct {
   swarf_profile_piece piece[SWARF_CUTTER_MAX_PIECES];
 } swarf_cutter;
 
+/* A cutter's sizes lie between these (mm): a diameter below a micrometre or
+ * any length above a metre is a typo or a unit slip, not a cutter, and
+ * simulating it would give a volume with no meaning. */
+#define SWARF_CUTTER_MIN_MM 1e-3
+#define SWARF_CUTTER_MAX_MM 1000.0
+
 /* Validate and fill a flat, ball or bull cutter. corner_radius is ignored
  * for flat and ball. length <= 0 selects the default, 4 * diameter. Flutes
  * shorter than the diameter are allowed (a face mill); a bull needs length
  * >= 2 R, a ball length >= R (below 2 R = D the ball is cut flat at the
  * top: a profile cutter, fast = 0). SWARF_ERR_TOOL when the dimensions are
- * impossible: *err (may be NULL) gets the reason and, as its word, the letter
+ * impossible or outside [SWARF_CUTTER_MIN_MM, SWARF_CUTTER_MAX_MM]: *err (may be NULL) gets the reason and, as its word, the letter
  * of the tool spec's number that is wrong (D, R or L); SWARF_ERR_ARG for a
  * NULL cutter. */
 SWARF_API swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
@@ -164,6 +170,7 @@ SWARF_API swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape sha
  *   QSS      a, b, e, f (h = a(x^2+y^2) + b z^2 + e z + f, mm), moved up so
  *            that its lowest point is at z = 0
  *   FLAT, BALL, BULL: d, r, length as swarf_cutter_init.
+ * A length given must be > 0, and every size within SWARF_CUTTER_MAX_MM.
  * On bad numbers returns SWARF_ERR_TOOL and err->message names the
  * parameter (its letter in the tool spec: D, A, R, L, T, E, F, B, H, K) and
  * why; err->word holds the letter. */

@@ -344,11 +344,30 @@ swarf_status swarf_sim_new_with_stock(const swarf_sim_config *cfg, const char *n
   return sim_new(cfg, name, stock, NULL, out, err);
 }
 
+/* A voxel larger than the stock's smallest side cannot hold the stock: the
+ * volumes would be off by orders of magnitude. The command checks this too,
+ * with its flags' names; here every client (C, Python) gets it. */
+static swarf_status check_voxel(const swarf_sim_config *cfg, swarf_error *err) {
+  double smallest = INFINITY;
+  for (int k = 0; k < 3; k++)
+    smallest = fmin(smallest, cfg->stock.hi[k] - cfg->stock.lo[k]);
+  if (!(cfg->voxel > 0) || !isfinite(cfg->voxel))
+    return swarf_error_set(err, SWARF_ERR_ARG, "voxel: a size in mm > 0 is needed (got %g)",
+                           cfg->voxel);
+  if (cfg->voxel > smallest)
+    return swarf_error_set(err, SWARF_ERR_ARG,
+                           "voxel %g mm: larger than the stock's smallest side (%g mm): the grid "
+                           "cannot hold the stock; give a voxel of %.3g mm or less",
+                           cfg->voxel, smallest, smallest);
+  return SWARF_OK;
+}
+
 swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_sim **out,
                            swarf_error *err) {
   swarf_stock *stock;
   if (out != NULL) *out = NULL;
   if (cfg == NULL || out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no config or output");
+  if (check_voxel(cfg, err) != SWARF_OK) return SWARF_ERR_ARG;
   /* Under MPI, the processes other than rank 0 (which gathers the whole
    * stock) build only their part, once it is planned: a shell until then.
    * Not with a design, which compares against a copy of the whole stock. */

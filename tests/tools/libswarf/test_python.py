@@ -297,6 +297,16 @@ def test_errors():
             check(False, "bad %s spec raises" % what)
         except swarf.InputError as e:
             check(e.message != "", "bad %s: InputError: %s" % (what, e))
+    try:  # issue 27, point 8: as the command refuses it
+        swarf.simulate(text="M2\n", stock="box:0,0,-5,20,10,0", tools="T1=flat,D1", voxel=6)
+        check(False, "a voxel larger than the stock's smallest side raises")
+    except swarf.InputError as e:
+        check("larger than the stock's smallest side (5 mm)" in str(e), "voxel 6 on a 5 mm stock: %s" % e)
+    try:
+        swarf.simulate(text="M2\n", stock="box:0,0,-5,20,10,0", tools="T1=flat,D1e100")
+        check(False, "an absurd tool diameter raises")
+    except swarf.InputError as e:
+        check("D: 1e+100 mm is beyond any cutter" in str(e), "tool D1e100: %s" % e)
     try:
         swarf.Stock.read(path("missing.vdb"))
         check(False, "missing .vdb raises")

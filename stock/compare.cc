@@ -449,8 +449,12 @@ extern "C" swarf_status swarf_stock_compare(const swarf_stock *s, const swarf_st
 extern "C" int swarf_stock_design_band(const swarf_stock *stock, double voxel, double tolerance,
                                        int views) {
   if (stock != nullptr) voxel = stock->voxel;
-  if (views || !(voxel > 0.0) || !std::isfinite(voxel) || !std::isfinite(tolerance))
+  if (!(voxel > 0.0) || !std::isfinite(voxel) || !std::isfinite(tolerance))
     return SWARF_STOCK_DESIGN_BAND;
+  if (views) { // colours sample the design out to their range, 4 tolerances
+    const double tol = tolerance > 0.0 ? tolerance : 0.5 * voxel;
+    return std::clamp(int(std::ceil(4.0 * tol / voxel)) + 1, SWARF_STOCK_DESIGN_BAND, 64);
+  }
   if (stock != nullptr) // a design read from a mesh has its origin at (0, 0, 0)
     for (int k = 0; k < 3; k++) {
       const double o = stock->origin[k] / voxel;

@@ -358,8 +358,11 @@ SWARF_API swarf_status swarf_stock_read_design_band(const char *path, double vox
  * one voxel (the removal passes over blocks where the design is a voxel
  * away): max(1, ceil(tolerance / voxel + 1/2)), which makes the read ~1.7x
  * cheaper at the default tolerance (bear, 0.2 mm). Elsewhere (another lattice: the
- * design sampled trilinearly), or with `views` nonzero (pictures and .ply
- * colours sample the band), SWARF_STOCK_DESIGN_BAND. */
+ * design sampled trilinearly), SWARF_STOCK_DESIGN_BAND. With `views` nonzero
+ * (pictures and .ply colours sample the band) the band reaches the colours'
+ * default range, 4 tolerances, and one voxel more (at least
+ * SWARF_STOCK_DESIGN_BAND, at most 64), so that the colours saturate where
+ * the legend says, not at the band. */
 SWARF_API int swarf_stock_design_band(const swarf_stock *stock, double voxel, double tolerance,
                                       int views);
 

@@ -227,6 +227,28 @@ if vk.check(r.status == 0 and os.path.exists(ply), "--mesh dev.ply with a design
     vk.check(len(floor) > 0 and all(abs(v["deviation"] + 1) < 0.02 for v in floor),
              "the floor's vertices: deviation -1 mm (a gouge), %d of them" % len(floor))
     vk.check(all(hue((v["red"], v["green"], v["blue"])) == "blue" for v in floor), "and blue, as in the picture")
+# Colours agree with the legend at every voxel size (issue 27, point 3): at
+# tolerance 0.25 the legend's range is 1 mm, so the 1 mm gouge or excess of
+# the pocket's floor takes the legend's end colour (blue 0.12,0.20,0.75; red
+# 0.80,0.10,0.10; the light scales all three channels alike), not a colour
+# cut short where the design's narrow band (2 voxels) ended: at 0.1 mm that
+# band (0.2 mm) lay inside the tolerance and the floor was drawn green.
+for voxel in ("0.2", "0.1"):
+    r = vk.Run(swarf, program_pocket, ["--stock", "box:0,0,-10,40,30,0", "--tool", "T1=flat,D6,L20",
+                                       "--voxel", voxel], d, report=False)
+    if not vk.check(r.status == 0, "the pocket at %s mm" % voxel):
+        continue
+    grid = os.path.join(d, "pocket%s.vdb" % voxel)
+    os.rename(r.out, grid)
+    for floor, hi, lo in ((-2, 2, 1), (-4, 0, 1)):  # the channel that leads, and the one that is low
+        img = render(grid, "range%s_%d" % (voxel, -floor),
+                     ["--view", "top", "--tolerance", "0.25", "--design",
+                      os.path.join(d, "design%d.stl" % -floor)])
+        c = pixel(img, 12, 10)
+        what = "voxel %s, 1 mm %s at tolerance 0.25" % (voxel, "gouge" if floor == -2 else "excess")
+        vk.check(c[hi] > 100 and c[lo] < 0.35 * c[hi],
+                 "%s: the floor has the legend's end colour (%s, RGB %s)" %
+                 (what, "blue" if hi == 2 else "red", c))
 # swarf compare against a .vdb design (the uncut box): the pocket is a gouge,
 # its volume below the tolerance (0.1 mm) analytic, the same as --design's.
 p = subprocess.run([swarf, "compare", pocket, plain], capture_output=True, text=True, timeout=300)

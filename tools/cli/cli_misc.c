@@ -278,8 +278,10 @@ int swarf_cli_render(int argc, char **argv) {
   int rc = render_args(&o, argc, argv);
   if (rc) return rc == 1 ? 0 : rc;
   if ((s = open_grid("render", o.in)) == NULL) return 2;
-  if (o.design &&
-      swarf_stock_read_design(o.design, swarf_stock_voxel(s), &design, &err) != SWARF_OK) {
+  if (o.design && swarf_stock_read_design_band(
+                      o.design, swarf_stock_voxel(s),
+                      swarf_stock_design_band(s, swarf_stock_voxel(s), o.tolerance, 1), &design,
+                      &err) != SWARF_OK) {
     swarf_error_format(&err, msg, sizeof msg);
     fprintf(stderr, "swarf render: --design: %s\n", msg);
     swarf_stock_free(s);

@@ -20,11 +20,16 @@ static const char *later_letter(char letter, int dialect) {
   switch (letter) {
   case 'E':
     if (dialect == SWARF_GCODE_DIALECT_FANUC || dialect == SWARF_GCODE_DIALECT_HAAS) return NULL;
-    return "the E word (G76, M66)";
+    return "the E word (G76 threading, M66 waits) is not supported: remove it";
   case 'U':
+    return "the U axis is not supported (swarf's machines move X, Y, Z and the rotary A, B, "
+           "C): post the program for such a machine, or remove the U words";
   case 'V':
+    return "the V axis is not supported (swarf's machines move X, Y, Z and the rotary A, B, "
+           "C): post the program for such a machine, or remove the V words";
   case 'W':
-    return "U, V and W axes";
+    return "the W axis is not supported (swarf's machines move X, Y, Z and the rotary A, B, "
+           "C): post the program for such a machine, or remove the W words";
   default:
     return NULL;
   }

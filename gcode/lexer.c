@@ -93,6 +93,8 @@ static void lex_semicolon_comment(swarf_gc_lexer *lx, swarf_gc_token *tok) {
   tok->column = column_of(lx->pos);
   tok->text = lx->line + lx->pos + 1;
   tok->text_len = lx->len - lx->pos - 1;
+  while (tok->text_len > 0 && tok->text[tok->text_len - 1] == '\r') /* a CRLF line's end */
+    tok->text_len--;
   lx->pos = lx->len;
 }
 

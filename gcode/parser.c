@@ -352,6 +352,9 @@ static swarf_status percent_line(swarf_gcode_parser *p, const char *text, size_t
     }
     return SWARF_OK;
   }
+  /* Errors come in file order: a kept program's own come before this line's. */
+  if (p->fanuc != NULL && run_fanuc(p) != SWARF_OK) return p->status;
+  p->cur_line = p->lines;
   swarf_gc_fail_code(&f, SWARF_GCODE_E_PERCENT_NOT_OPEN, (int)at + 1);
   return fail(p, &f, text, n);
 }

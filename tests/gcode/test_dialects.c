@@ -456,6 +456,21 @@ static void test_grbl(void) {
           SWARF_GCODE_E_DIALECT_G10);
 }
 
+/* Errors come in file order, as a control reading the stream would meet
+ * them: a kept Fanuc or Haas program's own error (line 3) before the stray
+ * closing `%` (line 4) of a program that did not open with one. */
+static void test_error_order(void) {
+  static const char prog[] = "O1000\nG0 X1\nG2 X2 F100\n%\n";
+  for (int d = 0; d < 2; d++) {
+    const run_out *o = run(d ? SWARF_GCODE_DIALECT_HAAS : SWARF_GCODE_DIALECT_FANUC, prog);
+    CHECK(o->status != SWARF_OK && o->err.line == 3 && o->err.code != SWARF_GCODE_E_PERCENT_NOT_OPEN,
+          "%s: the arc's error at line 3 first (got line %ld: %s)", d ? "haas" : "fanuc",
+          o->err.line, o->err.message);
+  }
+  refused("fanuc stray %", run(SWARF_GCODE_DIALECT_FANUC, "O1000\nG0 X1\n%\n"), 3,
+          SWARF_GCODE_E_PERCENT_NOT_OPEN);
+}
+
 static void test_names(void) {
   swarf_gcode_dialect d = SWARF_GCODE_DIALECT_LINUXCNC;
   CHECK(swarf_gcode_dialect_from_name("haas", &d) == 0 && d == SWARF_GCODE_DIALECT_HAAS, "haas");
@@ -475,5 +490,6 @@ int main(void) {
   test_fanuc_jumps();
   test_haas();
   test_grbl();
+  test_error_order();
   return check_done();
 }

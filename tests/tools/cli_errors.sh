@@ -44,6 +44,20 @@ expect apt-inconsistent '--tool: F: .* F = \(R \+ E sin A\) / cos A = 1 \(got 3\
   --tool T1=apt,D6,R1,E2,F3,A0,B0,H10
 expect qss-axis '--tool: the QSS profile crosses its axis' 'G0 X1\n' "${stock[@]}" --tool T1=qss,-1,1,0,0
 expect lollipop-neck '--tool: K: the neck must be thinner' 'G0 X1\n' "${stock[@]}" --tool T1=lollipop,D6,K6
+# an axis swarf's machines do not have: named, with what to do (issue 27, point 10)
+expect u-axis 'prog\.ngc:1:7: U5: the U axis is not supported .*remove the U words' 'G0 X1 U5\n' \
+  "${stock[@]}" "${tool[@]}"
+# absurd sizes (issue 27, point 8): refused with the field, not simulated
+expect tool-huge-d '--tool: D: 1e\+100 mm is beyond any cutter' 'G0 X1\n' "${stock[@]}" --tool T1=flat,D1e100
+expect tool-tiny-d '--tool: D: the diameter 1e-09 mm is below 0.001 mm' 'G0 X1\n' "${stock[@]}" \
+  --tool T1=flat,D1e-9
+expect tool-negative-l '--tool: L: the length must be > 0 \(got -1\)' 'G0 X1\n' "${stock[@]}" \
+  --tool T1=flat,D6,L-1
+expect tool-huge-l '--tool: L: 1e\+300 mm is beyond' 'G0 X1\n' "${stock[@]}" --tool T1=vee,D6,A90,L1e300
+printf 'T1 P1 D1e100 Z0\n' > "$dir-huge.tbl"
+expect table-huge-d 'huge\.tbl:1.*diameter must be between 0.001 and 1000 mm' 'G0 X1\n' "${stock[@]}" \
+  --tool-table "$dir-huge.tbl"
+rm -f "$dir-huge.tbl"
 expect output-folder-missing 'cannot write' 'G0 X1\n' "${stock[@]}" "${tool[@]}" --image "$dir/nothere/x.png"
 # an error late in a program that already cut: still nothing written
 expect late-error 'prog\.ngc:5:1:' 'G0 Z1\nG0 X5 Y5\nG1 Z-2 F100\nG1 X30\nW1\n' "${stock[@]}" "${tool[@]}"

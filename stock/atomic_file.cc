@@ -77,16 +77,21 @@ std::string folder_of(const std::string &path) {
   return slash == 0 ? "/" : path.substr(0, slash);
 }
 
+/// The temporary beside PATH: a marker no user's file name carries by chance
+/// (a file of the user's named like PATH.tmp.N is never touched).
+const char kTempMarker[] = ".swarf.tmp.";
+
 std::string temp_name(const char *path) {
-  return std::string(path) + ".tmp." + std::to_string(long(::getpid()));
+  return std::string(path) + kTempMarker + std::to_string(long(::getpid()));
 }
 
-/// Removes PATH.tmp.PID left by swarf processes that no longer run (kill -9
-/// in the instant between link and rename, or a filesystem without O_TMPFILE).
+/// Removes PATH.swarf.tmp.PID left by swarf processes that no longer run
+/// (kill -9 in the instant between link and rename, or a filesystem without
+/// O_TMPFILE): only regular files of this user with that marker.
 void sweep_stale(const char *path) {
   const std::string p(path), folder = folder_of(p);
   const std::string base = p.substr(p.rfind('/') == std::string::npos ? 0 : p.rfind('/') + 1);
-  const std::string prefix = base + ".tmp.";
+  const std::string prefix = base + kTempMarker;
   DIR *d = ::opendir(folder.c_str());
   if (d == nullptr) return;
   while (struct dirent *e = ::readdir(d)) {
@@ -96,7 +101,11 @@ void sweep_stale(const char *path) {
     const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
     if (pid <= 0 || *end != '\0' || pid == long(::getpid())) continue;
     if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue; // alive, or not ours to judge
-    ::unlink((folder + "/" + name).c_str());
+    struct stat st {};
+    const std::string stale = folder + "/" + name;
+    if (::lstat(stale.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != ::geteuid())
+      continue;
+    ::unlink(stale.c_str());
   }
   ::closedir(d);
 }
@@ -154,7 +163,7 @@ void publish(Pending &p) {
       const int err = errno;
       forget(p.slot);
       p.named_tmp.clear();
-      fail("cannot link the new file as", p.path + ".tmp", err);
+      fail("cannot link the new file as", temp_name(p.path.c_str()), err);
     }
   }
   if (std::rename(p.named_tmp.c_str(), p.path.c_str()) != 0)

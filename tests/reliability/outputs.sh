@@ -89,8 +89,12 @@ ok "every run ended by its signal (${killed_late:-all})" '[ -z "$killed_late" ]'
 sh -c 'exit 0' &
 dead=$!
 wait $dead
-echo stale > "o.vdb.tmp.$dead"
+echo stale > "o.vdb.swarf.tmp.$dead"
+echo mine > "o.vdb.tmp.$dead"
 "$swarf" simulate p.ngc $S --out o.vdb 2> err
-ok "a dead process's temporary is swept" '[ $? -eq 0 ] && [ ! -e "o.vdb.tmp.$dead" ]'
+ok "a dead process's temporary is swept" '[ $? -eq 0 ] && [ ! -e "o.vdb.swarf.tmp.$dead" ]'
+# issue 28: a user's own file named like an old temporary is never removed
+ok "a user's o.vdb.tmp.N is kept" '[ "$(cat "o.vdb.tmp.$dead")" = mine ]'
+rm -f "o.vdb.tmp.$dead"
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -154,7 +154,7 @@ static void failed_writes(void) {
   /* An existing file, and its temporary name taken by a directory: the write
    * fails and the file keeps its bytes. */
   write_bytes("stock_io_keep.vdb", "precious", 8);
-  snprintf(tmp, sizeof tmp, "stock_io_keep.vdb.tmp.%ld", (long)getpid());
+  snprintf(tmp, sizeof tmp, "stock_io_keep.vdb.swarf.tmp.%ld", (long)getpid());
   mkdir(tmp, 0755);
   rc = swarf_stock_write_vdb(s, "stock_io_keep.vdb", &err);
   CHECK(rc == SWARF_ERR_IO, "blocked temporary: %d %s", rc, err.message);
@@ -177,7 +177,7 @@ static void failed_writes(void) {
   rc = swarf_stock_write_vdb(s, "stock_io_dir.vdb", &err);
   CHECK(rc == SWARF_ERR_IO, "directory target: %d %s", rc, err.message);
   printf("  dir target     -> %s\n", err.message);
-  snprintf(tmp, sizeof tmp, "stock_io_dir.vdb.tmp.%ld", (long)getpid());
+  snprintf(tmp, sizeof tmp, "stock_io_dir.vdb.swarf.tmp.%ld", (long)getpid());
   CHECK(!file_exists(tmp), "temporary file removed");
   rmdir("stock_io_dir.vdb");
 

@@ -34,6 +34,12 @@ typedef struct {
 int swarf_cli_outputs_distinct(const char *cmd, const swarf_cli_path *outs, int nout,
                                const swarf_cli_path *ins, int nin);
 
+/* 2 with a message when an output named *EXT lies in one of `dirs` (a
+ * ':'-separated list, may be NULL), given by `flag`: a subroutine file the
+ * program may call would be overwritten. */
+int swarf_cli_outputs_outside(const char *cmd, const swarf_cli_path *outs, int nout,
+                              const char *flag, const char *dirs, const char *ext);
+
 /* A progress bar on stderr, drawn only when stderr is a terminal. */
 typedef struct {
   int enabled;

@@ -44,7 +44,7 @@ static const char help[] =
     "                   C carrying B); xyzbc-ht[,mode=tcp|joint][,pivot=X,Y][,head=L]\n"
     "                   (head B, table C about Z through X,Y). head=L: the head's\n"
     "                   pivot, mm above the gauge line (the tool's length is added);\n"
-    "                   needed in joint mode. Directions: README, rotary machines\n"
+    "                   needed in joint mode. Directions: tools/doc/machines.md\n"
     "  --tool T1=ball,D3.175,L25   a cutter: T number = family, fields (mm, angles in\n"
     "                   degrees; L is the cutting length above the tip, default 4*D):\n"
     "     flat|ball|bull,D<d>[,R<corner>][,L]   end mills (bull needs R; flutes may be\n"
@@ -78,7 +78,7 @@ static const char help[] =
     "                   otherwise) and G43 lengths: G43 H<n> moves the controlled\n"
     "                   point as the machine does\n"
     "  --tool-table-units mm|in  the table's unit (default mm)\n"
-    "  --tool-library FILE  full assemblies in JSON (README: tool libraries);\n"
+    "  --tool-library FILE  full assemblies in JSON (tools/doc/simulate.md);\n"
     "                   --tool and --holder override the table and the library\n"
     "  --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX | stl:FILE   a body (vice,\n"
     "                   clamp; a box or a closed STL mesh, mm, workpiece frame) no\n"
@@ -99,7 +99,7 @@ static const char help[] =
     "  --balance N      after the run, how evenly 2 to N processes would share the\n"
     "                   removal (busiest rank's voxels over the mean; one process)\n"
     "\n"
-    "Several processes (README: scale): under mpirun or srun every rank plays the\n"
+    "Several processes (tools/doc/mpi.md): under mpirun or srun every rank plays the\n"
     "whole program on its slab of the stock; rank 0 prints and writes the same\n"
     "outputs, voxel for voxel, as one process. Every rank needs the program and\n"
     "the input files; only rank 0 writes.\n"
@@ -300,10 +300,19 @@ static int check_outputs(const sim_options *o) {
                                 {"--tool-table", o->tool_table},
                                 {"--tool-library", o->tool_library},
                                 {"--offsets", o->verify.offsets}};
+  swarf_cli_path fixtures[SWARF_SIM_MAX_FIXTURES];
+  int nfix = 0;
   if (writer_rank != 0) return 0;
   for (size_t i = 0; i < sizeof outs / sizeof outs[0]; i++)
     if (swarf_cli_output_ok("simulate", outs[i].flag, outs[i].path)) return 2;
-  return swarf_cli_outputs_distinct("simulate", outs, 4, ins, 6);
+  for (int i = 0; i < o->cfg.nfixtures; i++)
+    if (o->cfg.fixtures[i].stl != NULL)
+      fixtures[nfix++] = (swarf_cli_path){"--fixture", o->cfg.fixtures[i].stl};
+  if (swarf_cli_outputs_distinct("simulate", outs, 4, ins, 6) ||
+      swarf_cli_outputs_distinct("simulate", outs, 4, fixtures, nfix))
+    return 2;
+  return swarf_cli_outputs_outside("simulate", outs, 4, "--subroutine-path",
+                                   o->verify.subroutine_path, ".ngc");
 }
 
 static int parse_args(sim_options *o, int argc, char **argv) {

@@ -224,7 +224,10 @@ static int compare_args(compare_options *o, int argc, char **argv) {
   }
   if (o->b == NULL) return fputs(compare_help, stderr), 2;
   if (swarf_cli_mesh_name("--mesh", o->mesh)) return 2;
-  return folder_ok("--mesh", o->mesh) || folder_ok("--image", o->image) ? 2 : 0;
+  if (folder_ok("--mesh", o->mesh) || folder_ok("--image", o->image)) return 2;
+  const swarf_cli_path outs[] = {{"--mesh", o->mesh}, {"--image", o->image}};
+  const swarf_cli_path ins[] = {{"A", o->a}, {"B", o->b}};
+  return swarf_cli_outputs_distinct("compare", outs, 2, ins, 2);
 }
 
 static void print_point(const char *key, const double p[3]) {

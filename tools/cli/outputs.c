@@ -4,8 +4,10 @@
  * in '/', not an existing folder, symbolic link, block device or socket,
  * in a folder that exists and is writable; an existing character device or
  * FIFO is accepted (the stock module writes into it: `--out /dev/null`).
- * No output may be an input (the program, a stock or design file, a table)
- * or another output. Each refusal names the flag; the caller exits 2.
+ * No output may be an input (the program, a stock, design or fixture file,
+ * a table) or another output, nor a .ngc file in the subroutine path; an
+ * output's name leaves room for its temporary's. Each refusal names the
+ * flag; the caller exits 2.
  */
 #include <errno.h>
 #include <libgen.h>
@@ -17,6 +19,9 @@
 #include <unistd.h>
 
 #include "cli.h"
+
+/* The temporary beside an output: NAME.swarf.tmp.PID (stock/atomic_file.cc). */
+#define TEMP_SUFFIX ((int)sizeof ".swarf.tmp." - 1 + 10)
 
 static int refuse(const char *cmd, const char *flag, const char *path, const char *why) {
   fprintf(stderr, "swarf %s: %s: cannot write \"%s\": %s\n", cmd, flag, path, why);
@@ -31,6 +36,15 @@ int swarf_cli_output_ok(const char *cmd, const char *flag, const char *path) {
   n = strlen(path);
   if (n == 0) return refuse(cmd, flag, path, "no file name");
   if (n >= sizeof copy) return refuse(cmd, flag, path, "the name is too long");
+  const char *base = strrchr(path, '/') != NULL ? strrchr(path, '/') + 1 : path;
+  if (strlen(base) + TEMP_SUFFIX > NAME_MAX) {
+    char why[160];
+    snprintf(why, sizeof why,
+             "the file name is too long: at most %d characters (swarf writes it through a "
+             "temporary name beside it)",
+             NAME_MAX - TEMP_SUFFIX);
+    return refuse(cmd, flag, path, why);
+  }
   if (path[n - 1] == '/') return refuse(cmd, flag, path, "it names a folder, not a file");
   if (lstat(path, &st) == 0) {
     if (S_ISDIR(st.st_mode)) return refuse(cmd, flag, path, "it is a folder");
@@ -88,6 +102,32 @@ int swarf_cli_outputs_distinct(const char *cmd, const swarf_cli_path *outs, int 
                 cmd, outs[i].flag, outs[i].path, outs[k].flag);
         return 2;
       }
+  }
+  return 0;
+}
+
+int swarf_cli_outputs_outside(const char *cmd, const swarf_cli_path *outs, int nout,
+                              const char *flag, const char *dirs, const char *ext) {
+  for (int i = 0; dirs != NULL && i < nout; i++) {
+    const char *p = outs[i].path;
+    size_t n = p != NULL ? strlen(p) : 0, e = strlen(ext);
+    char out[PATH_MAX], dir[PATH_MAX], real[PATH_MAX];
+    if (n <= e || strcmp(p + n - e, ext) != 0) continue;
+    canonical(p, out);
+    if (strrchr(out, '/') == NULL) continue; /* its folder cannot be resolved */
+    *strrchr(out, '/') = '\0';
+    for (const char *d = dirs; *d;) {
+      size_t k = strcspn(d, ":");
+      snprintf(dir, sizeof dir, "%.*s", (int)k, d);
+      if (k > 0 && realpath(dir, real) != NULL && strcmp(real, out) == 0) {
+        fprintf(stderr,
+                "swarf %s: %s \"%s\" is in %s %s: it could be a subroutine file the program "
+                "calls, and would be overwritten; write it elsewhere\n",
+                cmd, outs[i].flag, p, flag, dir);
+        return 2;
+      }
+      d += k + (d[k] == ':');
+    }
   }
   return 0;
 }

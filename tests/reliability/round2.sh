@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# round2.sh SWARF [CASE...] -- the reproducers of issue 28 (hardening, round
+# 2), one function a case, each made of its own inputs in a scratch folder.
+# Prints one line a case, FIXED or PRESENT, and a count. With CASEs it runs
+# those and fails when any is PRESENT (ctest runs the fixed ones so); with
+# none it runs all and only reports (the list of what is left).
+set -u
+swarf=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+shift
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+S=(--stock box:0,0,-5,20,20,0 --tool T1=flat,D4 --voxel 0.5 --quiet)
+printf 'G21 G90\nG0 Z5\nG0 X5 Y5\nG1 Z-2 F300\nG1 X15\nG0 Z5\nM2\n' > p.ngc
+if ! "$swarf" simulate p.ngc "${S[@]}" --out a.vdb ||
+  ! "$swarf" simulate p.ngc "${S[@]}" --out b.vdb --mesh b.stl; then
+  echo "FAIL: the inputs could not be made"
+  exit 1
+fi
+
+sum() { sha256sum "$1" 2> /dev/null | cut -c1-64; }
+
+# Each case: 0 (FIXED) when swarf refuses or behaves, 1 (PRESENT) otherwise.
+case_compare_image_input() { # swarf compare A.vdb B.vdb --image A.vdb overwrote A
+  local before; before=$(sum a.vdb)
+  "$swarf" compare a.vdb b.vdb --image a.vdb > /dev/null 2> err
+  [ $? -eq 2 ] && [ "$(sum a.vdb)" = "$before" ] && grep -q "is the input A" err
+}
+case_compare_mesh_input() { # --mesh the design STL overwrote it
+  local before; before=$(sum b.stl)
+  "$swarf" compare a.vdb b.stl --mesh b.stl > /dev/null 2> err
+  [ $? -eq 2 ] && [ "$(sum b.stl)" = "$before" ] && grep -q "is the input B" err
+}
+case_mesh_over_fixture() { # simulate --mesh onto the --fixture STL
+  local before; before=$(sum b.stl)
+  "$swarf" simulate p.ngc "${S[@]}" --fixture stl:b.stl --out c.vdb --mesh b.stl 2> err
+  [ $? -eq 2 ] && [ "$(sum b.stl)" = "$before" ] && [ ! -e c.vdb ] && grep -q "fixture" err
+}
+case_out_over_subroutine() { # --out onto a subroutine file the program calls
+  mkdir -p subs
+  printf 'o<foo> sub\nG0 X2\no<foo> endsub\nM2\n' > subs/foo.ngc
+  printf 'G21 G0 Z5\no<foo> call\nM2\n' > call.ngc
+  local before; before=$(sum subs/foo.ngc)
+  "$swarf" simulate call.ngc "${S[@]}" --subroutine-path subs --out subs/foo.ngc 2> err
+  [ $? -eq 2 ] && [ "$(sum subs/foo.ngc)" = "$before" ] && grep -q "subroutine" err
+}
+case_sweep_user_file() { # the stale-temporary sweep removed a user's OUT.tmp.N
+  sh -c 'exit 0' &
+  local dead=$!
+  wait $dead
+  echo mine > "d.vdb.tmp.$dead"
+  "$swarf" simulate p.ngc "${S[@]}" --out d.vdb 2> /dev/null && [ -e d.vdb ] &&
+    [ "$(cat "d.vdb.tmp.$dead" 2> /dev/null)" = mine ]
+}
+case_long_output_name() { # a long --mesh name: --out written, the mesh not (all-or-none broken)
+  local long
+  long=$(printf 'm%.0s' $(seq 248)).stl
+  "$swarf" simulate p.ngc "${S[@]}" --out e.vdb --mesh "$long" 2> err
+  [ $? -eq 2 ] && [ ! -e e.vdb ] && [ ! -e "$long" ] && grep -q "too long" err
+}
+
+all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
+  sweep_user_file long_output_name)
+[ $# -gt 0 ] && all=("$@")
+fixed=0 present=0
+for c in "${all[@]}"; do
+  if "case_$c"; then echo "FIXED   $c"; fixed=$((fixed + 1)); else echo "PRESENT $c"; present=$((present + 1)); fi
+done
+echo "$fixed fixed, $present present"
+[ $# -eq 0 ] || [ $present -eq 0 ]

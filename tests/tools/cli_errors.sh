@@ -47,6 +47,20 @@ expect lollipop-neck '--tool: K: the neck must be thinner' 'G0 X1\n' "${stock[@]
 # an axis swarf's machines do not have: named, with what to do (issue 27, point 10)
 expect u-axis 'prog\.ngc:1:7: U5: the U axis is not supported .*remove the U words' 'G0 X1 U5\n' \
   "${stock[@]}" "${tool[@]}"
+# one task of a multi-task launch that MPI sees alone (srun without PMI): refused
+# before any work, nothing written (issue 36); an sbatch script's plain run works
+SLURM_STEP_NUM_TASKS=2 expect slurm-copies 'one of 2 tasks of a Slurm step.*srun --mpi=pmix' \
+  'G0 X1\nM2\n' "${stock[@]}" "${tool[@]}"
+PMI_SIZE=3 expect pmi-copies 'the launcher started 3 tasks \(PMI_SIZE\)' 'G0 X1\nM2\n' \
+  "${stock[@]}" "${tool[@]}"
+printf 'G0 X1\nM2\n' > "$dir/prog.ngc"
+if SLURM_NTASKS=4 SLURM_JOB_ID=1 SLURM_STEP_NUM_TASKS=1 "$swarf" simulate "$dir/prog.ngc" \
+    --out "$dir/out.vdb" --quiet "${stock[@]}" "${tool[@]}" && [ -f "$dir/out.vdb" ]; then
+  pass=$((pass + 1))
+else
+  fail=$((fail + 1)); echo "FAIL sbatch-plain: a plain run inside an allocation must work"
+fi
+rm -f "$dir/out.vdb"
 # absurd sizes (issue 27, point 8): refused with the field, not simulated
 expect tool-huge-d '--tool: D: 1e\+100 mm is beyond any cutter' 'G0 X1\n' "${stock[@]}" --tool T1=flat,D1e100
 expect tool-tiny-d '--tool: D: the diameter 1e-09 mm is below 0.001 mm' 'G0 X1\n' "${stock[@]}" \

@@ -9,6 +9,45 @@
 #include <string.h>
 #include <unistd.h>
 
+/* How many tasks the launcher says it started, and which variable says so:
+ * srun's SLURM_STEP_NUM_TASKS (set in a step's tasks, not in an sbatch
+ * script or an salloc shell, where a plain run is one process), mpirun's
+ * OMPI_COMM_WORLD_SIZE, a PMI launcher's PMI_SIZE. 1 when none does. */
+static long launcher_tasks(const char **var) {
+  static const char *const vars[] = {"SLURM_STEP_NUM_TASKS", "OMPI_COMM_WORLD_SIZE", "PMI_SIZE"};
+  for (size_t i = 0; i < sizeof vars / sizeof vars[0]; i++) {
+    const char *v = getenv(vars[i]);
+    long n = v != NULL ? strtol(v, NULL, 10) : 0;
+    if (n > 1) {
+      *var = vars[i];
+      return n;
+    }
+  }
+  return 1;
+}
+
+/* Several tasks launched, but this one sees a world of one: each would run
+ * the whole job and write the same outputs. Refused before any work. */
+static int refuse_copies(const swarf_cli_mpi *m) {
+  const char *var = NULL;
+  long n = launcher_tasks(&var);
+  if (m->comm.size > 1 || n <= 1) return 0;
+  if (strcmp(var, "SLURM_STEP_NUM_TASKS") == 0)
+    fprintf(stderr,
+            "swarf simulate: this is one of %ld tasks of a Slurm step, but MPI sees one "
+            "process: each task would run the whole job and write the same outputs. Start it "
+            "with `srun --mpi=pmix` (or SLURM_MPI_TYPE=pmix, or MpiDefault=pmix in "
+            "slurm.conf); nothing was written\n",
+            n);
+  else
+    fprintf(stderr,
+            "swarf simulate: the launcher started %ld tasks (%s) but MPI sees one process: "
+            "each would run the whole job. Use the launcher of the MPI swarf was built with "
+            "(OpenMPI's mpirun); nothing was written\n",
+            n, var);
+  return 2;
+}
+
 #ifdef SWARF_MPI
 #include <mpi.h>
 
@@ -72,7 +111,7 @@ int swarf_cli_mpi_start(swarf_cli_mpi *m) {
   memset(m, 0, sizeof *m);
   m->comm.size = 1;
   m->saved_stderr = -1;
-  if (!launched()) return 0;
+  if (!launched()) return refuse_copies(m);
   if (MPI_Init(NULL, NULL) != MPI_SUCCESS) {
     fprintf(stderr, "swarf simulate: MPI could not start\n");
     return 1;
@@ -83,6 +122,11 @@ int swarf_cli_mpi_start(swarf_cli_mpi *m) {
   m->comm.allgather = mpi_allgather;
   m->comm.gather = mpi_gather;
   m->comm.user = m;
+  if (refuse_copies(m)) {
+    MPI_Finalize();
+    m->active = 0;
+    return 2;
+  }
   if (m->comm.rank != 0) { /* rank 0 speaks */
     fflush(NULL);
     m->saved_stderr = dup(2);
@@ -142,7 +186,7 @@ int swarf_cli_mpi_start(swarf_cli_mpi *m) {
                     "without mpirun, or rebuild with libopenmpi-dev\n");
     return 2;
   }
-  return 0;
+  return refuse_copies(m);
 }
 
 int swarf_cli_mpi_agree(swarf_cli_mpi *m, int rc) {

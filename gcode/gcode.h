@@ -208,7 +208,7 @@ SWARF_API swarf_status swarf_gcode_parser_work_system(const swarf_gcode_parser *
 SWARF_API long swarf_gcode_parser_units_line(const swarf_gcode_parser *p);
 
 /* ---- Dialects and the operator's switches (call before the first feed) ---
- * The dialect the program is read in (README.md, "G-code dialects", has the
+ * The dialect the program is read in (tools/doc/dialects.md has the
  * table of what differs):
  *   LINUXCNC  LinuxCNC's RS274/NGC, as `rs274` reads it (the default);
  *   FANUC     Fanuc 0i/30i-style: O program numbers, M98/M99 subprograms

@@ -2,7 +2,7 @@
 
 Starts swarf with a --modbus option on a port it picks itself (port 0; the
 port is read back from swarf's announcement on stderr), decodes the register
-map the README documents, reads the summary swarf prints, and talks raw
+map tools/doc/modbus.md documents, reads the summary swarf prints, and talks raw
 Modbus TCP for the frames a well-behaved client library would never send.
 Nothing here knows swarf's internals: only its command line, its output and
 the documented map.
@@ -116,7 +116,7 @@ def u32(regs, at):
 
 
 def decode(regs):
-    """The documented map (README, "Status over Modbus"), registers 0..19."""
+    """The documented map (tools/doc/modbus.md), registers 0..19."""
     return {
         "state": regs[0], "permille": regs[1], "line": u32(regs, 2),
         "done": u32(regs, 4), "total": u32(regs, 6), "removed": u32(regs, 8),

@@ -1,5 +1,5 @@
 """modbus_churn.py SWARF FIXTURES -- the TCP status server's client table under
-connection churn (README, "Status over Modbus": who is closed when the table
+connection churn (tools/doc/modbus.md: who is closed when the table
 is full). 64 polite pollers (32 at 2 Hz, 32 at 1 Hz, raw sockets, one
 connection each) fill the 64 slots; then, for ~8 s, ~100 connections a second
 come and go (closed at once, left idle, one good request then idle, one

@@ -4,7 +4,7 @@
  * line and alarm callbacks hand out -- per source line and tool: moves, time,
  * tip path and the volume removed -- sums them per tool, and writes them with
  * the final report (the design comparison included) and the run's inputs to
- * one JSON document (jansson; the schema is in README.md). The file is
+ * one JSON document (jansson; the schema is in tools/doc/simulate.md). The file is
  * written to a temporary name in the same folder and renamed into place.
  *
  * Units: mm, mm^3, seconds. Ownership: the collector owns its entries; the

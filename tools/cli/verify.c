@@ -31,7 +31,7 @@ const char swarf_verify_help[] =
     "                   in the machine's unit (--units)\n"
     "  --units mm|in    the machine's length unit: programs without G20/G21 are read\n"
     "                   in it (default mm; without it such a program gets a warning)\n"
-    "How the program is read (README: G-code dialects):\n"
+    "How the program is read (tools/doc/dialects.md):\n"
     "  --dialect NAME   linuxcnc (default), fanuc, haas or grbl\n"
     "  --block-delete   the block delete switch is on: `/` blocks are skipped (off:\n"
     "                   they run, as in LinuxCNC)\n"

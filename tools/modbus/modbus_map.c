@@ -1,5 +1,5 @@
 /* modbus_map.c -- the Modbus register map: what each register of the status
- * block holds, computed from a status snapshot. The README's table is the
+ * block holds, computed from a status snapshot. tools/doc/modbus.md's table is the
  * contract; this file is its only implementation (servers and the push
  * client all call it). Pure functions: the caller owns every buffer.
  */

@@ -24,7 +24,7 @@
 #include "job.h"
 #include "swarf_sim.h"
 
-/* The register map (README.md, "Status over Modbus"). */
+/* The register map (tools/doc/modbus.md). */
 #define SWARF_MB_NREGS 64      /* input registers 0..63; holding registers 0..63 the same */
 #define SWARF_MB_CMD_REG 64    /* holding register: commands */
 #define SWARF_MB_NAME_REG 32   /* 32..63: program name, two ASCII bytes each */

@@ -16,7 +16,7 @@
 
 const char swarf_modbus_help[] =
     "\n"
-    "Status over Modbus (register map in README.md; all off by default):\n"
+    "Status over Modbus (register map: tools/doc/modbus.md; all off by default):\n"
     "  --modbus tcp:[HOST:]PORT[,unit=N]  serve the status while the job runs (FC 02,\n"
     "                   03, 04); HOST defaults to 127.0.0.1 (give 0.0.0.0 to open it\n"
     "                   to the shop network); PORT 0 picks a free port; unit default 1;\n"

@@ -6,7 +6,7 @@
  * a frame holds only its own slot), a reply that does not fit in a client's
  * socket buffer drops that client, and clients idle too long are closed.
  *
- * The table (README, "Status over Modbus"): KEEP slots for polite clients
+ * The table (tools/doc/modbus.md): KEEP slots for polite clients
  * plus SPARE more, so that a newcomer always gets in. When all slots are
  * taken, the newcomer replaces, in this order: a misbehaving client (a
  * request refused in the last minute, or a frame left half sent), an

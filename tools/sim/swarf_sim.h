@@ -377,7 +377,7 @@ SWARF_API swarf_status swarf_sim_parse_fixture(const char *spec, swarf_sim_fixtu
 SWARF_API swarf_status swarf_sim_config_load_tool_table(swarf_sim_config *cfg, const char *path,
                                                         double mm_per_unit, swarf_error *err);
 
-/* Reads a tool library (JSON, library.c; the README documents the format):
+/* Reads a tool library (JSON, library.c; tools/doc/simulate.md documents the format):
  * full assemblies that replace the description of tools already in cfg
  * (their G43 length stays unless the library gives one) or add new ones.
  * Errors: FILE:LINE: what is wrong (SWARF_ERR_TOOL, SWARF_ERR_FORMAT). */

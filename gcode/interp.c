@@ -14,6 +14,7 @@
  * same line take effect, so "G20 F10" read in mm mode means 10 mm/min.
  */
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -257,11 +258,27 @@ static void run_stop(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   swarf_gc_out_text(ex->out, "PROGRAM_END()");
 }
 
+/* LinuxCNC selects a tool at its T word and stops there when the table has
+ * no such tool (rs274: "Requested tool 5 not found in the tool table"); T0
+ * (the empty spindle) is always there. Fanuc and Haas controls hold their
+ * tool data and grbl has no tool table: any T is taken. */
+static int check_tool_word(const swarf_gc_block *b, const swarf_gc_state *st,
+                           const swarf_gc_exec *ex, swarf_gc_fault *f) {
+  const swarf_gc_word *w = swarf_gc_block_word(b, 'T');
+  int t;
+  if (!w->present || st->dialect != SWARF_GCODE_DIALECT_LINUXCNC || ex->tools == NULL)
+    return SWARF_OK;
+  t = (int)(w->value + 0.5);
+  if (t == 0 || (t < ex->ntools && !isnan(ex->tools[t][0]))) return SWARF_OK;
+  return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOOL_NOT_FOUND, w->column, t);
+}
+
 int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
                      swarf_gc_fault *f) {
   int status, system = code_of(b, SWARF_GC_GROUP_COORD_SYSTEM);
   size_t moves;
   status = swarf_gc_comp_check(b, next, f);
+  if (status == SWARF_OK) status = check_tool_word(b, next, ex, f);
   if (status != SWARF_OK) return status;
   run_comment(b, ex);
   run_feed_mode(b, next, ex);

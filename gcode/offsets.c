@@ -86,8 +86,15 @@ int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
   if (cw->code < 0) return SWARF_OK;
   if (cw->code == 430) {
     int h = swarf_gc_block_has(b, 'H') ? (int)(swarf_gc_block_word(b, 'H')->value + 0.5) : st->tool;
-    if (tool_z(ex, h, &z) != 0)
-      return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOOL_NOT_FOUND, cw->column, h);
+    if (tool_z(ex, h, &z) != 0) {
+      if (!swarf_gc_fanuc_like(st))
+        return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOOL_NOT_FOUND, cw->column, h);
+      z = 0; /* a Fanuc or Haas control holds its offsets */
+      swarf_gc_note(ex->notes, cw->column,
+                    "G43 H%d: tool %d's length offset is the control's (not in the table): "
+                    "taken as 0",
+                    h, h);
+    }
   }
   swarf_gc_to_machine(st, st->pos, m);
   memset(st->tlo, 0, sizeof st->tlo);

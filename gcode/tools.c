@@ -4,7 +4,7 @@
  * D0.125 ;comment`, values in inches (rs274 without an INI file). Where
  * LinuxCNC skips a line it cannot read, this reader refuses the table at
  * TABLE:LINE (the word in the error's word): unknown letters, numbers that
- * are not whole, finite numbers, negative diameters, T outside 1..999,
+ * are not whole, finite numbers, negative diameters, T outside 0..999,
  * a tool twice, a line without T, NUL bytes, lines over LINE_MAX characters
  * (read whole or refused, never split). Only a regular file of at most
  * FILE_MAX bytes is read (swarf_file.h). The table is set only when all of
@@ -54,20 +54,20 @@ static swarf_status table_word(const table_at *at, const char *w, int *t, double
   if (strchr("TPQ", letter) && v != floor(v))
     return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_VALUE, at_line(at, w), w,
                           "T, P and Q take whole numbers");
-  if (letter == 'T' && (v < 1 || v >= SWARF_GC_NTOOLS))
+  if (letter == 'T' && (v < 0 || v >= SWARF_GC_NTOOLS))
     return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_VALUE, at_line(at, w), w,
-                          "tool numbers run from 1 to 999");
+                          "tool numbers run from 0 to 999");
   if ((letter == 'P' || letter == 'D') && v < 0)
     return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_VALUE, at_line(at, w), w,
                           letter == 'P' ? "a pocket number is 0 or more"
                                         : "a diameter cannot be negative");
-  if (letter == 'T') *t = (int)v;
+  if (letter == 'T') *t = (int)v + 1; /* 0: no T word (T0 is tool 0, the empty spindle) */
   if (letter == 'Z') *z = v;
   if (letter == 'D') *d = v;
   return SWARF_OK;
 }
 
-/* One line (NUL-terminated, comment included): *t stays 0 without a tool. */
+/* One line (NUL-terminated, comment included): *t is -1 without a tool. */
 static swarf_status table_line(const table_at *at, char *text, int *t, double *z, double *d) {
   char *semi = strchr(text, ';'), *save = NULL;
   int words = 0;
@@ -80,6 +80,8 @@ static swarf_status table_line(const table_at *at, char *text, int *t, double *z
     if (s != SWARF_OK) return s;
   }
   if (words > 0 && *t == 0) return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_NO_T, at_line(at, ""));
+  if (*t > 0) (*t)--;
+  else *t = -1;
   return SWARF_OK;
 }
 
@@ -112,7 +114,7 @@ static swarf_status read_table(FILE *in, table_at *at, double (*tools)[2], long 
   if (buf == NULL) return SWARF_GC_ERROR(SWARF_GCODE_E_OUT_OF_MEMORY, at_line(at, NULL));
   while (s == SWARF_OK && (s = next_line(in, buf, at, &got)) == SWARF_OK && got) {
     s = table_line(at, buf, &t, &z, &d);
-    if (s != SWARF_OK || t == 0) continue;
+    if (s != SWARF_OK || t < 0) continue;
     if (seen[t] > 0) {
       char word[16];
       snprintf(word, sizeof word, "T%d", t);

@@ -471,6 +471,29 @@ static void test_error_order(void) {
           SWARF_GCODE_E_PERCENT_NOT_OPEN);
 }
 
+/* Tool selection (issue 27, point 5). LinuxCNC stops at a T word whose tool
+ * the table lacks, as rs274 does ("Requested tool 5 not found in the tool
+ * table", at the T word); T0, the empty spindle, is always there. A Fanuc or
+ * Haas control holds its tool data: any T, and G43 H of a tool the table
+ * lacks takes length 0 with a note. */
+static void test_tool_words(void) {
+  refused("linuxcnc T5 not in the table", run(SWARF_GCODE_DIALECT_LINUXCNC, "G21\nT5\nG0 X1\nM2\n"),
+          2, SWARF_GCODE_E_TOOL_NOT_FOUND);
+  CHECK(out.err.column == 1, "at the T word (column %d)", out.err.column);
+  run(SWARF_GCODE_DIALECT_LINUXCNC, "G21\nT1 M6\nG0 X1\nT0 M6\nG0 X2\nM2\n");
+  CHECK(out.status == SWARF_OK && out.n == 2, "linuxcnc T1 and T0 are taken (%s)", out.err.message);
+  for (int d = 0; d < 2; d++) {
+    run(d ? SWARF_GCODE_DIALECT_HAAS : SWARF_GCODE_DIALECT_FANUC,
+        "%\nO1\nT5 M6\nG43 H5 Z5\nG0 X1\nM30\n%\n");
+    CHECK(out.status == SWARF_OK && out.n == 2, "%s: T5 and G43 H5 without a table (%s)",
+          d ? "haas" : "fanuc", out.err.message);
+    CHECK(out.nnotes >= 1 && out.note_line[out.nnotes - 1] == 4 &&
+              strstr(out.note[out.nnotes - 1], "taken as 0") != NULL,
+          "%s: G43 H5's note at line 4 (%d notes)", d ? "haas" : "fanuc", out.nnotes);
+    if (out.n == 2) CHECK(out.v[0].end[2] == 5.0, "%s: Z5 with no length offset", d ? "haas" : "fanuc");
+  }
+}
+
 static void test_names(void) {
   swarf_gcode_dialect d = SWARF_GCODE_DIALECT_LINUXCNC;
   CHECK(swarf_gcode_dialect_from_name("haas", &d) == 0 && d == SWARF_GCODE_DIALECT_HAAS, "haas");
@@ -491,5 +514,6 @@ int main(void) {
   test_haas();
   test_grbl();
   test_error_order();
+  test_tool_words();
   return check_done();
 }

@@ -32,7 +32,7 @@ expect unknown-gcode 'prog\.ngc:1:1: .*G12' 'G12.5 X1\n' "${stock[@]}" "${tool[@
 expect malformed-number 'prog\.ngc:3:(4|5|6|7|8|9):' 'G0 Z5\nG0 X1\nG1 X1.2.3 F100\n' "${stock[@]}" "${tool[@]}"
 expect bad-arc-radius 'prog\.ngc:2:[0-9]+: .*[Rr]adius' 'G0 X0 Y0 Z1\nG2 X10 Y0 I4 J0 F100\n' "${stock[@]}" "${tool[@]}"
 expect arc-r-too-small 'prog\.ngc:2:[0-9]+: ' 'G0 X0 Y0 Z1\nG2 X10 Y0 R2 F100\n' "${stock[@]}" "${tool[@]}"
-expect missing-tool 'prog\.ngc:3:[0-9]+: tool T3 is not in the tool table' 'G0 Z5\nG0 X1\nT3 M6\nG0 X2\n' \
+expect missing-tool 'prog\.ngc:3:1: Requested tool 3 not found in the tool table' 'G0 Z5\nG0 X1\nT3 M6\nG0 X2\n' \
   "${stock[@]}" --tool T1=ball,D3 --tool T2=flat,D6
 expect stock-min-max '--stock: X min 10 is not below X max 0' 'G0 X1\n' --stock box:10,0,-10,0,30,0 "${tool[@]}"
 expect stock-garbage '--stock: ' 'G0 X1\n' --stock box:1,2,3 "${tool[@]}"

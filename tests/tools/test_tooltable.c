@@ -136,15 +136,18 @@ static void bad_tables(void) {
   bad_table("; header\nT1 P1 D6 Z+3x0\n", 2, "bad number in \"Z+3x0\"");
   bad_table("T1 P1 D6\n\nT1 P2 D3\n", 3, "T1 is already in the table (line 1)");
   bad_table("P1 D6 Z3 ;no tool\n", 1, "no T word");
-  bad_table("T1000 P1 D6\n", 1, "tool numbers run from 1 to 999");
+  bad_table("T1000 P1 D6\n", 1, "tool numbers run from 0 to 999");
+  bad_table("T-1 P1 D6\n", 1, "tool numbers run from 0 to 999");
   bad_table("T1.5 P1 D6\n", 1, "whole numbers");
   bad_table("T1 P1 D-6\n", 1, "negative");
   bad_table("T1 P1 D6 X0.5 Z10\n", 1, "only Z offsets");
   bad_table("T1 P1 D6 Znan\n", 1, "bad number");
-  /* accepted: comments, blank lines, tabs, lower case, lathe fields, no final newline */
+  /* accepted: comments, blank lines, tabs, lower case, lathe fields, no final newline, and
+   * T0 (LinuxCNC's empty spindle: rs274 reads the line, issue 27 point 5) */
   char path[] = "/tmp/swarf_tbl_XXXXXX";
   FILE *f = fdopen(mkstemp(path), "w");
-  fputs(";T9 is a comment\n\n t7\tp3 d0.25 z-1.5 i95 j155 q2 ;a ; b\nT8 P4 D3", f);
+  fputs(";T9 is a comment\nT0 P0 Z0 D0 ;empty spindle\n t7\tp3 d0.25 z-1.5 i95 j155 q2 ;a ; b\nT8 P4 D3",
+        f);
   fclose(f);
   swarf_sim_config cfg;
   swarf_error err;

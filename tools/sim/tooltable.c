@@ -30,7 +30,8 @@
 
 /* One entry as read, table units converted to mm. */
 typedef struct {
-  int number;
+  int number; /* 0: T0, LinuxCNC's empty spindle (rs274 reads such a line) */
+  int has_t;
   double diameter, length;
 } table_entry;
 
@@ -73,9 +74,10 @@ static swarf_status table_word(const table_place *at, const char *w, double mm_p
     return bad(at, w, "\"%s\": T, P and Q take whole numbers", w);
   switch (letter) {
   case 'T':
-    if (v < 1 || v > SWARF_SIM_MAX_TOOL_NUMBER)
-      return bad(at, w, "\"%s\": tool numbers run from 1 to %d", w, SWARF_SIM_MAX_TOOL_NUMBER);
+    if (v < 0 || v > SWARF_SIM_MAX_TOOL_NUMBER)
+      return bad(at, w, "\"%s\": tool numbers run from 0 to %d", w, SWARF_SIM_MAX_TOOL_NUMBER);
     e->number = (int)v;
+    e->has_t = 1;
     break;
   case 'P':
     if (v < 0) return bad(at, w, "\"%s\": a pocket number is 0 or more", w);
@@ -108,7 +110,7 @@ static swarf_status table_line(const table_place *at, char *text, double mm_per_
     swarf_status s = table_word(at, w, mm_per_unit, e);
     if (s != SWARF_OK) return s;
   }
-  if (words > 0 && e->number == 0) return bad(at, "", "no T word (each line is one tool: T<n> ...)");
+  if (words > 0 && !e->has_t) return bad(at, "", "no T word (each line is one tool: T<n> ...)");
   return SWARF_OK;
 }
 

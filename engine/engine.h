@@ -286,7 +286,7 @@ typedef struct {
   double Q[9], b[3], c;
 } swarf_qss_general;
 
-/* swarf_char_curve_compute for a general QSS (engine/charqssgen.c): the
+/* swarf_char_curve_compute for a general QSS (engine/envelope/charqssgen.c): the
  * spherical quartic f = g = 0 traced by a sweep along a generic axis. Same
  * layout (closed polylines, chord error of x under tol). cc->ncomp is the
  * number of components; 0 when f vanishes identically (still, or the whole

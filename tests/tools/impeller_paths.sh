@@ -8,9 +8,9 @@
 # Used by tools_rotary_blocks (ENV SWARF_REMOVE_FLAT: the removal's block
 # hierarchy, stock/remove.cc, against the flat per-voxel path) and
 # tools_rotary_range (ENV SWARF_REMOVE_PLAIN: the pruned rotary search,
-# engine/sweep_rigid.c, against the full certified minimum at every voxel) and
+# engine/sweep/sweep_rigid.c, against the full certified minimum at every voxel) and
 # tools_rotary_ball (ENV SWARF_SWEEP_GENERAL: the ball end mill's path from the
-# characteristic circles, engine/sweep_rigid_ball.c, against the general search).
+# characteristic circles, engine/sweep/sweep_rigid_ball.c, against the general search).
 set -u
 swarf=$1 real=$2 voxel=$3 env=$4 what=$5
 [ -d "$real" ] || {

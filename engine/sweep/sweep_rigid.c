@@ -320,7 +320,8 @@ double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, 
 
 double swarf_sweep_rigid_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   double v;
-  if (s != NULL && p != NULL && swarf_sweep_cdata(s)->method == SWARF_SWEEP_RIGID &&
+  if (s == NULL || p == NULL) return NAN; /* s->cutter below */
+  if (swarf_sweep_cdata(s)->method == SWARF_SWEEP_RIGID &&
       swarf_sweep_rigid_ball(s, p, -INFINITY, INFINITY, &v, alpha) == 0)
     return v;
   return swarf_sweep_rigid_body_sdf(s, cutter_body, s->cutter, p, alpha);

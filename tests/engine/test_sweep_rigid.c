@@ -238,5 +238,9 @@ int main(void) {
   test_five_axis();
   test_on_characteristic();
   test_range();
+  { /* no sweep: NAN, not a NULL dereference (issue 31) */
+    const double p[3] = {0, 0, 0};
+    CHECK(isnan(swarf_sweep_rigid_sdf(NULL, p, NULL)), "NULL sweep: NAN");
+  }
   return check_done();
 }

@@ -95,6 +95,12 @@ inline Vec3d block_point(const Pass &p, const Coord &o, double dx, double dy, do
 /// any cut's sdf (1e-6 mm for rotary sweeps), so that a voxel they pass over
 /// or clear ends exactly as if its sdf had been evaluated.
 constexpr double kMargin = 1e-5;
+/// A voxel within kTie voxels of the surface is on it, for gouges: a cut
+/// whose surface passes through a voxel centre (a tie, the sign of the
+/// zero left to rounding) gouges there if the voxel was material, and the
+/// next cut through the same centre (a retract from that pose) removes
+/// nothing more and gouges nothing.
+constexpr double kTie = 1e-9;
 
 /// A cut's sdf at q where only values in (lo, hi) decide anything: with the
 /// cut's range function (rotary sweeps: their search is pruned by both), a
@@ -1014,6 +1020,7 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
   planes.reset(b.count);
   visit_leaf(p, leaf, b, vs.oct, arg, &planes);
   const double half = 0.5 * p.voxel, bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel;
+  const double tie = kTie * p.voxel;
   const swarf_stock *ds = p.measure->design;
   const double floor = design ? -p.voxel : -half, deep = design ? p.voxel : half;
   CubeCuts &cubes = vs.cubes;
@@ -1031,7 +1038,7 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
     if (volumes) { // the voxels whose fraction changed
       if (!(data[n] > old[n] && old[n] < half && data[n] > -half)) continue;
     } else { // those that crossed from material to air where the design may be gouged
-      if (!(old[n] < 0.0f && data[n] > 0.0f)) continue;
+      if (!(old[n] < -tie && data[n] > -tie)) continue;
       const Coord l = Leaf::offsetToLocalCoord(n);
       dq = design->at(block_point(p, b.origin, l.x(), l.y(), l.z()));
       if (!(dq < far)) continue;
@@ -1081,7 +1088,7 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
         if (!(nv > v)) continue;
         w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
       }
-      if (design && v < 0.0 && d > 0.0) {
+      if (design && v < -tie && d > -tie) {
         if (!dq_exact) {
           if (std::isnan(dq)) dq = design->at(q);
           // Beyond the band of a design read from a mesh: its exact depth.
@@ -1320,11 +1327,11 @@ double cut_gouge(const swarf_stock &s, const swarf_stock &design, const swarf_st
         if (!leaf && !(tile < 0.0f)) continue;
         for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
           const double v = leaf ? leaf->getValue(n) : tile;
-          if (!(v < 0.0)) continue;
+          if (!(v < -kTie * p.voxel)) continue;
           const Coord l = Leaf::offsetToLocalCoord(n);
           const Vec3d q = block_point(p, o, l.x(), l.y(), l.z());
           const double d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-          if (!(d > 0.0)) continue;
+          if (!(d > -kTie * p.voxel)) continue;
           double dq = probe.at(q);
           if (design.surface && dq <= -double(design.background) * (1.0 - 1e-6))
             dq = -surface_distance(design, q);

@@ -13,6 +13,10 @@ written here (a faced box; a box with a pocket).
   at their lines; each gouge is told once per program line, by the move that
   first cut into the design (a later move through the same place is not).
 - without --report (only the gouges measured): the same warnings and summary.
+- a retract from a pose whose tool surface passes through voxel centres
+  inside the design (a tie: the cut's sdf is 0 there, its sign rounding's)
+  gouges nothing and removes nothing: the gouges stay with the moves that
+  cut (issue 27, point 2), with and without --report.
 - --fail-on gouge: exit status 4, outputs still written; --tolerance;
   the report's gouge alarms; a design that misses the stock is an error
   (exit 2, nothing written).
@@ -186,6 +190,22 @@ same_without_report(r, pocket_program(extra), pocket, "pocket plunge and wall")
 
 # a design that misses the stock: exit 2, nothing written
 far = os.path.join(d, "far.stl")
+# A retract straight up from the end of a pass whose ball surface passes
+# through voxel centres 1.4 mm inside the design (found by a random search:
+# the retract was warned "gouge 1.400 mm" with nothing removed).
+tie_design = os.path.join(d, "tie.stl")
+vk.write_stl(tie_design, vk.box_triangles((0, 0, -10), (40, 40, -1)))
+tie = "G21 G90\nG0 Z5\nG0 X20.0 Y26.0\nG1 Z-2.8 F100\nG1 X26.0 Y26.0 Z-2.8 F300\nG0 Z6\nM2\n"
+for report in (True, False):
+    r = vk.Run(swarf, tie, ["--stock", "box:0,0,-10,40,40,0", "--tool", "T1=ball,D3", "--voxel", "0.2",
+                            "--design", tie_design], d, report=report)
+    g = [line for line, _, _ in gouges(r)]
+    what = "retract after a tie (%s --report)" % ("with" if report else "without")
+    vk.check(r.status == 0 and 6 not in g, "%s: no gouge on the retract's line 6: %s" % (what, g))
+    vk.check(4 in g and 5 in g, "%s: the plunge and the pass gouge (lines 4, 5): %s" % (what, g))
+    if report:
+        vk.check(r.lines().get(6, 0.0) == 0.0, "%s: line 6 removes nothing" % what)
+
 vk.write_stl(far, vk.box_triangles((100, 100, -10), (140, 130, -1)))
 r = run(text, far)
 vk.check(r.status == 2 and not os.path.exists(r.out) and r.report is None,

@@ -188,6 +188,16 @@ SWARF_API int swarf_stock_half_width(const swarf_stock *s);
  * NaN for a NULL stock. */
 SWARF_API double swarf_stock_volume(const swarf_stock *s);
 SWARF_API unsigned long long swarf_stock_active_voxels(const swarf_stock *s);
+/* Clears the sheets of no thickness a cut leaves where its surface passes
+ * through the voxel centres of a stock face on the lattice (a slot cut to
+ * exactly the bottom face): a voxel on the surface (within 1e-9 voxel of 0)
+ * whose two neighbours along one axis are both air a full voxel away becomes
+ * air, half a voxel out (sheets.cc). Faces, edges and corners of material
+ * and floors thinner than a voxel stay. *cleared (may be NULL): the voxels
+ * cleared.
+ * swarf_sim_finish calls it on the whole stock before the volumes. */
+SWARF_API swarf_status swarf_stock_clear_sheets(swarf_stock *s, long long *cleared,
+                                                swarf_error *err);
 /* Bounding box of the active voxels, mm. */
 SWARF_API void swarf_stock_bounds(const swarf_stock *s, double lo[3], double hi[3]);
 

@@ -459,6 +459,15 @@ swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
   return take_motion(s, &copy) ? s->err.status : SWARF_OK;
 }
 
+/* The sheets of no thickness cuts that end on a stock face leave (stock.h). */
+static swarf_status clear_sheets(swarf_sim *s) {
+  swarf_error e;
+  swarf_error_init(&e);
+  if (swarf_stock_clear_sheets(s->stock, NULL, &e) != SWARF_OK)
+    return swarf_sim_fail(s, e.status, 0, 0, "%s", e.message);
+  return SWARF_OK;
+}
+
 swarf_status swarf_sim_finish(swarf_sim *s) {
   swarf_status st = check_open(s);
   if (st != SWARF_OK) return st;
@@ -470,6 +479,7 @@ swarf_status swarf_sim_finish(swarf_sim *s) {
   if (st == SWARF_OK && swarf_sim_lines_flush(s, 1) != 0) st = s->err.status;
   if (st == SWARF_OK && swarf_sim_part_merge(s) != 0) st = s->err.status;
   const int whole = !swarf_sim_parts(s) || s->cfg.comm->rank == 0; /* the whole stock here */
+  if (st == SWARF_OK && whole) st = clear_sheets(s);
   if (st == SWARF_OK && whole) st = swarf_sim_design_compare(s);
   s->rep.seconds = now_seconds() - s->t0;
   if (st != SWARF_OK) return st;

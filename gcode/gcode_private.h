@@ -474,6 +474,11 @@ typedef struct {
 int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
                      swarf_gc_fault *f);
 
+/* grbl's homing cycle ($H): rapids in machine coordinates, Z to the home
+ * first, then the other axes (offsets.c); no move for an axis already there. */
+void swarf_gc_home_cycle(swarf_gc_state *st, swarf_gc_exec *ex, const double home[SWARF_NAXES],
+                         int column);
+
 /* ---- motion.c, offsets.c, cycle.c ---------------------------------------- */
 
 /* The end point of the block's axis words (program mm, absolute). */

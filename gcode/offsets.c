@@ -263,6 +263,23 @@ static void run_home(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   memcpy(st->pos, end, sizeof st->pos);
 }
 
+void swarf_gc_home_cycle(swarf_gc_state *st, swarf_gc_exec *ex, const double home[SWARF_NAXES],
+                         int column) {
+  double m[SWARF_NAXES], end[SWARF_NAXES];
+  swarf_gc_to_machine(st, st->pos, m);
+  if (m[2] != home[2]) { /* Z up first, clear of the work */
+    m[2] = home[2];
+    swarf_gc_from_machine(st, m, end);
+    swarf_gc_out_straight(ex->out, st, SWARF_GC_CALL_TRAVERSE, end, column);
+    memcpy(st->pos, end, sizeof st->pos);
+  }
+  if (memcmp(m, home, sizeof m) != 0) { /* then the other axes */
+    swarf_gc_from_machine(st, home, end);
+    swarf_gc_out_straight(ex->out, st, SWARF_GC_CALL_TRAVERSE, end, column);
+    memcpy(st->pos, end, sizeof st->pos);
+  }
+}
+
 static void store_home(swarf_gc_state *st, int code) {
   double m[SWARF_NAXES];
   /* The controlled point's machine position, offset included (as rs274). */

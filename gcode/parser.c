@@ -359,14 +359,48 @@ static swarf_status percent_line(swarf_gcode_parser *p, const char *text, size_t
   return fail(p, &f, text, n);
 }
 
-/* grbl reads lines one by one: `$` lines are settings and commands for the
- * controller (ignored here, with a note), `%` lines are stripped by the
- * senders (ignored), and there are no parameters, expressions or O words
- * (outside comments). */
+/* grbl's $H: the homing cycle takes the machine to its home, the start
+ * position (swarf_gcode_parser_set_start), Z first; the work offsets stay
+ * (grbl keeps them). A file of several jobs, each `$H` then G10 L20, so sets
+ * each job's origin from the same place, as on the machine. */
+static swarf_status grbl_home(swarf_gcode_parser *p, const char *text, size_t n, size_t at) {
+  swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
+  swarf_gc_exec ex = {&p->params, &p->out, p->tools, SWARF_GC_NTOOLS, &p->notes, p->ext};
+  *next = *p->state;
+  p->notes.n = 0;
+  out_start(p);
+  swarf_gc_home_cycle(next, &ex, p->start, (int)at + 1);
+  swarf_gc_note(&p->notes, (int)at + 1,
+                "$H: homed (Z first) to machine X%.3f Y%.3f Z%.3f, the start position (--start)",
+                p->start[0], p->start[1], p->start[2]);
+  p->state = next;
+  p->params.state = next;
+  for (int i = 0; i < p->notes.n && p->note_fn != NULL; i++)
+    p->note_fn(p->cur_line, p->notes.column[i], p->notes.text[i], p->note_user);
+  swarf_status status = emit(p, text, n);
+  out_keep(p);
+  return status;
+}
+
+/* `$H` alone on its line (spaces and a comment after it allowed). */
+static int is_home(const char *text, size_t n, size_t first) {
+  size_t i = first + 2;
+  if (first + 1 >= n || text[first] != '$' || (text[first + 1] != 'H' && text[first + 1] != 'h'))
+    return 0;
+  while (i < n && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r'))
+    i++;
+  return i == n || text[i] == ';' || text[i] == '(';
+}
+
+/* grbl reads lines one by one: `$H` homes, other `$` lines are settings and
+ * commands for the controller (ignored here, with a note), `%` lines are
+ * stripped by the senders (ignored), and there are no parameters,
+ * expressions or O words (outside comments). */
 static swarf_status grbl_line(swarf_gcode_parser *p, const char *text, size_t n, size_t first,
                               size_t rest) {
   int depth = 0;
   swarf_gc_fault f;
+  if (is_home(text, n, first)) return grbl_home(p, text, n, first);
   if (text[first] == '$' || (text[first] == '%' && rest == n)) {
     swarf_gc_parser_note(p, (int)first + 1, "%s line ignored (grbl %s)",
                          text[first] == '$' ? "$" : "%",

@@ -494,6 +494,25 @@ static void test_tool_words(void) {
   }
 }
 
+/* grbl's $H homes (issue 27, point 6): a file of two jobs, each `$H` then
+ * G10 L20 P1 X0 Y0 Z0, cuts the second where it cut the first (ignoring $H,
+ * G10 L20 set the second origin where the first job ended: 10 mm off). */
+static void test_grbl_home(void) {
+  static const char two_jobs[] = "$H\nG21 G90\nG10 L20 P1 X0 Y0 Z0\nG0 X10\nG1 Z-1 F100\nG0 Z5\n"
+                                 "$H\nG10 L20 P1 X0 Y0 Z0\nG0 X10\nG1 Z-1\nM30\n";
+  run(SWARF_GCODE_DIALECT_GRBL, two_jobs);
+  CHECK(out.status == SWARF_OK && out.n == 7, "grbl two jobs: 7 moves (%d, %s)", out.n,
+        out.err.message);
+  if (out.n == 7) {
+    CHECK(out.v[1].end[0] == out.v[6].end[0] && out.v[1].end[2] == out.v[6].end[2],
+          "grbl two jobs: the second job's cut at the first's (X%g Z%g vs X%g Z%g)",
+          out.v[6].end[0], out.v[6].end[2], out.v[1].end[0], out.v[1].end[2]);
+    CHECK(out.v[3].line == 7 && out.v[4].line == 7 && out.v[3].end[0] == 10 &&
+              out.v[3].end[2] == 0 && out.v[4].end[0] == 0,
+          "grbl $H at line 7: Z to the home first, then X and Y");
+  }
+}
+
 static void test_names(void) {
   swarf_gcode_dialect d = SWARF_GCODE_DIALECT_LINUXCNC;
   CHECK(swarf_gcode_dialect_from_name("haas", &d) == 0 && d == SWARF_GCODE_DIALECT_HAAS, "haas");
@@ -515,5 +534,6 @@ int main(void) {
   test_grbl();
   test_error_order();
   test_tool_words();
+  test_grbl_home();
   return check_done();
 }

@@ -27,5 +27,38 @@ printf 'G21 G0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y10\nG0 Z5\nG0 X0 Y0\n' > "$di
 "$swarf" simulate "$dir/clean.ngc" --stock box:0,0,-10,40,30,0 --tool T1=ball,D3,L12 --voxel 0.25 \
   --out "$dir/out.vdb" > "$dir/summary" 2> "$dir/stderr"
 ok "a clean program has no alarm" 'grep -q "alarms 0 " "$dir/summary" && ! grep -q warning "$dir/stderr"'
+
+# An empty spindle (issue 27, point 4; CamBam posts write T0 M6): a slot with
+# T1, then T0 M6 and feed moves into the stock (lines 9, 10: warned, nothing
+# cut), then feed moves above it (line 12: none).
+printf 'G21 G90
+T1 M6
+G0 X5 Y5 Z5
+G1 Z-2 F300
+G1 X15
+G0 Z5
+T0 M6
+G0 X5 Y15
+G1 Z-2 F300
+G1 X15
+G0 Z5
+G1 X5 Y5
+M2
+' \
+  > "$dir/t0.ngc"
+"$swarf" simulate "$dir/t0.ngc" --stock box:0,0,-5,20,20,0 --tool T1=flat,D3 --voxel 0.25 \
+  --out "$dir/t0.vdb" --report "$dir/t0.json" > "$dir/summary" 2> "$dir/stderr"
+rc=$?
+cat "$dir/summary" "$dir/stderr"
+ok "T0: exits 0 (a warning)" '[ $rc -eq 0 ]'
+ok "T0: the feed moves into the stock warned at lines 9 and 10" \
+  '[ "$(grep -o "t0.ngc:[0-9]*:[0-9]*: warning: feed move with an empty spindle" "$dir/stderr" | cut -d: -f2 | tr "\n" " ")" = "9 10 " ]'
+ok "T0: counted in the summary" 'grep -q "empty spindle (T0): 2" "$dir/summary"'
+ok "T0: the report's alarm kind" \
+  '/usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1])); sys.exit(not (r[\"summary\"][\"alarm_counts\"][\"no_tool\"] == 2 and [a[\"line\"] for a in r[\"alarms\"] if a[\"kind\"] == \"no_tool\"] == [9, 10]))" "$dir/t0.json"'
+"$swarf" simulate "$dir/t0.ngc" --stock box:0,0,-5,20,20,0 --tool T1=flat,D3 --voxel 0.25 \
+  --out "$dir/t0.vdb" --fail-on no-tool --quiet 2> "$dir/stderr"
+rc=$?
+ok "T0: --fail-on no-tool exits 4 (outputs written)" '[ $rc -eq 4 ] && [ -s "$dir/t0.vdb" ] && grep -q "fail-on no-tool" "$dir/stderr"'
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -83,6 +83,8 @@ static const char help[] =
     "  --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX | stl:FILE   a body (vice,\n"
     "                   clamp; a box or a closed STL mesh, mm, workpiece frame) no\n"
     "                   part of the tool may enter, cutter included; repeatable\n"
+    "  --fail-on no-tool  exit status 4 after the run (outputs written) when a feed\n"
+    "                   move ran into the material with an empty spindle (T0 M6)\n"
     "  --fail-on collision  exit status 4 after the run (outputs written) when a\n"
     "                   shank, holder or fixture collision was found\n"
     "  --collision-depths N  measure the depth of the first N collisions of each\n"
@@ -106,14 +108,14 @@ static const char help[] =
     "\n"
     "Exit status 0 on success, 2 on bad input (message FILE:LINE:COL: ..., or\n"
     "FILE:LINE: for tool tables and libraries), 1 on an internal failure, 3 aborted\n"
-    "by a Modbus command, 4 with --fail-on gouge or --fail-on collision when one was\n"
+    "by a Modbus command, 4 with --fail-on gouge, collision or no-tool when one was\n"
     "found. Nothing is written unless the whole program ran.\n";
 
 #define MAX_SPECS 128
 
 typedef struct {
   const char *program, *out, *mesh, *image;
-  int quiet, fail_on_collision;
+  int quiet, fail_on_collision, fail_on_no_tool;
   int balance; /* --balance N */
   swarf_sim_config cfg;
   swarf_modbus_options modbus;
@@ -167,6 +169,8 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   if (rc >= 0) return rc;
   if (!strcmp(flag, "--fail-on") && val != NULL && !strcmp(val, "collision"))
     return (*i)++, o->fail_on_collision = 1, 0;
+  if (!strcmp(flag, "--fail-on") && val != NULL && !strcmp(val, "no-tool"))
+    return (*i)++, o->fail_on_no_tool = 1, 0;
   if ((rc = swarf_verify_option(&o->verify, flag, val, i)) >= 0) return rc;
   if ((rc = swarf_cli_stock_option(&o->stock, flag, val, i)) >= 0) return rc;
   if (!strcmp(flag, "--quiet")) return o->quiet = 1, 0;
@@ -452,6 +456,10 @@ static void print_alarm(const sim_options *o, const swarf_alarm *a) {
     fprintf(stderr, "T%d %s hits fixture %d%s\n", a->tool,
             part[a->part >= 0 && a->part <= 2 ? a->part : 0], a->index, deep);
     break;
+  case SWARF_ALARM_NO_TOOL:
+    fprintf(stderr, "feed move with an empty spindle (T0) runs into the material: load a tool "
+                    "(T<n> M6) before cutting\n");
+    break;
   default:
     fprintf(stderr, "alarm %d\n", (int)a->kind);
   }
@@ -461,14 +469,18 @@ static void print_alarm(const sim_options *o, const swarf_alarm *a) {
  * kind, then how many more. */
 static void print_alarms(const sim_options *o, const alarm_list *l, const swarf_sim_report *r) {
   static const char *what[] = {"rapid moves cut into the material", "shank collisions",
-                               "holder collisions", "fixture collisions", "gouges"};
-  long told[5] = {0};
+                               "holder collisions", "fixture collisions", "gouges",
+                               "feed moves with an empty spindle"};
+  long told[SWARF_ALARM_KINDS] = {0};
   for (long i = 0; i < l->n; i++) {
     const swarf_alarm *a = &l->a[i];
-    if ((unsigned)a->kind >= 5 || a->kind == SWARF_ALARM_GOUGE || told[a->kind]++ >= 100) continue;
+    if ((unsigned)a->kind >= SWARF_ALARM_KINDS || a->kind == SWARF_ALARM_GOUGE ||
+        told[a->kind]++ >= 100)
+      continue;
     print_alarm(o, a);
   }
-  for (int k = 0; k < SWARF_ALARM_GOUGE; k++) {
+  for (int k = 0; k < SWARF_ALARM_KINDS; k++) {
+    if (k == SWARF_ALARM_GOUGE) continue;
     long shown = told[k] < 100 ? told[k] : 100;
     if (r->alarm_count[k] > shown)
       fprintf(stderr, "%s: warning: %ld more %s\n", o->program, r->alarm_count[k] - shown, what[k]);
@@ -490,6 +502,9 @@ static void print_summary(const sim_options *o, const swarf_stock *stock, const 
          r->alarms, r->alarm_count[SWARF_ALARM_RAPID], r->alarm_count[SWARF_ALARM_GOUGE],
          r->collisions, r->alarm_count[SWARF_ALARM_SHANK], r->alarm_count[SWARF_ALARM_HOLDER],
          r->alarm_count[SWARF_ALARM_FIXTURE]);
+  if (r->alarm_count[SWARF_ALARM_NO_TOOL] > 0)
+    printf("  feed moves into the material with an empty spindle (T0): %ld\n",
+           r->alarm_count[SWARF_ALARM_NO_TOOL]);
   if (r->collision_s > 0) printf("  collision check %.2f s CPU\n", r->collision_s);
   printf("  simulation %.2f s (%.0f moves/s), total %.2f s\n", r->seconds,
          r->seconds > 0 ? r->moves / r->seconds : 0.0, total_s);
@@ -639,6 +654,11 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   if (rc == 0 && o.fail_on_collision && rep.collisions > 0) {
     fprintf(stderr, "%s: %ld collisions (--fail-on collision): exit status 4\n", o.program,
             rep.collisions);
+    rc = 4;
+  }
+  if (rc == 0 && o.fail_on_no_tool && rep.alarm_count[SWARF_ALARM_NO_TOOL] > 0) {
+    fprintf(stderr, "%s: %ld feed moves with an empty spindle (--fail-on no-tool): exit status 4\n",
+            o.program, rep.alarm_count[SWARF_ALARM_NO_TOOL]);
     rc = 4;
   }
   swarf_modbus_finish(mb, rc == 4 ? 0 : rc, &rep); /* a gouge is the part's, not the run's */

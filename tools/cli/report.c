@@ -237,8 +237,8 @@ static json_t *point(const double p[3]) {
 }
 
 static const char *alarm_kind(swarf_alarm_kind k) {
-  static const char *names[] = {"rapid", "shank", "holder", "fixture", "gouge"};
-  return (unsigned)k < 5 ? names[k] : "unknown";
+  static const char *names[] = {"rapid", "shank", "holder", "fixture", "gouge", "no_tool"};
+  return (unsigned)k < SWARF_ALARM_KINDS ? names[k] : "unknown";
 }
 
 static json_t *lines_json(swarf_report *r) {
@@ -304,12 +304,12 @@ static json_t *design_json(const swarf_stock_deviation *d) {
 }
 
 static json_t *summary_json(swarf_report *r, const swarf_sim_report *f) {
-  static const char *kinds[] = {"rapid", "shank", "holder", "fixture", "gouge"};
+  static const char *kinds[] = {"rapid", "shank", "holder", "fixture", "gouge", "no_tool"};
   json_t *s, *counts = json_object();
   double rate = 0;
   int tool = 0;
   long peak = swarf_report_peak_mrr(r, &rate, &tool);
-  for (int k = 0; k < 5; k++)
+  for (int k = 0; k < SWARF_ALARM_KINDS; k++)
     json_object_set_new(counts, kinds[k], json_integer(f->alarm_count[k]));
   s = json_pack("{sI sI sI sI sI sI so so so so so so so sI so}", "lines", (json_int_t)f->lines,
                 "moves", (json_int_t)f->moves, "cutting_moves", (json_int_t)f->cutting_moves,

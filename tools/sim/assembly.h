@@ -52,7 +52,7 @@ typedef struct {
   swarf_stock *fixture[SWARF_SIM_MAX_FIXTURES]; /* each fixture as a level set */
   swarf_stock_cut *clear;        /* scratch: the sweeps clearing material for a part */
   long checked;                  /* part checks that reached a grid's box */
-  long measured[5];              /* depths measured, per swarf_alarm_kind */
+  long measured[SWARF_ALARM_KINDS]; /* depths measured, per swarf_alarm_kind */
 } swarf_sim_collide;
 
 /* The motion m with the tool carried dz along its axis (a body dz above the

@@ -185,6 +185,44 @@ static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cu
   return 0;
 }
 
+/* A feed move with an empty spindle (T0 M6, or several tools and none
+ * loaded yet) cuts nothing, but the spindle's nose, at the controlled point,
+ * must not run into the material: a probe two voxels wide along the move,
+ * against the stock as it stands. Every rank makes the same calls (the
+ * flush and the combined hit are collective under MPI). */
+int swarf_sim_batch_check_empty(swarf_sim *s, const swarf_motion *m) {
+  swarf_cutter probe;
+  swarf_sweep w;
+  swarf_stock_cut c;
+  swarf_error e;
+  int hit = 0;
+  double where[3];
+  if (m->rapid || s->surveyor != NULL) return 0;
+  memset(&c, 0, sizeof c);
+  swarf_error_init(&e);
+  if (swarf_cutter_init(&probe, SWARF_CUTTER_FLAT, 2 * s->cfg.voxel, 0, 2 * s->cfg.voxel, &e) !=
+      SWARF_OK)
+    return 0;
+  swarf_sweep_init_voxel(&w, &probe, m, s->cfg.voxel);
+  swarf_sweep_bounds(&w, c.lo, c.hi);
+  if (!boxes_overlap(c.lo, c.hi, s->pad_lo, s->pad_hi)) return 0;
+  if (s->n > 0 && swarf_sim_batch_flush(s) != 0) return 1;
+  c.sdf = sweep_sdf;
+  c.ctx = &w;
+  c.range = m->kind == SWARF_MOTION_RIGID ? sweep_range : NULL;
+  if (swarf_stock_overlaps(s->stock, &c, 0.25 * s->cfg.voxel, &hit, where, &e) != SWARF_OK) {
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", e.message);
+    return 1;
+  }
+  if (swarf_sim_part_hit(s, &hit, where) != 0) return 1;
+  if (hit) {
+    swarf_alarm a = {SWARF_ALARM_NO_TOOL, m->line, m->column, 0, NAN,
+                     {where[0], where[1], where[2]}, 0, 0};
+    swarf_sim_raise(s, &a);
+  }
+  return 0;
+}
+
 /* A batch is flushed early once its cuts' bounds span this many stock blocks
  * of 8^3 voxels: the removal keeps ~32 bytes per (block, cut) pair for a
  * pass, and a rotary move of a long tool spans thousands of blocks at fine

@@ -118,7 +118,8 @@ static int take_motion(swarf_sim *s, swarf_motion *m) {
   s->rep.machining_s += m->duration;
   if (swarf_sim_lines_add(s, m, tool) != 0) return 1;
   if (tell_progress(s, m->line, tool)) return 1;
-  if (s->tool == NULL || swarf_motion_is_null(m)) return 0;
+  if (swarf_motion_is_null(m)) return 0;
+  if (s->tool == NULL) return swarf_sim_batch_check_empty(s, m);
   if (!(s->tool->cutter.diameter > 0)) {
     swarf_sim_fail(s, SWARF_ERR_TOOL, m->line, m->column,
                    "tool T%d has no shape (diameter 0 in the tool table); describe it with "

@@ -99,6 +99,9 @@ swarf_status swarf_sim_fail(swarf_sim *s, swarf_status st, long line, int column
 int swarf_sim_batch_init(swarf_sim *s);
 void swarf_sim_batch_clear(swarf_sim *s);
 int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *m);
+/* A feed move with no tool in the spindle: SWARF_ALARM_NO_TOOL if it runs
+ * into the material (batch.c). 1 after a failure. */
+int swarf_sim_batch_check_empty(swarf_sim *s, const swarf_motion *m);
 int swarf_sim_batch_flush(swarf_sim *s);
 /* An alarm: counted in the report (the first SWARF_SIM_MAX_ALARMS kept) and told. */
 void swarf_sim_raise(swarf_sim *s, const swarf_alarm *a);

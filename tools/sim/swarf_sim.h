@@ -110,8 +110,10 @@ typedef enum {
   SWARF_ALARM_SHANK,     /* the shank enters material (non-cutting part) */
   SWARF_ALARM_HOLDER,    /* the holder enters material */
   SWARF_ALARM_FIXTURE,   /* any part of the tool enters a fixture */
-  SWARF_ALARM_GOUGE      /* material removed inside the design */
+  SWARF_ALARM_GOUGE,     /* material removed inside the design */
+  SWARF_ALARM_NO_TOOL    /* a feed move runs into material with an empty spindle (T0 M6) */
 } swarf_alarm_kind;
+#define SWARF_ALARM_KINDS 6
 
 typedef struct {
   swarf_alarm_kind kind;
@@ -306,7 +308,7 @@ struct swarf_sim_report {
   double volume_after;                     /* at finish, mm^3 (NaN before) */
   double seconds;                          /* wall time from new to finish */
   long alarms;                             /* all alarms */
-  long alarm_count[5];                     /* per swarf_alarm_kind */
+  long alarm_count[SWARF_ALARM_KINDS];     /* per swarf_alarm_kind */
   long collisions;                         /* among them: SHANK, HOLDER and FIXTURE alarms */
   double collision_s;                      /* CPU time checking for collisions, s */
   swarf_alarm alarm[SWARF_SIM_MAX_ALARMS]; /* the first ones, in program order */

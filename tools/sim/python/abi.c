@@ -92,7 +92,7 @@ static void structs(void) {
   FIELD(swarf_sim_report, volume_after, "c_double");
   FIELD(swarf_sim_report, seconds, "c_double");
   FIELD(swarf_sim_report, alarms, "c_long");
-  FIELD(swarf_sim_report, alarm_count, "c_long * 5");
+  FIELD(swarf_sim_report, alarm_count, "c_long * 6");
   FIELD(swarf_sim_report, start, "c_double * 3");
   FIELD(swarf_sim_report, units_line, "c_long");
   FIELD(swarf_sim_report, units_missing_line, "c_long");
@@ -250,6 +250,7 @@ static void constants(void) {
   C(SWARF_ALARM_HOLDER);
   C(SWARF_ALARM_FIXTURE);
   C(SWARF_ALARM_GOUGE);
+  C(SWARF_ALARM_NO_TOOL);
   C(SWARF_CUTTER_FLAT);
   C(SWARF_CUTTER_BALL);
   C(SWARF_CUTTER_BULL);

@@ -42,7 +42,7 @@ if __version__ != _abi.VERSION:
 
 _OK = const["SWARF_OK"]
 _ALARM_KINDS = {const["SWARF_ALARM_" + k.upper()]: k
-                for k in ("rapid", "shank", "holder", "fixture", "gouge")}
+                for k in ("rapid", "shank", "holder", "fixture", "gouge", "no_tool")}
 
 
 def library_version() -> str:

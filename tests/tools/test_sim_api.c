@@ -265,6 +265,27 @@ static void test_errors(void) {
             !strcmp(err.file, "bad.ngc"),
         "input error at bad.ngc:3 with an identity (%s %ld %d)", swarf_status_name(err.status),
         err.line, err.code);
+  { /* issue 28: NULL outputs and ranges refused with the argument's name, no crash */
+    swarf_sim_config c2;
+    swarf_sim *none = NULL;
+    CHECK(swarf_sim_parse_stock("box:0,0,-1,1,1,0", NULL, &err) == SWARF_ERR_ARG &&
+              strstr(err.message, "out is NULL") != NULL,
+          "parse_stock(spec, NULL): %s", err.message);
+    CHECK(swarf_sim_parse_tool("T1=flat,D1", NULL, &err) == SWARF_ERR_ARG, "parse_tool(spec, NULL)");
+    CHECK(swarf_sim_parse_holder("T1=20x40", NULL, &err) == SWARF_ERR_ARG, "parse_holder(spec, NULL)");
+    CHECK(swarf_sim_parse_fixture("box:0,0,0,1,1,1", NULL, &err) == SWARF_ERR_ARG,
+          "parse_fixture(spec, NULL)");
+    base_config(&c2);
+    c2.half_width = 2;
+    CHECK(swarf_sim_new(&c2, "p.ngc", &none, &err) == SWARF_ERR_ARG && none == NULL &&
+              strstr(err.message, "band") != NULL,
+          "band 2 refused: %s", err.message);
+    base_config(&c2);
+    c2.batch = 0;
+    CHECK(swarf_sim_new(&c2, "p.ngc", &none, &err) == SWARF_ERR_ARG && none == NULL &&
+              strstr(err.message, "batch") != NULL,
+          "batch 0 refused: %s", err.message);
+  }
   /* rs274's rule: the T word of a tool the table lacks stops the program there */
   CHECK(swarf_sim_run_text(&cfg, "t.ngc", tool, strlen(tool), &out, NULL, &err) ==
                 SWARF_ERR_SEMANTIC &&

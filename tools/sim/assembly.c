@@ -151,6 +151,7 @@ swarf_status swarf_sim_parse_holder(const char *spec, swarf_sim_tool *out, swarf
       "at the bottom to D2 at the top, stacked upward from the holder face)";
   const char *s;
   int number, n = 0;
+  if (out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_parse_holder: out is NULL");
   if (read_tool_number(spec, &number, &s) != 0)
     return spec_error(err, "--holder", "cannot read the tool in \"%s\"", spec ? spec : "", usage);
   for (;;) {
@@ -175,6 +176,8 @@ swarf_status swarf_sim_parse_fixture(const char *spec, swarf_sim_fixture *out, s
       "write --fixture box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or --fixture stl:FILE";
   const char *s = spec;
   double v[6];
+  if (out == NULL)
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_parse_fixture: out is NULL");
   if (spec != NULL && strncmp(spec, "stl:", 4) == 0) {
     if (spec[4] == '\0') return spec_error(err, "--fixture", "no file in \"%s\"", spec, usage);
     memset(out, 0, sizeof *out);

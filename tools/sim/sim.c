@@ -355,6 +355,10 @@ static swarf_status check_voxel(const swarf_sim_config *cfg, swarf_error *err) {
   if (!(cfg->voxel > 0) || !isfinite(cfg->voxel))
     return swarf_error_set(err, SWARF_ERR_ARG, "voxel: a size in mm > 0 is needed (got %g)",
                            cfg->voxel);
+  if (cfg->half_width < 3 || cfg->half_width > 64)
+    return swarf_error_set(err, SWARF_ERR_ARG, "band: 3 to 64 voxels (got %d)", cfg->half_width);
+  if (cfg->batch < 1)
+    return swarf_error_set(err, SWARF_ERR_ARG, "batch: 1 move or more (got %d)", cfg->batch);
   if (cfg->voxel > smallest)
     return swarf_error_set(err, SWARF_ERR_ARG,
                            "voxel %g mm: larger than the stock's smallest side (%g mm): the grid "

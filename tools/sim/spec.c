@@ -85,6 +85,7 @@ static swarf_status parse_cylinder(const char *spec, swarf_sim_stock_spec *out, 
 }
 
 swarf_status swarf_sim_parse_stock(const char *spec, swarf_sim_stock_spec *out, swarf_error *err) {
+  if (out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_parse_stock: out is NULL");
   swarf_error_at(err, NULL, 0, 0, "--stock");
   if (spec != NULL && strncmp(spec, "cylinder:", 9) == 0) return parse_cylinder(spec, out, err);
   memset(out, 0, sizeof *out);
@@ -201,6 +202,7 @@ static int parse_qss(const char *s, swarf_cutter_spec *sp, char *bad, size_t bad
   "tslot,D,H,K,L; qss,a,b,e,f (swarf simulate --help)"
 
 swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_error *err) {
+  if (out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_parse_tool: out is NULL");
   char cutter_spec[512];
   double stickout, shank;
   swarf_status st = swarf_sim_split_assembly(spec, cutter_spec, sizeof cutter_spec, &stickout,

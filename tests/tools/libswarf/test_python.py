@@ -339,12 +339,48 @@ def test_abort():
         check("from the callback" in str(e), "the callback's own exception: %r" % e)
 
 
+def test_arguments():
+    """Issue 28: wrong types and ranges raise, never crash or wrap."""
+    try:
+        swarf.Stock(12345678)
+        check(False, "Stock(12345678) raises (it segfaulted)")
+    except TypeError as e:
+        check("Stock.read" in str(e), "Stock(12345678): TypeError: %s" % e)
+    kw = dict(text=SLOT, stock="box:0,0,-5,20,10,0", tools="T1=flat,D4", voxel=0.25)
+    for bad, exc in ((dict(batch=0), ValueError), (dict(batch=-1), ValueError),
+                     (dict(band=2**32 + 3), ValueError), (dict(band=2), ValueError),
+                     (dict(band=3.5), TypeError), (dict(voxel=float("nan")), ValueError),
+                     (dict(voxel="0.2"), TypeError)):
+        args = dict(kw)
+        args.update(bad)
+        try:
+            swarf.simulate(**args)
+            check(False, "%s raises %s" % (bad, exc.__name__))
+        except exc as e:
+            check(True, "%s: %s: %s" % (bad, exc.__name__, e))
+
+    # close() from a progress callback: the run stops, no crash (it segfaulted)
+    sim = swarf.Simulation("box:0,0,-5,20,10,0", ["T1=flat,D4"], voxel=0.25,
+                           progress=lambda p: sim.close())
+    try:
+        sim.feed(SLOT)
+        sim.finish()
+        check(False, "close() in a callback stops the run")
+    except swarf.Aborted as e:
+        check("closed from a callback" in str(e), "close() in a callback: Aborted: %s" % e)
+    try:
+        sim.feed("G0 X1\n")
+        check(False, "a closed simulation refuses input")
+    except ValueError:
+        check(True, "a closed simulation refuses input")
+
+
 def main():
     os.makedirs(WORK, exist_ok=True)
     for t in (test_version, test_slot, test_trench_lines, test_against_cli,
               test_rotary_against_cli, test_outputs,
               test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort,
-              test_dialect):
+              test_dialect, test_arguments):
         print("--", t.__name__)
         try:
             t()

@@ -23,6 +23,8 @@ column, word and message say where), InternalError, Aborted.
 Units: mm, seconds. Calls release the GIL; callbacks run in the calling
 thread. One thread at a time per Simulation; distinct ones are independent.
 """
+import math
+import numbers
 import os
 from ctypes import byref, c_size_t, c_void_p, create_string_buffer
 from dataclasses import dataclass, field
@@ -198,10 +200,11 @@ class Stock:
     material). Read one with Stock.read(path); a simulation's result holds
     one. Writes are atomic (a temporary name, then a rename)."""
 
-    def __init__(self, handle):
-        if not handle:
-            raise ValueError("swarf.Stock: NULL handle")
-        self._h = c_void_p(handle)
+    def __init__(self, *args, _handle=None):
+        if args or not _handle:
+            raise TypeError("swarf.Stock: read one with swarf.Stock.read(path), or take a "
+                            "simulation's result.stock; a Stock is not made from a number")
+        self._h = c_void_p(_handle)
 
     @classmethod
     def read(cls, path) -> "Stock":
@@ -211,7 +214,7 @@ class Stock:
         h = c_void_p()
         if lib.swarf_stock_read(_path(path), byref(h), byref(err)) != 0:
             _raise(err)
-        return cls(h.value)
+        return cls(_handle=h.value)
 
     def _handle(self):
         if self._h is None or not self._h.value:
@@ -344,6 +347,25 @@ def _point(value, what):
     return x, y, z
 
 
+def _whole(v, name, lo, hi):
+    """An int within [lo, hi], or TypeError/ValueError naming the argument
+    (ctypes would wrap 2**32+3 into 3)."""
+    if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+        raise TypeError("%s: a whole number, not %r" % (name, v))
+    if not lo <= v <= hi:
+        raise ValueError("%s: %d to %d, not %d" % (name, lo, hi, v))
+    return int(v)
+
+
+def _number(v, name, lo, hi):
+    """A finite number in (lo, hi), or TypeError/ValueError naming it."""
+    if isinstance(v, bool) or not isinstance(v, numbers.Real):
+        raise TypeError("%s: a number, not %r" % (name, v))
+    if not (lo < v < hi):
+        raise ValueError("%s: a finite number above %g, not %r" % (name, lo, v))
+    return float(v)
+
+
 def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units, offsets):
     """The swarf_sim_config of the options; also returns what it borrows."""
     cfg = S["swarf_sim_config"]()
@@ -365,11 +387,11 @@ def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units,
         borrowed = _path(offsets)
         cfg.offsets_file = borrowed
     if voxel is not None:
-        cfg.voxel = float(voxel)
+        cfg.voxel = _number(voxel, "voxel", 0.0, math.inf)
     if band is not None:
-        cfg.half_width = int(band)
+        cfg.half_width = _whole(band, "band", 3, 64)
     if batch is not None:
-        cfg.batch = int(batch)
+        cfg.batch = _whole(batch, "batch", 1, 2**31 - 1)
     cfg.line_volumes = 1 if line_volumes else 0
     for spec in [tools] if isinstance(tools, str) else tools:
         tool = S["swarf_sim_tool"]()
@@ -412,6 +434,8 @@ class Simulation:
                  name="program", progress=None, alarm=None, line=None):
         self._h = c_void_p()
         self._exc = None
+        self._busy = False  # inside a C call (feed, feed_file, finish)
+        self._close_pending = False  # close() from a callback: done when the call returns
         self._user = (progress, alarm, line)
         self.alarms: List[Alarm] = []
         self.lines: List[LineResult] = []
@@ -449,7 +473,7 @@ class Simulation:
     # Callbacks from C: never let an exception escape into ctypes; the first
     # one stops the run (progress returns 1) and is raised when the call returns.
     def _on_progress(self, user, p):
-        if self._exc is not None:
+        if self._exc is not None or self._close_pending:
             return 1
         fn = self._user[0]
         try:
@@ -485,6 +509,22 @@ class Simulation:
             raise ValueError("swarf.Simulation: closed")
         return self._h
 
+    def _run(self, fn, *args):
+        """A C call on the handle; a close() from one of its callbacks stops
+        the run and frees the handle when the call has returned."""
+        h = self._handle()
+        self._busy = True
+        try:
+            rc = fn(h, *args)
+        finally:
+            self._busy = False
+        if self._close_pending:
+            self._close_pending = False
+            self._exc = None
+            self.close()
+            _raise_msg("SWARF_ERR_ABORTED", "closed from a callback: the run stopped")
+        self._check(rc)
+
     def _check(self, rc):
         if self._exc is not None:
             e, self._exc = self._exc, None
@@ -495,11 +535,11 @@ class Simulation:
     def feed(self, text):
         """Program text (str or bytes, any split); complete lines run at once."""
         data = text.encode() if isinstance(text, str) else bytes(text)
-        self._check(lib.swarf_sim_feed(self._handle(), data, len(data)))
+        self._run(lib.swarf_sim_feed, data, len(data))
 
     def feed_file(self, path):
         """The whole file at path (progress then has a fraction)."""
-        self._check(lib.swarf_sim_feed_file(self._handle(), _path(path)))
+        self._run(lib.swarf_sim_feed_file, _path(path))
 
     @property
     def report(self) -> Report:
@@ -509,12 +549,17 @@ class Simulation:
     def finish(self) -> Result:
         """Ends the program (the last line, the last batch) and returns the
         Result, which owns the stock; the simulation takes no more input."""
-        self._check(lib.swarf_sim_finish(self._handle()))
+        self._run(lib.swarf_sim_finish)
         report = self.report
-        stock = Stock(lib.swarf_sim_take_stock(self._handle()))
+        stock = Stock(_handle=lib.swarf_sim_take_stock(self._handle()))
         return Result(stock, report, list(self.alarms), list(self.lines))
 
     def close(self):
+        """Frees the simulation; from one of its own callbacks, the run stops
+        first (the call in progress raises Aborted)."""
+        if getattr(self, "_busy", False):
+            self._close_pending = True
+            return
         if getattr(self, "_h", None) is not None and self._h.value:
             lib.swarf_sim_free(self._h)
             self._h = c_void_p()

@@ -176,6 +176,7 @@ static int fanuc_keeps_m(int tenths) {
 const swarf_gc_code *swarf_gc_dialect_m(int dialect, int tenths) {
   static const swarf_gc_code vendor = {0, SWARF_GC_MGROUP_VENDOR, NULL};
   static const swarf_gc_code haas_m16 = {60, SWARF_GC_MGROUP_TOOL, NULL};
+  if (dialect == SWARF_GCODE_DIALECT_GRBL) return tenths == 560 ? &vendor : NULL;
   if (dialect != SWARF_GCODE_DIALECT_FANUC && dialect != SWARF_GCODE_DIALECT_HAAS) return NULL;
   if (dialect == SWARF_GCODE_DIALECT_HAAS && tenths == 160) return &haas_m16;
   if (fanuc_keeps_m(tenths)) return NULL;
@@ -234,6 +235,7 @@ static const struct {
 };
 
 const char *swarf_gc_vendor_m_name(int dialect, int code) {
+  if (dialect == SWARF_GCODE_DIALECT_GRBL) return "parking motion override (grbl M56)";
   if (dialect == SWARF_GCODE_DIALECT_FANUC)
     return code == 29 ? "rigid tapping mode" : "a machine builder's M code";
   for (size_t i = 0; i < sizeof haas_m / sizeof haas_m[0]; i++)

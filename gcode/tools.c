@@ -61,6 +61,9 @@ static swarf_status table_word(const table_at *at, const char *w, int *t, double
     return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_VALUE, at_line(at, w), w,
                           letter == 'P' ? "a pocket number is 0 or more"
                                         : "a diameter cannot be negative");
+  if (letter == 'Z' && !(fabs(v) <= 400)) /* inches: 10 m */
+    return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_VALUE, at_line(at, w), w,
+                          "a length offset beyond 10 m (a typo or a unit slip?)");
   if (letter == 'T') *t = (int)v + 1; /* 0: no T word (T0 is tool 0, the empty spindle) */
   if (letter == 'Z') *z = v;
   if (letter == 'D') *d = v;

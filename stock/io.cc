@@ -98,6 +98,14 @@ void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &path) {
     throw Error(SWARF_ERR_LIMIT,
                 path + ": " + std::to_string(tiles) + " active tiles, more than the " +
                     std::to_string(kMaxActiveTiles) + " accepted (a level-set stock has none)");
+  for (auto v = grid.cbeginValueAll(); v; ++v) // a NaN compares as neither inside nor out
+    if (!std::isfinite(*v)) {
+      const openvdb::Coord c = v.getCoord();
+      throw Error(SWARF_ERR_FORMAT, path + ": a value that is not a number (" +
+                                        std::to_string(*v) + ") at voxel " +
+                                        std::to_string(c.x()) + "," + std::to_string(c.y()) +
+                                        "," + std::to_string(c.z()) + ": not a level set");
+    }
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
   if (box.empty()) return;
   for (int k = 0; k < 3; k++) {

@@ -59,8 +59,44 @@ case_long_output_name() { # a long --mesh name: --out written, the mesh not (all
   [ $? -eq 2 ] && [ ! -e e.vdb ] && [ ! -e "$long" ] && grep -q "too long" err
 }
 
+case_vdb_nan() { # a .vdb with a NaN value was accepted as stock and as design
+  /usr/bin/python3 -c "
+import pyopenvdb as vdb, sys
+g = vdb.read(sys.argv[1], 'stock')
+g.getAccessor().setValueOn((10, 10, -2), float('nan'))
+vdb.write(sys.argv[2], [g])" a.vdb nan.vdb 2> /dev/null || return 1
+  "$swarf" simulate p.ngc "${S[@]/box:0,0,-5,20,20,0/vdb:nan.vdb}" --out f.vdb 2> err
+  [ $? -eq 2 ] && [ ! -e f.vdb ] && grep -q "nan.vdb: a value that is not a number" err || return 1
+  "$swarf" simulate p.ngc "${S[@]}" --design nan.vdb --out f.vdb 2> err
+  [ $? -eq 2 ] && [ ! -e f.vdb ] && grep -q "nan.vdb: a value that is not a number" err
+}
+case_table_z_huge() { # a tool table's Z1e300 gave an infinite time
+  printf 'T1 P1 D4 Z1e300\n' > z.tbl
+  "$swarf" simulate p.ngc --stock box:0,0,-5,20,20,0 --tool-table z.tbl --voxel 0.5 --out g.vdb --quiet \
+    2> err
+  [ $? -eq 2 ] && [ ! -e g.vdb ] && grep -q "z.tbl:1: .*beyond 10 m" err
+}
+case_grbl_m56() { # --dialect grbl refused M56, which grbl has (parking override)
+  printf 'G21\nM56\nG0 X1\nM2\n' > m56.nc
+  "$swarf" parse --dialect grbl m56.nc > /dev/null 2> err && grep -q "M56: parking" err
+}
+case_out_fifo() { # --out a FIFO: "Illegal seek" after the run (or a hang with no reader)
+  mkfifo fifo.vdb
+  timeout 20 "$swarf" simulate p.ngc "${S[@]}" --out fifo.vdb 2> err
+  local rc=$?
+  rm -f fifo.vdb
+  [ $rc -eq 2 ] && grep -q "it is a FIFO" err
+}
+case_latin1_report() { # a Latin-1 file name with --report said "out of memory"
+  local name
+  name=$(printf 'caf\351.ngc')
+  cp p.ngc "$name"
+  "$swarf" simulate "$name" "${S[@]}" --out h.vdb --report h.json 2> err &&
+    /usr/bin/python3 -c "import json,sys; sys.exit(not json.load(open('h.json'))['inputs']['program'].endswith('caf\u00e9.ngc'))"
+}
+
 all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
-  sweep_user_file long_output_name)
+  sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report)
 [ $# -gt 0 ] && all=("$@")
 fixed=0 present=0
 for c in "${all[@]}"; do

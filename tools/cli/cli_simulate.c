@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -306,9 +307,17 @@ static int check_outputs(const sim_options *o) {
                                 {"--offsets", o->verify.offsets}};
   swarf_cli_path fixtures[SWARF_SIM_MAX_FIXTURES];
   int nfix = 0;
+  struct stat st;
   if (writer_rank != 0) return 0;
   for (size_t i = 0; i < sizeof outs / sizeof outs[0]; i++)
     if (swarf_cli_output_ok("simulate", outs[i].flag, outs[i].path)) return 2;
+  if (o->out != NULL && stat(o->out, &st) == 0 && S_ISFIFO(st.st_mode)) {
+    fprintf(stderr,
+            "swarf simulate: --out: cannot write \"%s\": it is a FIFO, and a .vdb is written "
+            "with seeks back to its header; write a file and copy it\n",
+            o->out);
+    return 2;
+  }
   for (int i = 0; i < o->cfg.nfixtures; i++)
     if (o->cfg.fixtures[i].stl != NULL)
       fixtures[nfix++] = (swarf_cli_path){"--fixture", o->cfg.fixtures[i].stl};

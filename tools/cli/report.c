@@ -333,14 +333,37 @@ static json_t *summary_json(swarf_report *r, const swarf_sim_report *f) {
   return s;
 }
 
+/* A file name or spec as a JSON string. JSON holds UTF-8 only, and a name
+ * is bytes: one that is not UTF-8 (a Latin-1 "caf\xe9.ngc") is read as
+ * Latin-1, each byte its code point, so the report says "café" instead of
+ * failing (jansson refuses invalid UTF-8, which read as out of memory). */
+static json_t *name_string(const char *s) {
+  json_t *j = json_string(s);
+  if (j != NULL) return j;
+  size_t n = strlen(s), k = 0;
+  char *u = malloc(2 * n + 1);
+  if (u == NULL) return NULL;
+  for (const unsigned char *p = (const unsigned char *)s; *p; p++)
+    if (*p < 0x80) {
+      u[k++] = (char)*p;
+    } else {
+      u[k++] = (char)(0xc0 | (*p >> 6));
+      u[k++] = (char)(0x80 | (*p & 0x3f));
+    }
+  u[k] = '\0';
+  j = json_string(u);
+  free(u);
+  return j;
+}
+
 static json_t *str_or_null(const char *s) {
-  return s != NULL ? json_string(s) : json_null();
+  return s != NULL ? name_string(s) : json_null();
 }
 
 static json_t *inputs_json(const swarf_report_inputs *in) {
   json_t *tools = json_array();
   for (int i = 0; i < in->ntools; i++)
-    json_array_append_new(tools, json_string(in->tools[i]));
+    json_array_append_new(tools, name_string(in->tools[i]));
   return json_pack(
       "{so so so so so so so so so so so ss}", "program", str_or_null(in->program), "stock",
       str_or_null(in->stock), "tools", tools, "voxel", num(in->voxel), "machine",

@@ -87,6 +87,8 @@ static swarf_status table_word(const table_place *at, const char *w, double mm_p
     e->diameter = v * mm_per_unit;
     break;
   case 'Z':
+    if (!(fabs(v * mm_per_unit) <= 1e4))
+      return bad(at, w, "\"%s\": a length offset beyond 10 m (a typo or a unit slip?)", w);
     e->length = v * mm_per_unit;
     break;
   case 'X': case 'Y': case 'A': case 'B': case 'C':

@@ -59,6 +59,10 @@ static void dwell(cycle_run *c, double p) {
   swarf_gc_out_dwell(c->ex->out, c->st, p, c->b->motion_column);
 }
 
+/* Pecks one G73 or G83 line may make, repeats included: a Q far below the
+ * depth (Q0.000001) would otherwise make millions of moves on one line. */
+#define MAX_PECKS 100000
+
 static void text(cycle_run *c, const char *call) {
   swarf_gc_out_text(c->ex->out, "%s", call);
 }
@@ -296,6 +300,14 @@ int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
   if (status != SWARF_OK) return status;
   if (repeats > 100000)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOO_MANY_REPEATS, lw->column, lw->text);
+  if (b->motion == 730 || b->motion == 830) { /* a bound on work, not on lines */
+    const double n = ceil((c.g.r - c.g.bottom) / c.g.q) * (repeats > 1 ? repeats : 1);
+    const swarf_gc_word *qw = swarf_gc_block_word(b, 'Q');
+    if (n > MAX_PECKS)
+      return SWARF_GC_FAIL(f, SWARF_GCODE_E_CYCLE_TOO_MANY_PECKS,
+                           qw->present ? qw->column : b->motion_column,
+                           b->motion == 730 ? "G73" : "G83", n, MAX_PECKS);
+  }
   /* Below R: up to it first. rs274 also does it (a null rapid) in G99 after
    * a G87 block, whose end it records below R. */
   if (old < c.g.r || (st->cycle_after_g87 && st->modal.retract == 990)) {

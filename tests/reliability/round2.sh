@@ -94,9 +94,20 @@ case_latin1_report() { # a Latin-1 file name with --report said "out of memory"
   "$swarf" simulate "$name" "${S[@]}" --out h.vdb --report h.json 2> err &&
     /usr/bin/python3 -c "import json,sys; sys.exit(not json.load(open('h.json'))['inputs']['program'].endswith('caf\u00e9.ngc'))"
 }
+case_peck_tiny_q() { # G83 with Q0.000001 ran 7 s into "out of memory"
+  printf 'G21 G90 G0 Z5\nG83 X0 Y0 Z-10 R1 Q0.000001 F100\nM2\n' > q.ngc
+  timeout 20 "$swarf" parse --quiet q.ngc 2> err
+  [ $? -eq 2 ] && grep -q "q.ngc:2:19: G83 makes 11000000 pecks" err
+}
+case_peck_huge_l() { # G73 with a large L: pecks times repeats, not lines, is the work
+  printf 'G21 G91 G0 Z5\nG73 X0.1 Z-2 R1 Q0.1 L100000 F100\nM2\n' > l.ngc
+  timeout 20 "$swarf" parse --quiet l.ngc 2> err
+  [ $? -eq 2 ] && grep -q "G73 makes 2000000 pecks" err
+}
 
 all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
-  sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report)
+  sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report
+  peck_tiny_q peck_huge_l)
 [ $# -gt 0 ] && all=("$@")
 fixed=0 present=0
 for c in "${all[@]}"; do

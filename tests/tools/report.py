@@ -131,6 +131,24 @@ vk.check(r.status == 2 and not os.path.exists(r.json) and not os.path.exists(r.o
 r = vk.Run(swarf, slot, common + ["--report", "/nonexistent/r.json"], d, report=False)
 vk.check(r.status == 2 and "--report" in r.stderr and not os.path.exists(r.out),
          "unwritable --report: status %d, %s" % (r.status, r.stderr.strip()))
+# Rotary moves' times follow LinuxCNC's feed rule (issue 27, point 7; LinuxCNC's
+# G-code manual, "Feed Rate"): under G94, when any of X Y Z moves F is in mm/min
+# along the X Y Z path and the rotary axes keep step; when only rotary axes
+# move, F is in degrees/min along them; under G93 a move takes 1/F minutes.
+# The worked cases: X10 with A90 at F100 takes 10/100 min = 6 s (not 90.6/100);
+# A90 alone at F100 takes 90/100 min = 54 s; G93 F2 takes 0.5 min = 30 s.
+rot = ("G21 G90 G94\nG0 X0 Y0 Z20 A0\nG1 X10 A90 F100\nG1 A180 F100\n"
+       "G93 G1 X20 A360 F2\nG94 G1 X30 F600\nM2\n")
+for machine, stock in (("xyza", "cylinder:x,10,0,40"), ("xyzac-trt", "cylinder:z,42,0,30")):
+    prog = rot.replace(" A", " C") if machine == "xyzac-trt" else rot
+    r = vk.Run(swarf, prog, ["--machine", machine, "--stock", stock, "--tool", "T1=ball,D4,L30",
+                             "--voxel", "0.5"], d)
+    if vk.check(r.status == 0 and r.report, "%s rotary program: %s" % (machine, r.stderr[-200:])):
+        t = {e["line"]: e["time_s"] for e in r.report["lines"]}
+        for line, want, what in ((3, 6.0, "X10 with a rotary move at F100: X's 10 mm"),
+                                 (4, 54.0, "a rotary move alone at F100: 90 degrees"),
+                                 (5, 30.0, "G93 F2: half a minute"), (6, 1.0, "G94 X10 at F600")):
+            vk.near(t.get(line, -1), want, 1e-9, "%s line %d: %s (s)" % (machine, line, what))
 leftovers = [f for f in os.listdir(d) if ".tmp" in f]
 vk.check(leftovers == [], "no temporary files left: %s" % leftovers)
 sys.exit(vk.done())

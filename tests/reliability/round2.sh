@@ -104,10 +104,16 @@ case_peck_huge_l() { # G73 with a large L: pecks times repeats, not lines, is th
   timeout 20 "$swarf" parse --quiet l.ngc 2> err
   [ $? -eq 2 ] && grep -q "G73 makes 2000000 pecks" err
 }
+case_threads_as_limit() { # --threads 300 under an address-space limit aborted (TBB)
+  # ASan's shadow memory cannot live under ulimit -v: not checkable in the sanitized build
+  grep -qa __asan_init "$swarf" && { echo "  (threads_as_limit: sanitized build, not run)"; return 0; }
+  (ulimit -v 1000000 && "$swarf" simulate p.ngc "${S[@]}" --threads 300 --out t.vdb 2> err)
+  [ $? -eq 2 ] && [ ! -e t.vdb ] && grep -q "address-space limit" err
+}
 
 all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
   sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report
-  peck_tiny_q peck_huge_l)
+  peck_tiny_q peck_huge_l threads_as_limit)
 [ $# -gt 0 ] && all=("$@")
 fixed=0 present=0
 for c in "${all[@]}"; do

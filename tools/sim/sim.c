@@ -12,8 +12,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "sim_private.h"
 
@@ -367,12 +369,40 @@ static swarf_status check_voxel(const swarf_sim_config *cfg, swarf_error *err) {
   return SWARF_OK;
 }
 
+/* Address space a thread reserves: its stack (8 MiB) and, up to 8 per core,
+ * a malloc arena (64 MiB). Under an address-space limit (ulimit -v) too many
+ * threads made TBB abort the process; here they are refused in words. */
+#define THREAD_RESERVE ((8.0 + 64.0) * 1048576.0)
+
+static swarf_status check_threads(const swarf_sim_config *cfg, swarf_error *err) {
+  struct rlimit as;
+  long pages = 0, page = sysconf(_SC_PAGESIZE);
+  FILE *f;
+  if (cfg->threads <= 0 || getrlimit(RLIMIT_AS, &as) != 0 || as.rlim_cur == RLIM_INFINITY)
+    return SWARF_OK;
+  if ((f = fopen("/proc/self/statm", "r")) != NULL) {
+    if (fscanf(f, "%ld", &pages) != 1) pages = 0;
+    fclose(f);
+  }
+  const double room = (double)as.rlim_cur - (double)pages * (double)page;
+  const long fit = room > 0 ? (long)(room / THREAD_RESERVE) : 0;
+  if (cfg->threads > fit)
+    return swarf_error_set(err, SWARF_ERR_LIMIT,
+                           "threads %d: under this address-space limit (ulimit -v: %.0f MB, "
+                           "%.0f MB free) about %ld threads fit, each reserving ~72 MB (stack "
+                           "and malloc arena); give %ld or fewer, or raise the limit",
+                           cfg->threads, (double)as.rlim_cur / 1e6, room > 0 ? room / 1e6 : 0.0,
+                           fit, fit > 1 ? fit - 1 : 1);
+  return SWARF_OK;
+}
+
 swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_sim **out,
                            swarf_error *err) {
   swarf_stock *stock;
   if (out != NULL) *out = NULL;
   if (cfg == NULL || out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no config or output");
   if (check_voxel(cfg, err) != SWARF_OK) return SWARF_ERR_ARG;
+  if (check_threads(cfg, err) != SWARF_OK) return SWARF_ERR_LIMIT;
   /* Under MPI, the processes other than rank 0 (which gathers the whole
    * stock) build only their part, once it is planned: a shell until then.
    * Not with a design, which compares against a copy of the whole stock. */

@@ -4,6 +4,7 @@
 #include "cli_mpi.h"
 
 #include <fcntl.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -169,6 +170,54 @@ void swarf_cli_mpi_abort(swarf_cli_mpi *m, const char *msg, int status) {
   MPI_Abort(MPI_COMM_WORLD, status);
 }
 
+#define MAX_HASHED 8
+
+static uint64_t fnv(uint64_t h, const void *data, size_t n) {
+  const unsigned char *p = data;
+  for (size_t i = 0; i < n; i++)
+    h = (h ^ p[i]) * 1099511628211ULL;
+  return h;
+}
+
+/* The file's bytes hashed; a file that cannot be read hashes as its name
+ * (its reader reports the error later, on every rank alike). */
+static uint64_t hash_file(const char *path) {
+  unsigned char buf[1 << 16];
+  uint64_t h = 14695981039346656037ULL;
+  size_t n;
+  FILE *f = fopen(path, "rb");
+  if (f == NULL) return fnv(h, path, strlen(path));
+  while ((n = fread(buf, 1, sizeof buf, f)) > 0)
+    h = fnv(h, buf, n);
+  fclose(f);
+  return h;
+}
+
+int swarf_cli_mpi_same_inputs(swarf_cli_mpi *m, int argc, char **argv, const char *const *names,
+                              const char *const *files, int nfiles) {
+  uint64_t mine[MAX_HASHED] = {14695981039346656037ULL}, *all;
+  int bad_rank = -1, bad_item = 0;
+  if (!m->active || m->comm.size == 1) return 0;
+  if (nfiles > MAX_HASHED - 1) nfiles = MAX_HASHED - 1;
+  for (int i = 1; i < argc; i++)
+    mine[0] = fnv(mine[0], argv[i], strlen(argv[i]) + 1);
+  for (int i = 0; i < nfiles; i++)
+    mine[i + 1] = files[i] != NULL ? hash_file(files[i]) : 0;
+  if ((all = malloc(sizeof mine * (size_t)m->comm.size)) == NULL) MPI_Abort(MPI_COMM_WORLD, 1);
+  MPI_Allgather(mine, MAX_HASHED, MPI_UINT64_T, all, MAX_HASHED, MPI_UINT64_T, MPI_COMM_WORLD);
+  for (int r = 1; r < m->comm.size && bad_rank < 0; r++)
+    for (int i = 0; i <= nfiles && bad_rank < 0; i++)
+      if (all[r * MAX_HASHED + i] != all[i]) bad_rank = r, bad_item = i;
+  free(all);
+  if (bad_rank < 0) return 0;
+  if (m->comm.rank == 0)
+    fprintf(stderr,
+            "swarf simulate: rank %d of %d was given a different %s than rank 0: every rank must "
+            "run the same command on the same files; nothing was written\n",
+            bad_rank, m->comm.size, bad_item == 0 ? "command line" : names[bad_item - 1]);
+  return 2;
+}
+
 int swarf_cli_mpi_end(swarf_cli_mpi *m, int rc) {
   if (m->active) MPI_Finalize();
   m->active = 0;
@@ -196,6 +245,12 @@ int swarf_cli_mpi_agree(swarf_cli_mpi *m, int rc) {
 
 void swarf_cli_mpi_abort(swarf_cli_mpi *m, const char *msg, int status) {
   (void)m, (void)msg, (void)status;
+}
+
+int swarf_cli_mpi_same_inputs(swarf_cli_mpi *m, int argc, char **argv, const char *const *names,
+                              const char *const *files, int nfiles) {
+  (void)m, (void)argc, (void)argv, (void)names, (void)files, (void)nfiles;
+  return 0;
 }
 
 int swarf_cli_mpi_end(swarf_cli_mpi *m, int rc) {

@@ -33,6 +33,14 @@ int swarf_cli_mpi_agree(swarf_cli_mpi *m, int rc);
  * `status` (MPI_Abort). Returns only without MPI. */
 void swarf_cli_mpi_abort(swarf_cli_mpi *m, const char *msg, int status);
 
+/* Every rank must run the same job: hashes (FNV-1a, 64 bits) of the
+ * arguments and of each input file's bytes (names[i] = files[i], NULL ones
+ * skipped), compared with rank 0's before any work; a rank given other
+ * inputs would wait for ever in a collective the others never reach. 0 when
+ * all agree, else 2 on every rank, rank 0 naming the rank and what differs. */
+int swarf_cli_mpi_same_inputs(swarf_cli_mpi *m, int argc, char **argv, const char *const *names,
+                              const char *const *files, int nfiles);
+
 /* The end: MPI_Finalize when started. Returns rc. */
 int swarf_cli_mpi_end(swarf_cli_mpi *m, int rc);
 

@@ -615,6 +615,13 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   if (rc == 0 && parts && o.balance) rc = usage_error("--balance: run it on one process");
   if (rc == 0 && parts) rc = check_program(o.program);
   if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
+  {
+    static const char *const names[] = {"program",      "--stock file", "--design",
+                                        "--tool-table", "--tool-library", "--offsets"};
+    const char *const files[] = {o.program,       o.stock.file,   o.verify.design_path,
+                                 o.tool_table,    o.tool_library, o.verify.offsets};
+    if ((rc = swarf_cli_mpi_same_inputs(mpi, argc, argv, names, files, 6))) return rc;
+  }
   rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial);
   if ((rc = swarf_cli_mpi_agree(mpi, rc))) return swarf_stock_free(initial), rc;
   o.verify.frame = initial;

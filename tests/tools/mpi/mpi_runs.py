@@ -182,6 +182,26 @@ p = run(2, [bad, "--stock", "box:0,0,-10,40,30,0", "--tool", "T1=ball,D3",
 vk.check(p.returncode == 2 and len([l for l in ours(p.stderr) if "--out" in l]) == 1,
          "an unwritable --out under mpirun: one message, exit 2")
 
+# Ranks given different inputs (issue 28): the same command in two folders
+# whose p.ngc differ (mpirun's MPMD form, --wdir each). Every rank hashes its
+# command line and input files and compares with rank 0's before any work: a
+# refusal naming the rank and the program, nothing written (before, the ranks
+# cut their parts with different programs and wrote the mixture, exit 0).
+for sub, extra in (("wa", ""), ("wb", "G1 X30 Y20\n")):
+    os.makedirs(os.path.join(d, sub), exist_ok=True)
+    with open(os.path.join(d, sub, "p.ngc"), "w") as f:
+        f.write("G21 G90 G0 Z5\nG0 X5 Y5\nG1 Z-2 F300\nG1 X20\n" + extra + "G0 Z5\nM2\n")
+mixed = os.path.join(d, "mixed.vdb")
+job = [swarf, "simulate", "p.ngc", "--stock", "box:0,0,-10,40,30,0", "--tool", "T1=flat,D4",
+       "--voxel", "0.5", "--out", mixed]
+p = subprocess.run([mpirun, "--oversubscribe", "-n", "1", "--wdir", os.path.join(d, "wa")] + job +
+                   [":", "-n", "1", "--wdir", os.path.join(d, "wb")] + job,
+                   env=env, capture_output=True, text=True, timeout=TIMEOUT)
+vk.check(p.returncode != 0 and "rank 1 of 2 was given a different program" in p.stderr and
+         not os.path.exists(mixed),
+         "ranks with different programs: refused before any work (exit %d): %s" %
+         (p.returncode, [l for l in ours(p.stderr)][:2]))
+
 # A rank killed mid-run, over an existing output. The job is a long raster
 # of full-depth slots (a few MB of G-code); rank 1 is killed once it is seen,
 # while stopped (SIGSTOP), reading that program past its first chunk and

@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "gcode_private.h"
 
@@ -344,15 +345,26 @@ static int read_sub_file(swarf_gc_flow *fl, FILE *in, const char *name, long lin
 }
 
 /* A subroutine no line defined: <name>.ngc in the directories of the path
- * (LinuxCNC's SUBROUTINE_PATH), in order. */
-static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line) {
+ * (LinuxCNC's SUBROUTINE_PATH), in order. Only a regular file is read (a
+ * FIFO or /dev/zero there hung the call): anything else that exists there
+ * is an error at the call (*bad set, f filled). */
+static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line, int column,
+                              int *bad, swarf_gc_fault *f) {
   const char *d = fl->path;
   while (d != NULL && *d) {
     size_t n = strcspn(d, ":");
     char path[4096];
     FILE *in;
+    struct stat st;
     if (n > 0 && n + strlen(name) + 6 < sizeof path) {
       snprintf(path, sizeof path, "%.*s/%s.ngc", (int)n, d, name);
+      if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        *bad = 1;
+        SWARF_GC_FAIL(f, SWARF_GCODE_E_O_SUB_FILE, column, name, path,
+                      S_ISFIFO(st.st_mode) ? "a FIFO, not a regular file"
+                                            : "not a regular file (a device or a folder)");
+        return NULL;
+      }
       if ((in = fopen(path, "r")) != NULL) {
         int found = read_sub_file(fl, in, name, line);
         fclose(in);
@@ -369,7 +381,9 @@ static int call(swarf_gc_flow *fl, const stored *s, swarf_gc_fault *f) {
   swarf_gc_lexer lx;
   swarf_gc_named *locals;
   sub_def *sub = find_sub(fl, s->ctl.name);
-  if (sub == NULL) sub = find_sub_file(fl, s->ctl.name, s->line);
+  int bad = 0;
+  if (sub == NULL) sub = find_sub_file(fl, s->ctl.name, s->line, s->ctl.column, &bad, f);
+  if (bad) return f->status;
   int n = 0, present = 1, status = SWARF_OK;
   if (sub == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_O_UNKNOWN_SUB, s->ctl.column, s->ctl.name);
   if (fl->depth >= MAX_CALL_DEPTH)

@@ -110,10 +110,22 @@ case_threads_as_limit() { # --threads 300 under an address-space limit aborted (
   (ulimit -v 1000000 && "$swarf" simulate p.ngc "${S[@]}" --threads 300 --out t.vdb 2> err)
   [ $? -eq 2 ] && [ ! -e t.vdb ] && grep -q "address-space limit" err
 }
+case_sub_fifo() { # a FIFO at a subroutine path blocked the call for ever
+  mkdir -p fifos && rm -f fifos/foo.ngc && mkfifo fifos/foo.ngc
+  printf 'G21 G0 Z5\no<foo> call\nM2\n' > callf.ngc
+  timeout 20 "$swarf" parse --subroutine-path fifos callf.ngc > /dev/null 2> err
+  [ $? -eq 2 ] && grep -q "callf.ngc:2:1: o<foo> call: fifos/foo.ngc: a FIFO" err
+}
+case_sub_dev_zero() { # /dev/zero at a subroutine path was read for ever
+  mkdir -p zeros && ln -sf /dev/zero zeros/bar.ngc
+  printf 'G21 G0 Z5\no<bar> call\nM2\n' > callz.ngc
+  timeout 20 "$swarf" parse --subroutine-path zeros callz.ngc > /dev/null 2> err
+  [ $? -eq 2 ] && grep -q "o<bar> call: zeros/bar.ngc: not a regular file" err
+}
 
 all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
   sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report
-  peck_tiny_q peck_huge_l threads_as_limit)
+  peck_tiny_q peck_huge_l threads_as_limit sub_fifo sub_dev_zero)
 [ $# -gt 0 ] && all=("$@")
 fixed=0 present=0
 for c in "${all[@]}"; do

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <modbus-rtu.h>
 
@@ -25,6 +26,32 @@ struct swarf_mb_rtu {
   swarf_mb_responder resp;
 };
 
+/* The line itself failed (the adapter unplugged, the pty's other end
+ * gone): every read fails at once, and the loop spun a core. */
+static int line_lost(int e) {
+  return e == EIO || e == EBADF || e == ENXIO || e == ENODEV || e == EPIPE || e == ECONNRESET;
+}
+
+/* Waits `s` seconds, in slices, or less when stopped. */
+static void rest(struct swarf_mb_rtu *t, double s) {
+  for (double done = 0; done < s && !atomic_load(&t->stop); done += 0.05) {
+    struct timespec ts = {0, 50000000};
+    nanosleep(&ts, NULL);
+  }
+}
+
+/* Reopens a lost line, resting 0.5 s, then twice as long up to 5 s, between
+ * tries, until it opens or the server stops. */
+static void reopen(struct swarf_mb_rtu *t) {
+  double wait = 0.5;
+  modbus_close(t->ctx);
+  while (!atomic_load(&t->stop)) {
+    rest(t, wait);
+    if (!atomic_load(&t->stop) && modbus_connect(t->ctx) == 0) return;
+    wait = wait * 2 < 5 ? wait * 2 : 5;
+  }
+}
+
 static void *loop(void *arg) {
   struct swarf_mb_rtu *t = arg;
   uint8_t req[MODBUS_RTU_MAX_ADU_LENGTH];
@@ -32,6 +59,8 @@ static void *loop(void *arg) {
     int n = modbus_receive(t->ctx, req);
     if (n > 0) {
       swarf_mb_respond(&t->resp, t->ctx, req, n);
+    } else if (n < 0 && line_lost(errno)) {
+      reopen(t);
     } else if (n < 0 && errno != ETIMEDOUT) {
       modbus_flush(t->ctx); /* bad CRC, garbage, overrun: start afresh */
     }

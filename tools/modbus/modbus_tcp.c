@@ -67,7 +67,13 @@ struct swarf_mb_tcp {
   modbus_t *ctx; /* TCP backend for framing replies; its socket is set per request */
   swarf_mb_responder resp;
   client clients[SWARF_MB_MAX_CLIENTS];
+  double accept_after; /* out of descriptors: the listener rests until then */
 };
+
+/* Out of descriptors (EMFILE, ENFILE) or memory, accept fails while the
+ * connection stays queued: select would say "readable" at once, for ever.
+ * The listener rests this long instead (a spinning server took a core). */
+#define ACCEPT_REST_S 0.2
 
 static void drop(client *c) {
   if (c->fd >= 0) close(c->fd);
@@ -169,7 +175,11 @@ static client *free_slot(struct swarf_mb_tcp *t, double now) {
 static void on_accept(struct swarf_mb_tcp *t, double now) {
   int fd = accept4(t->listen_fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
   client *c;
-  if (fd < 0) return;
+  if (fd < 0) {
+    if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM)
+      t->accept_after = now + ACCEPT_REST_S;
+    return;
+  }
   if (fd >= FD_SETSIZE || (c = free_slot(t, now)) == NULL) {
     close(fd);
     return;
@@ -187,10 +197,10 @@ static void close_stale(struct swarf_mb_tcp *t, double now) {
   }
 }
 
-static int fill_set(struct swarf_mb_tcp *t, fd_set *rd) {
+static int fill_set(struct swarf_mb_tcp *t, fd_set *rd, double now) {
   int top = t->listen_fd > t->wake[0] ? t->listen_fd : t->wake[0];
   FD_ZERO(rd);
-  FD_SET(t->listen_fd, rd);
+  if (now >= t->accept_after) FD_SET(t->listen_fd, rd);
   FD_SET(t->wake[0], rd);
   for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++) {
     if (t->clients[i].fd < 0) continue;
@@ -205,7 +215,7 @@ static void *loop(void *arg) {
   while (!atomic_load(&t->stop)) {
     fd_set rd;
     struct timeval tv = {0, 250000};
-    int top = fill_set(t, &rd);
+    int top = fill_set(t, &rd, swarf_job_now());
     int n = select(top + 1, &rd, NULL, NULL, &tv);
     double now = swarf_job_now();
     if (n < 0 && errno != EINTR) break;

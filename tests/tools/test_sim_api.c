@@ -265,6 +265,22 @@ static void test_errors(void) {
             !strcmp(err.file, "bad.ngc"),
         "input error at bad.ngc:3 with an identity (%s %ld %d)", swarf_status_name(err.status),
         err.line, err.code);
+  { /* issue 30: a config on the heap, with the defaults; the handle keeps its copy */
+    swarf_sim_config *heap = swarf_sim_config_new();
+    swarf_sim *one = NULL;
+    CHECK(heap != NULL && heap->voxel == 0.2 && heap->half_width == 3 && heap->batch == 1024,
+          "swarf_sim_config_new: the defaults");
+    if (heap != NULL) {
+      base_config(heap);
+      CHECK(swarf_sim_new(heap, "p.ngc", &one, &err) == SWARF_OK, "new from a heap config");
+      swarf_sim_config_free(heap);
+      CHECK(one != NULL && swarf_sim_feed(one, "G0 X1 Y1 Z5\nG1 Z-1 F100\n", 24) == SWARF_OK &&
+                swarf_sim_finish(one) == SWARF_OK,
+            "the run goes on after the config is freed");
+      swarf_sim_free(one);
+    }
+    swarf_sim_config_free(NULL);
+  }
   { /* issue 28: NULL outputs and ranges refused with the argument's name, no crash */
     swarf_sim_config c2;
     swarf_sim *none = NULL;

@@ -25,6 +25,16 @@ static double now_seconds(void) {
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+swarf_sim_config *swarf_sim_config_new(void) {
+  swarf_sim_config *cfg = malloc(sizeof *cfg);
+  if (cfg != NULL) swarf_sim_config_init(cfg);
+  return cfg;
+}
+
+void swarf_sim_config_free(swarf_sim_config *cfg) {
+  free(cfg);
+}
+
 void swarf_sim_config_init(swarf_sim_config *cfg) {
   if (cfg == NULL) return;
   memset(cfg, 0, sizeof *cfg);

@@ -9,12 +9,12 @@
  *
  * Shape (cmark's streaming parser, libmodbus's opaque handle):
  *
- *   swarf_sim_config cfg;
- *   swarf_sim_config_init(&cfg);              defaults: xyz, 0.2 mm voxel, band 3
+ *   swarf_sim_config *cfg = swarf_sim_config_new();  defaults: xyz, 0.2 mm voxel, band 3
  *   ... stock, tools, callbacks ...
  *   swarf_sim *sim;
  *   swarf_error err;
- *   if (swarf_sim_new(&cfg, "part.ngc", &sim, &err) != SWARF_OK) ...
+ *   if (swarf_sim_new(cfg, "part.ngc", &sim, &err) != SWARF_OK) ...
+ *   swarf_sim_config_free(cfg);               the handle keeps its own copy
  *   swarf_sim_feed(sim, text, len);           any number of times, any split
  *   swarf_sim_finish(sim);                    last line, last batch, final report
  *   swarf_stock *stock = swarf_sim_take_stock(sim);   now the caller's
@@ -255,6 +255,12 @@ typedef struct {
 /* Defaults: xyz machine, 0.2 mm voxel, band 3, batch 1024, no tools, no stock
  * (a stock or an existing stock handle must be given). */
 SWARF_API void swarf_sim_config_init(swarf_sim_config *cfg);
+/* A config on the heap, initialised as swarf_sim_config_init does (the
+ * struct is over half a megabyte: too big for a small thread's stack).
+ * NULL when out of memory. Free it with swarf_sim_config_free (NULL is
+ * fine); swarf_sim_new copies what it needs, so it may be freed after. */
+SWARF_API swarf_sim_config *swarf_sim_config_new(void);
+SWARF_API void swarf_sim_config_free(swarf_sim_config *cfg);
 
 /* Adds a tool; SWARF_ERR_ARG when the table is full or the number is taken. */
 SWARF_API swarf_status swarf_sim_config_add_tool(swarf_sim_config *cfg, const swarf_sim_tool *t,

@@ -44,5 +44,24 @@ same "parameters and a subroutine" "$plain" "$(remaining 'o100 sub\nG1 Z#1 F100\
 same "a slot moved 100 mm off the stock by G10 L2 cuts nothing" "$untouched" \
   "$(remaining 'G10 L2 P1 X100\nG0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y12\nG0 Z5\n')"
 
+# swarf parse with simulate's setup (issue 27, point 9): --g54 and --start list
+# the moves in the workpiece frame simulate cuts in (G54's as set up), a G53
+# move where the machine puts it; simulate with the same setup cuts there.
+printf 'G21 G90\nG0 X5 Y5 Z5\nG1 Z-1 F100\nG1 X15\nG0 Z5\nG53 G0 X0 Y0\nM2\n' > "$dir/f.ngc"
+setup=(--g54 10,20,-30 --start 0,0,40)
+got=$("$swarf" parse "$dir/f.ngc" "${setup[@]}" 2> /dev/null | awk '{ printf "%s %s %s %s|", $1, $3, $4, $5 }')
+want="2 5.0000 5.0000 5.0000|3 5.0000 5.0000 -1.0000|4 15.0000 5.0000 -1.0000|5 15.0000 5.0000 5.0000|6 -10.0000 -20.0000 5.0000|"
+if [ "$got" = "$want" ]; then pass=$((pass + 1)); else
+  fail=$((fail + 1)); echo "FAIL parse --g54 --start: $got (want $want)"; fi
+"$swarf" simulate "$dir/f.ngc" "${setup[@]}" --stock box:0,0,-10,40,30,0 --tool T1=flat,D4 \
+  --voxel 0.25 --out "$dir/f.vdb" > "$dir/f.txt" 2> /dev/null
+removed=$(sed -n 's/.*removed \([0-9.]*\) mm^3.*/\1/p' "$dir/f.txt")
+# the slot parse lists: 10 mm long, D4, 1 mm deep, from X5 Y5 (inside the stock)
+if awk -v v="$removed" 'BEGIN { w = 10 * 4 * 1 + 3.14159265 * 4 * 1; exit !(v > 0.97 * w && v < 1.03 * w) }'; then
+  pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL simulate with the same setup: removed $removed"; fi
+bad=$("$swarf" parse "$dir/f.ngc" --g54 1,2 2>&1)
+if [ $? -eq 2 ] && [[ "$bad" == *"--g54: give X,Y,Z"* ]]; then pass=$((pass + 1)); else
+  fail=$((fail + 1)); echo "FAIL parse --g54 1,2: $bad"; fi
+
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -4,6 +4,7 @@
  * describe a stock grid, draw one.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,10 +14,12 @@
 #include "cli_stock.h"
 #include "gcode.h"
 #include "stock.h"
+#include "swarf_sim.h"
 
 static const char parse_help[] =
     "usage: swarf parse PROGRAM [--quiet | --canon] [--tools TABLE] [--dialect NAME]\n"
-    "                   [--block-delete] [--subroutine-path DIRS]\n"
+    "                   [--block-delete] [--subroutine-path DIRS] [--start X,Y,Z]\n"
+    "                   [--g54 X,Y,Z] [--offsets FILE] [--units mm|in]\n"
     "\n"
     "Checks PROGRAM and lists its canonical moves, one per line:\n"
     "  LINE KIND X Y Z [centre CX CY CZ normal NX NY NZ angle DEG rise MM] F feed T tool\n"
@@ -30,6 +33,13 @@ static const char parse_help[] =
     "                   they run, as rs274 runs them)\n"
     "  --subroutine-path DIRS  where `o<name> call` finds <name>.ngc (':' between\n"
     "                   directories)\n"
+    "The machine's setup, as swarf simulate takes it (then the moves are listed in\n"
+    "the workpiece frame simulate cuts in: G54 as set up is its origin):\n"
+    "  --start X,Y,Z    where the tool tip is when the program starts (workpiece mm;\n"
+    "                   default the machine's 0,0,0)\n"
+    "  --g54 X,Y,Z      G54's origin in machine coordinates (mm)\n"
+    "  --offsets FILE   LinuxCNC's parameter file (its .var)\n"
+    "  --units mm|in    the machine's length unit\n"
     "What was accepted without effect (a vendor M code, a grbl $ line, a probe move\n"
     "that found nothing) is told as FILE:LINE:COL: note: ... on stderr.\n"
     "Exit status 2 with FILE:LINE:COL: message on the first error.\n";
@@ -54,16 +64,25 @@ static const char render_help[] =
     "                4 tolerances; a legend with the scale in mm is drawn\n"
     "  --tolerance MM  default half the stock's voxel\n";
 
+/* The workpiece frame the moves are listed in (identity without a setup). */
+static swarf_sim_frame parse_frame = {{0, 0, 0}, 1, 0};
+
 static int print_move(const swarf_move *m, void *user) {
   static const char *kinds[] = {"RAPID", "LINE", "ARC", "DWELL", "TOOL"};
+  const swarf_sim_frame *f = &parse_frame;
   long *count = user;
+  double end[3], c[3];
   (*count)++;
   if (count[1]) return 0;
-  printf("%ld %s %.4f %.4f %.4f", m->line, kinds[m->kind], m->end[0], m->end[1], m->end[2]);
-  if (m->kind == SWARF_MOVE_ARC)
-    printf(" centre %.4f %.4f %.4f normal %g %g %g angle %.4f rise %.4f", m->center[0],
-           m->center[1], m->center[2], m->normal[0], m->normal[1], m->normal[2],
+  swarf_sim_frame_point(f, m->end, end);
+  printf("%ld %s %.4f %.4f %.4f", m->line, kinds[m->kind], end[0], end[1], end[2]);
+  if (m->kind == SWARF_MOVE_ARC) {
+    swarf_sim_frame_point(f, m->center, c);
+    printf(" centre %.4f %.4f %.4f normal %g %g %g angle %.4f rise %.4f", c[0], c[1], c[2],
+           f->cos_rot * m->normal[0] + f->sin_rot * m->normal[1],
+           -f->sin_rot * m->normal[0] + f->cos_rot * m->normal[1], m->normal[2],
            m->angle * 57.29577951308232, m->rise);
+  }
   if (m->kind == SWARF_MOVE_DWELL) printf(" dwell %.4f", m->dwell);
   printf(" F %.4f T %d\n", m->feed, m->tool);
   return 0;
@@ -81,9 +100,38 @@ static int count_move(const swarf_move *m, void *user) {
 }
 
 typedef struct {
-  const char *program, *tools, *dialect, *subpath;
-  int canon, quiet, block_delete;
+  const char *program, *tools, *dialect, *subpath, *offsets, *units;
+  int canon, quiet, block_delete, start_set, g54_set;
+  double start[3], g54[3];
 } parse_options;
+
+/* The machine's setup (--start, --g54, --offsets, --units) by the code
+ * swarf simulate uses, when any is given; the listing's frame from it. */
+static int machine_setup(swarf_gcode_parser *p, const parse_options *o, swarf_error *err) {
+  swarf_sim_config *cfg;
+  swarf_status rc;
+  if (!o->start_set && !o->g54_set && o->offsets == NULL && o->units == NULL) return SWARF_OK;
+  if ((cfg = swarf_sim_config_new()) == NULL) return SWARF_ERR_MEMORY;
+  cfg->units = o->units != NULL && !strcmp(o->units, "in") ? SWARF_GCODE_UNITS_INCH
+                                                            : SWARF_GCODE_UNITS_MM;
+  cfg->offsets_file = o->offsets;
+  cfg->g54_set = o->g54_set;
+  memcpy(cfg->g54, o->g54, sizeof cfg->g54);
+  rc = swarf_sim_setup_parser(cfg, p, o->start_set ? o->start : NULL, &parse_frame, err);
+  swarf_sim_config_free(cfg);
+  return rc;
+}
+
+/* "X,Y,Z": three finite numbers (mm); 0, or 2 after a message. */
+static int read_point(const char *flag, const char *val, double out[3]) {
+  char tail;
+  if (sscanf(val, "%lf,%lf,%lf%c", &out[0], &out[1], &out[2], &tail) == 3 &&
+      isfinite(out[0] + out[1] + out[2]) && fabs(out[0]) <= 1e6 && fabs(out[1]) <= 1e6 &&
+      fabs(out[2]) <= 1e6)
+    return 0;
+  fprintf(stderr, "swarf parse: %s: give X,Y,Z in mm, e.g. 0,0,25 (got \"%s\")\n", flag, val);
+  return 2;
+}
 
 static void print_note(long line, int column, const char *note, void *user) {
   fprintf(stderr, "%s:%ld:%d: note: %s\n", (const char *)user, line, column, note);
@@ -101,6 +149,7 @@ static int parse_setup(swarf_gcode_parser *p, const parse_options *o, swarf_erro
   if (rc == SWARF_OK && o->subpath != NULL)
     rc = swarf_gcode_parser_set_subroutine_path(p, o->subpath, err);
   if (rc == SWARF_OK && o->tools != NULL) rc = swarf_gcode_parser_load_tools(p, o->tools, err);
+  if (rc == SWARF_OK) rc = machine_setup(p, o, err);
   return rc;
 }
 
@@ -154,6 +203,21 @@ int swarf_cli_parse(int argc, char **argv) {
       o.tools = argv[++i];
     else if (!strcmp(a, "--subroutine-path") && i + 1 < argc)
       o.subpath = argv[++i];
+    else if (!strcmp(a, "--offsets") && i + 1 < argc)
+      o.offsets = argv[++i];
+    else if (!strcmp(a, "--start") && i + 1 < argc) {
+      if (read_point(a, argv[++i], o.start)) return 2;
+      o.start_set = 1;
+    } else if (!strcmp(a, "--g54") && i + 1 < argc) {
+      if (read_point(a, argv[++i], o.g54)) return 2;
+      o.g54_set = 1;
+    } else if (!strcmp(a, "--units") && i + 1 < argc) {
+      o.units = argv[++i];
+      if (strcmp(o.units, "mm") && strcmp(o.units, "in")) {
+        fprintf(stderr, "swarf parse: --units: give mm or in (got \"%s\")\n", o.units);
+        return 2;
+      }
+    }
     else if (!strcmp(a, "--dialect") && i + 1 < argc) {
       o.dialect = argv[++i];
       if (swarf_gcode_dialect_from_name(o.dialect, NULL) != 0) {

@@ -36,45 +36,60 @@ static void default_start(const swarf_sim *s, double w[3]) {
 
 /* Units, the parameter file, G54, in that order (the parameters are in the
  * machine's unit). */
-static swarf_status setup_offsets(swarf_sim *s, swarf_error *err) {
-  swarf_gcode_parser *p = s->parser;
+static swarf_status setup_offsets(const swarf_sim_config *cfg, swarf_gcode_parser *p,
+                                  swarf_error *err) {
   swarf_gcode_units u =
-      s->cfg.units == SWARF_GCODE_UNITS_INCH ? SWARF_GCODE_UNITS_INCH : SWARF_GCODE_UNITS_MM;
+      cfg->units == SWARF_GCODE_UNITS_INCH ? SWARF_GCODE_UNITS_INCH : SWARF_GCODE_UNITS_MM;
   double unit = u == SWARF_GCODE_UNITS_INCH ? 25.4 : 1.0;
   swarf_status st = swarf_gcode_parser_set_units(p, u, err);
-  if (st == SWARF_OK && s->cfg.offsets_file != NULL)
-    st = swarf_gcode_parser_load_params(p, s->cfg.offsets_file, err);
-  for (int k = 0; st == SWARF_OK && s->cfg.g54_set && k < 3; k++)
-    st = swarf_gcode_parser_set_param(p, 5221 + k, s->cfg.g54[k] / unit, err);
+  if (st == SWARF_OK && cfg->offsets_file != NULL)
+    st = swarf_gcode_parser_load_params(p, cfg->offsets_file, err);
+  for (int k = 0; st == SWARF_OK && cfg->g54_set && k < 3; k++)
+    st = swarf_gcode_parser_set_param(p, 5221 + k, cfg->g54[k] / unit, err);
   return st;
 }
 
+swarf_status swarf_sim_setup_parser(const swarf_sim_config *cfg, swarf_gcode_parser *parser,
+                                    const double start_w[3], swarf_sim_frame *frame,
+                                    swarf_error *err) {
+  double origin[SWARF_NAXES], rot = 0, m[SWARF_NAXES] = {0};
+  const double *w = start_w;
+  swarf_status st;
+  if (cfg == NULL || parser == NULL || frame == NULL)
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_setup_parser: no config, parser or frame");
+  if ((st = setup_offsets(cfg, parser, err)) != SWARF_OK) return st;
+  swarf_gcode_parser_work_system(parser, 1, origin, &rot);
+  memcpy(frame->origin, origin, sizeof frame->origin);
+  frame->cos_rot = cos(rot * DEG);
+  frame->sin_rot = sin(rot * DEG);
+  if (w == NULL) return SWARF_OK; /* the parser's own start, machine 0,0,0 */
+  m[0] = frame->cos_rot * w[0] - frame->sin_rot * w[1] + origin[0];
+  m[1] = frame->sin_rot * w[0] + frame->cos_rot * w[1] + origin[1];
+  m[2] = w[2] + origin[2];
+  return swarf_gcode_parser_set_start(parser, m, err);
+}
+
 swarf_status swarf_sim_setup(swarf_sim *s, swarf_error *err) {
-  double origin[SWARF_NAXES], rot = 0, m[SWARF_NAXES] = {0}, w[3];
-  swarf_status st = setup_offsets(s, err);
-  if (st != SWARF_OK) return st;
-  swarf_gcode_parser_work_system(s->parser, 1, origin, &rot);
-  memcpy(s->frame_origin, origin, sizeof s->frame_origin);
-  s->frame_cos = cos(rot * DEG);
-  s->frame_sin = sin(rot * DEG);
+  double w[3];
   if (s->cfg.start_set)
     memcpy(w, s->cfg.start, sizeof w);
   else
     default_start(s, w);
   memcpy(s->rep.start, w, sizeof w);
   s->rep.start_default = !s->cfg.start_set;
-  m[0] = s->frame_cos * w[0] - s->frame_sin * w[1] + origin[0];
-  m[1] = s->frame_sin * w[0] + s->frame_cos * w[1] + origin[1];
-  m[2] = w[2] + origin[2];
-  return swarf_gcode_parser_set_start(s->parser, m, err);
+  return swarf_sim_setup_parser(&s->cfg, s->parser, w, &s->frame, err);
 }
 
 /* Machine point -> workpiece point (XYZ; rotary axes are joint angles). */
+void swarf_sim_frame_point(const swarf_sim_frame *f, const double m[3], double w[3]) {
+  double x = m[0] - f->origin[0], y = m[1] - f->origin[1];
+  w[0] = f->cos_rot * x + f->sin_rot * y;
+  w[1] = -f->sin_rot * x + f->cos_rot * y;
+  w[2] = m[2] - f->origin[2];
+}
+
 static void point_in(const swarf_sim *s, const double m[3], double w[3]) {
-  double x = m[0] - s->frame_origin[0], y = m[1] - s->frame_origin[1];
-  w[0] = s->frame_cos * x + s->frame_sin * y;
-  w[1] = -s->frame_sin * x + s->frame_cos * y;
-  w[2] = m[2] - s->frame_origin[2];
+  swarf_sim_frame_point(&s->frame, m, w);
 }
 
 void swarf_sim_to_workpiece(const swarf_sim *s, const swarf_move *in, swarf_move *out) {
@@ -84,8 +99,8 @@ void swarf_sim_to_workpiece(const swarf_sim *s, const swarf_move *in, swarf_move
   point_in(s, in->end, out->end);
   if (in->kind != SWARF_MOVE_ARC) return;
   point_in(s, in->center, out->center);
-  out->normal[0] = s->frame_cos * nx + s->frame_sin * ny;
-  out->normal[1] = -s->frame_sin * nx + s->frame_cos * ny;
+  out->normal[0] = s->frame.cos_rot * nx + s->frame.sin_rot * ny;
+  out->normal[1] = -s->frame.sin_rot * nx + s->frame.cos_rot * ny;
 }
 
 void swarf_sim_check_units(swarf_sim *s, const swarf_move *mv) {

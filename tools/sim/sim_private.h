@@ -53,8 +53,7 @@ struct swarf_sim {
   int volumes;   /* the measured removal gives each cut's volume (lines report them) */
   double tolerance; /* gouges deeper than this, mm */
   swarf_stock *initial; /* the stock before the run, for the design comparison */
-  /* the workpiece frame: machine = Rz(frame_rot) workpiece + frame_origin */
-  double frame_origin[3], frame_cos, frame_sin;
+  swarf_sim_frame frame; /* the workpiece frame (setup.c) */
   int units_checked; /* the first move was checked for a units word */
   /* parts (part.c): the index box's blocks, nb[k] a side from blo; columns
    * across ax[0], ax[1] */

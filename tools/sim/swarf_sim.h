@@ -36,6 +36,7 @@
 #include <stddef.h>
 
 #include "engine.h"
+#include "gcode.h"
 #include "stock.h"
 #include "swarf_status.h"
 #include "toolpath.h"
@@ -255,6 +256,23 @@ typedef struct {
 /* Defaults: xyz machine, 0.2 mm voxel, band 3, batch 1024, no tools, no stock
  * (a stock or an existing stock handle must be given). */
 SWARF_API void swarf_sim_config_init(swarf_sim_config *cfg);
+/* The workpiece frame of a machine's setup: machine = Rz(rot) workpiece +
+ * origin (G54 as set up; XYZ, mm). */
+typedef struct {
+  double origin[3], cos_rot, sin_rot;
+} swarf_sim_frame;
+
+/* The machine's setup exactly as swarf_sim_new makes it, on a parser of the
+ * caller's (`swarf parse` lists the moves in the frame `swarf simulate` cuts
+ * in): cfg's length unit, offsets file and G54, then the start, start_w
+ * (the tool tip in the workpiece frame, mm; NULL: the machine's 0,0,0).
+ * *frame gets the workpiece frame. Call before the parser's first feed. */
+SWARF_API swarf_status swarf_sim_setup_parser(const swarf_sim_config *cfg,
+                                              swarf_gcode_parser *parser, const double start_w[3],
+                                              swarf_sim_frame *frame, swarf_error *err);
+/* A machine point (XYZ, mm) in the workpiece frame. */
+SWARF_API void swarf_sim_frame_point(const swarf_sim_frame *frame, const double m[3], double w[3]);
+
 /* A config on the heap, initialised as swarf_sim_config_init does (the
  * struct is over half a megabyte: too big for a small thread's stack).
  * NULL when out of memory. Free it with swarf_sim_config_free (NULL is

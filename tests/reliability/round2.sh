@@ -122,10 +122,19 @@ case_sub_dev_zero() { # /dev/zero at a subroutine path was read for ever
   timeout 20 "$swarf" parse --subroutine-path zeros callz.ngc > /dev/null 2> err
   [ $? -eq 2 ] && grep -q "o<bar> call: zeros/bar.ngc: not a regular file" err
 }
+case_tiny_tool_values() { # tiny tool values exited 1 with no location (fixed by 8c90bb1)
+  printf 'T1 P1 D1e-300 Z0\n' > tiny.tbl
+  "$swarf" simulate p.ngc --stock box:0,0,-5,20,20,0 --tool T1=flat,D1e-300 --voxel 0.5 \
+    --out u.vdb --quiet 2> err
+  [ $? -eq 2 ] && grep -q -- "--tool: D: the diameter 1e-300 mm is below 0.001 mm" err || return 1
+  "$swarf" simulate p.ngc --stock box:0,0,-5,20,20,0 --tool-table tiny.tbl --voxel 0.5 \
+    --out u.vdb --quiet 2> err
+  [ $? -eq 2 ] && [ ! -e u.vdb ] && grep -q "tiny.tbl:1: the diameter must be between" err
+}
 
 all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
   sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report
-  peck_tiny_q peck_huge_l threads_as_limit sub_fifo sub_dev_zero)
+  peck_tiny_q peck_huge_l threads_as_limit sub_fifo sub_dev_zero tiny_tool_values)
 [ $# -gt 0 ] && all=("$@")
 fixed=0 present=0
 for c in "${all[@]}"; do

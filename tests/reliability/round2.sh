@@ -122,7 +122,7 @@ case_sub_dev_zero() { # /dev/zero at a subroutine path was read for ever
   timeout 20 "$swarf" parse --subroutine-path zeros callz.ngc > /dev/null 2> err
   [ $? -eq 2 ] && grep -q "o<bar> call: zeros/bar.ngc: not a regular file" err
 }
-case_tiny_tool_values() { # tiny tool values exited 1 with no location (fixed by 8c90bb1)
+case_tiny_tool_values() { # tiny tool values exited 1 with no location (now: cutter size bounds)
   printf 'T1 P1 D1e-300 Z0\n' > tiny.tbl
   "$swarf" simulate p.ngc --stock box:0,0,-5,20,20,0 --tool T1=flat,D1e-300 --voxel 0.5 \
     --out u.vdb --quiet 2> err

@@ -79,7 +79,7 @@ std::string folder_of(const std::string &path) {
 
 /// The temporary beside PATH: a marker no user's file name carries by chance
 /// (a file of the user's named like PATH.tmp.N is never touched).
-const char kTempMarker[] = ".swarf.tmp.";
+const char kTempMarker[] = SWARF_STOCK_TEMP_MARKER;
 
 std::string temp_name(const char *path) {
   return std::string(path) + kTempMarker + std::to_string(long(::getpid()));

@@ -8,9 +8,10 @@
  *    socket is refused, never replaced;
  *  - a regular file is replaced whole: the content goes to an unnamed file
  *    in the same folder (O_TMPFILE), synced, then linked under a temporary
- *    name PATH.tmp.PID and renamed onto PATH; where the filesystem has no
- *    O_TMPFILE, PATH.tmp.PID from the start, removed on SIGINT, SIGTERM and
- *    SIGHUP. Stale PATH.tmp.PID of dead swarf processes are swept;
+ *    name PATH.swarf.tmp.PID and renamed onto PATH; where the filesystem has
+ *    no O_TMPFILE, PATH.swarf.tmp.PID from the start, removed on SIGINT,
+ *    SIGTERM and SIGHUP. Stale ones of dead swarf processes are swept (only
+ *    regular files of this user with that marker: never a user's own);
  *  - between swarf_stock_outputs_begin and _commit, files are held unnamed
  *    and published together at the commit (all outputs or none): a failing
  *    mesh leaves the old .vdb in place. kill -9 before the commit leaves
@@ -23,6 +24,10 @@
 #include <stddef.h>
 
 #include "swarf_status.h"
+
+/* The marker of a temporary's name, between PATH and the process id: an
+ * output's name needs room for it and ten digits under NAME_MAX. */
+#define SWARF_STOCK_TEMP_MARKER ".swarf.tmp."
 
 #ifdef __cplusplus
 extern "C" {

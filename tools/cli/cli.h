@@ -24,6 +24,10 @@ int swarf_cli_help(const char *command);
  * device or FIFO is accepted (written into). NULL path: 0. */
 int swarf_cli_output_ok(const char *cmd, const char *flag, const char *path);
 
+/* "X,Y,Z": three finite numbers of at most 1e6 (mm) into out; -1 when the
+ * text is anything else (verify.c; the caller says what is wrong). */
+int swarf_cli_read_point(const char *val, double out[3]);
+
 /* A file named on the command line and the flag (or role) that named it. */
 typedef struct {
   const char *flag, *path; /* path NULL: not given */

@@ -4,7 +4,6 @@
  * describe a stock grid, draw one.
  */
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,13 +121,9 @@ static int machine_setup(swarf_gcode_parser *p, const parse_options *o, swarf_er
   return rc;
 }
 
-/* "X,Y,Z": three finite numbers (mm); 0, or 2 after a message. */
+/* "X,Y,Z" (mm, as simulate reads it); 0, or 2 after a message. */
 static int read_point(const char *flag, const char *val, double out[3]) {
-  char tail;
-  if (sscanf(val, "%lf,%lf,%lf%c", &out[0], &out[1], &out[2], &tail) == 3 &&
-      isfinite(out[0] + out[1] + out[2]) && fabs(out[0]) <= 1e6 && fabs(out[1]) <= 1e6 &&
-      fabs(out[2]) <= 1e6)
-    return 0;
+  if (swarf_cli_read_point(val, out) == 0) return 0;
   fprintf(stderr, "swarf parse: %s: give X,Y,Z in mm, e.g. 0,0,25 (got \"%s\")\n", flag, val);
   return 2;
 }

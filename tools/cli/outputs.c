@@ -19,9 +19,10 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "stock_output.h"
 
 /* The temporary beside an output: NAME.swarf.tmp.PID (stock/atomic_file.cc). */
-#define TEMP_SUFFIX ((int)sizeof ".swarf.tmp." - 1 + 10)
+#define TEMP_SUFFIX ((int)sizeof SWARF_STOCK_TEMP_MARKER - 1 + 10)
 
 static int refuse(const char *cmd, const char *flag, const char *path, const char *why) {
   fprintf(stderr, "swarf %s: %s: cannot write \"%s\": %s\n", cmd, flag, path, why);

@@ -53,8 +53,7 @@ static int option_error(const char *flag, const char *what, const char *val) {
   return 2;
 }
 
-/* "X,Y,Z": three finite numbers. */
-static int read_triple(const char *flag, const char *val, double out[3]) {
+int swarf_cli_read_point(const char *val, double out[3]) {
   const char *p = val;
   char *end;
   for (int k = 0; k < 3; k++) {
@@ -62,10 +61,15 @@ static int read_triple(const char *flag, const char *val, double out[3]) {
     out[k] = strtod(p, &end);
     if (end == p || errno || !isfinite(out[k]) || fabs(out[k]) > 1e6 ||
         *end != (k < 2 ? ',' : '\0'))
-      return option_error(flag, "give X,Y,Z in mm, e.g. 0,0,25", val);
+      return -1;
     p = end + 1;
   }
   return 0;
+}
+
+static int read_triple(const char *flag, const char *val, double out[3]) {
+  if (swarf_cli_read_point(val, out) == 0) return 0;
+  return option_error(flag, "give X,Y,Z in mm, e.g. 0,0,25", val);
 }
 
 /* The options with a value. */

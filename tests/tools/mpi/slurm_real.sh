@@ -21,7 +21,7 @@ done
 /usr/bin/python3 -c "import pyopenvdb" 2> /dev/null ||
   { echo "SKIPPED: pyopenvdb not found (apt-get install python3-openvdb)"; exit 77; }
 
-T=$(mktemp -d /tmp/swarf-slurm.XXXXXX)
+T=$(mktemp -d)
 chmod 755 "$T"
 pids=()
 stop() {

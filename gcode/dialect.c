@@ -59,6 +59,12 @@ swarf_status swarf_gcode_parser_set_block_delete(swarf_gcode_parser *p, int on, 
   return s;
 }
 
+swarf_status swarf_gcode_parser_set_fragment(swarf_gcode_parser *p, int on, swarf_error *err) {
+  swarf_status s = check_setup(p, err);
+  if (s == SWARF_OK) p->fragment = on != 0;
+  return s;
+}
+
 swarf_status swarf_gcode_parser_set_work_limit(swarf_gcode_parser *p, long lines,
                                                swarf_error *err) {
   swarf_status s = check_setup(p, err);

@@ -243,6 +243,14 @@ SWARF_API const char *swarf_gcode_dialect_name(swarf_gcode_dialect d);
 SWARF_API swarf_status swarf_gcode_parser_set_dialect(swarf_gcode_parser *p, swarf_gcode_dialect d,
                                                       swarf_error *err);
 
+/* The text is a fragment, not a whole program (MDI lines, an excerpt, a
+ * test): it need not end. Off by default, and then a LinuxCNC program that
+ * ends with no M2, M30 or closing `%` is an error at its last line, as rs274
+ * gives it ("File ended with no percent sign or program end"); Fanuc, Haas
+ * and grbl programs never need an end. */
+SWARF_API swarf_status swarf_gcode_parser_set_fragment(swarf_gcode_parser *p, int on,
+                                                       swarf_error *err);
+
 /* The operator's block delete switch (LinuxCNC's "/" button, Fanuc's block
  * skip): off by default, and then blocks that start with `/` run, as rs274
  * runs them; on, they are skipped. */

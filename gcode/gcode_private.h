@@ -590,6 +590,7 @@ struct swarf_gcode_parser {
   int g92_restore;           /* #5210 = 1: the G92 offset #5211-#5216 is in force */
   /* The dialect and the operator's switches (dialect.c): */
   int block_delete; /* skip `/` blocks */
+  int fragment;     /* the text need not end (swarf_gcode_parser_set_fragment) */
   long work_limit;  /* lines run by loops, calls and subprograms, at most */
   char *subpath;    /* ':'-separated directories of subroutine files, or NULL */
   swarf_gcode_note_fn note_fn;

@@ -545,6 +545,13 @@ swarf_status swarf_gcode_parser_finish(swarf_gcode_parser *p) {
     p->cur_line = swarf_gc_flow_open_line(p->flow);
     fail_code(p, SWARF_GCODE_E_O_OPEN_AT_END, 1);
   }
+  if (p->status == SWARF_OK && !p->ended && !p->finished && !p->fragment &&
+      p->state->dialect == SWARF_GCODE_DIALECT_LINUXCNC) {
+    /* rs274 reads past the last line and stops there: the program must end. */
+    p->cur_line = p->lines > 0 ? p->lines : 1;
+    fail_code(p, p->percent_open ? SWARF_GCODE_E_NO_CLOSING_PERCENT : SWARF_GCODE_E_NO_PROGRAM_END,
+              1);
+  }
   release_held(p);
   p->finished = 1;
   return p->status;

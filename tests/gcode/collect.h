@@ -40,6 +40,7 @@ static inline void collect_end(collected *c, swarf_gcode_parser *p, int status) 
 static inline collected *run_text(const char *text, collected *c) {
   swarf_gcode_parser *p = NULL;
   swarf_gcode_parser_new("test.ngc", collect_move, c, &p);
+  swarf_gcode_parser_set_fragment(p, 1, NULL); /* test texts need not end */
   memset(c, 0, sizeof *c);
   collect_end(c, p, swarf_gcode_parser_feed(p, text, strlen(text)));
   return c;
@@ -49,6 +50,7 @@ static inline collected *run_text(const char *text, collected *c) {
 static inline collected *run_pieces(const char *text, size_t len, size_t piece, collected *c) {
   swarf_gcode_parser *p = NULL;
   swarf_gcode_parser_new("test.ngc", collect_move, c, &p);
+  swarf_gcode_parser_set_fragment(p, 1, NULL); /* test texts need not end */
   int status = SWARF_OK;
   memset(c, 0, sizeof *c);
   for (size_t i = 0; i < len && status == SWARF_OK; i += piece)

@@ -322,8 +322,7 @@ static void conform(const char *dir, const char *name) {
   cx.file = name;
   cx.canon = &canon;
   status = swarf_gcode_parse_file(src, on_move, &cx, &err);
-  CHECK(status == SWARF_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column,
-        err.message);
+  CHECK(status == SWARF_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column, err.message);
   CHECK(cx.next == canon.n, "%s: swarf emitted %zu motion calls, LinuxCNC %zu", name, cx.next,
         canon.n);
   CHECK(cx.mismatches == 0, "%s: %d values differ from LinuxCNC", name, cx.mismatches);
@@ -455,8 +454,8 @@ static void rejected(const char *dir, const char *file, const char *words) {
   char path[1024];
   swarf_error err;
   snprintf(path, sizeof path, "%s/linuxcnc/bad-rejected/%s", dir, file);
-  CHECK(swarf_gcode_parse_file(path, NULL, NULL, &err) == SWARF_ERR_SEMANTIC &&
-            err.line == 2 && strstr(err.message, words) != NULL,
+  CHECK(swarf_gcode_parse_file(path, NULL, NULL, &err) == SWARF_ERR_SEMANTIC && err.line == 2 &&
+            strstr(err.message, words) != NULL,
         "%s: %ld:%d %s", file, err.line, err.column, err.message);
 }
 
@@ -488,8 +487,12 @@ static void conform_canon(const char *dir, const char *name) {
     len = o;
   }
   status = canon_run(name, text, len, NULL, &out, &err);
-  CHECK(status == SWARF_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column,
-        err.message);
+  if (strncmp(name, "ghettotator", 11) == 0) /* no M2/M30: rs274 stops at the end, exit 1 */
+    CHECK(status == SWARF_ERR_SEMANTIC && err.code == SWARF_GCODE_E_NO_PROGRAM_END,
+          "%s: the missing program end: %s", name, err.message);
+  else
+    CHECK(status == SWARF_OK, "%s: rejected at %ld:%d: %s", name, err.line, err.column,
+          err.message);
   canon_extract(out.text, 0, &got);
   canon_extract(expected, 0, &want);
   why[0] = '\0';
@@ -504,19 +507,32 @@ static void conform_canon(const char *dir, const char *name) {
 
 int main(int argc, char **argv) {
   static const char *supported[] = {
-      "camotics-bear.nc",         "camotics-tiger.nc",
-      "camotics-flower_mold.nc",  "ugs-Gates_combined_R12.nc",
-      "ugs-arc_rword_test.gcode", "sergeypopov-4axis_bracet.nc", "camotics-vcarve.ngc",
-      "lcnc-LHchips4.ngc",        "lcnc-stellabee1.ngc",         "lcnc-wheels.ngc",
+      "camotics-bear.nc",          "camotics-tiger.nc",        "camotics-flower_mold.nc",
+      "ugs-Gates_combined_R12.nc", "ugs-arc_rword_test.gcode", "sergeypopov-4axis_bracet.nc",
+      "camotics-vcarve.ngc",       "lcnc-LHchips4.ngc",        "lcnc-stellabee1.ngc",
+      "lcnc-wheels.ngc",
   };
-  static const char *all[] = {
-      "camotics-bear.nc", "camotics-botomata_bottom.nc", "camotics-cameo.nc",
-      "camotics-flower_mold.nc", "camotics-tiger.nc", "camotics-tiny_cat_outline.ngc",
-      "camotics-vcarve.ngc", "ghettotator-wiggler-7-front0125mill.gcode", "lcnc-3D_Chips.ngc",
-      "lcnc-Cereal.ngc", "lcnc-LHchips4.ngc", "lcnc-boat-xyzac.ngc", "lcnc-boat-xyzbc.ngc",
-      "lcnc-impeller-7bl-xyzac.ngc", "lcnc-stellabee1.ngc", "lcnc-wheels.ngc",
-      "sergeypopov-4axis_bracet.nc", "sergeypopov-HeatSink_mill.tap", "ugs-Gates_combined_R12.nc",
-      "ugs-arc_rword_test.gcode", "ugs-rotation.ngc"};
+  static const char *all[] = {"camotics-bear.nc",
+                              "camotics-botomata_bottom.nc",
+                              "camotics-cameo.nc",
+                              "camotics-flower_mold.nc",
+                              "camotics-tiger.nc",
+                              "camotics-tiny_cat_outline.ngc",
+                              "camotics-vcarve.ngc",
+                              "ghettotator-wiggler-7-front0125mill.gcode",
+                              "lcnc-3D_Chips.ngc",
+                              "lcnc-Cereal.ngc",
+                              "lcnc-LHchips4.ngc",
+                              "lcnc-boat-xyzac.ngc",
+                              "lcnc-boat-xyzbc.ngc",
+                              "lcnc-impeller-7bl-xyzac.ngc",
+                              "lcnc-stellabee1.ngc",
+                              "lcnc-wheels.ngc",
+                              "sergeypopov-4axis_bracet.nc",
+                              "sergeypopov-HeatSink_mill.tap",
+                              "ugs-Gates_combined_R12.nc",
+                              "ugs-arc_rword_test.gcode",
+                              "ugs-rotation.ngc"};
   FILE *probe;
   char readme[1024];
   if (argc < 2) {
@@ -527,7 +543,8 @@ int main(int argc, char **argv) {
   probe = fopen(readme, "r");
   if (probe == NULL) { /* a clone without ../shared beside it */
     printf("SKIPPED: the conformance corpus is not here (%s): it lives in ../shared beside a "
-           "checkout\n", readme);
+           "checkout\n",
+           readme);
     return 77;
   }
   fclose(probe);

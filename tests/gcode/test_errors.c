@@ -158,18 +158,22 @@ static void test_identities(void) {
 static void test_words(void) {
   static const struct {
     const char *program, *word;
-  } cases[] = {{"G0 X1 U2\n", "U2"},          {"G0 G1 X1\n", "G1"},
-               {"G1 X1.2.3 F10\n", "X1.2.3"}, {"G0 X1 (abc\n", "(abc"},
-               {"G0 Z#<nope>\n", "#<nope>"},  {"G0 X[SQRT[-1]]\n", "SQRT[-1]"},
-               {"G0 X1 $\n", "$"},            {"G0 X1\x01\n", ""},
-               {"#1=\n", ""},                 {"o<nope> call\n", "o<nope>"},
+  } cases[] = {{"G0 X1 U2\n", "U2"},
+               {"G0 G1 X1\n", "G1"},
+               {"G1 X1.2.3 F10\n", "X1.2.3"},
+               {"G0 X1 (abc\n", "(abc"},
+               {"G0 Z#<nope>\n", "#<nope>"},
+               {"G0 X[SQRT[-1]]\n", "SQRT[-1]"},
+               {"G0 X1 $\n", "$"},
+               {"G0 X1\x01\n", ""},
+               {"#1=\n", ""},
+               {"o<nope> call\n", "o<nope>"},
                {"G0 X1\n%\n", "%"}};
   static collected c;
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     run_text(cases[i].program, &c);
     CHECK(c.status != 0 && strcmp(c.error.word, cases[i].word) == 0,
-          "\"%s\": word \"%s\", expected \"%s\"", cases[i].program, c.error.word,
-          cases[i].word);
+          "\"%s\": word \"%s\", expected \"%s\"", cases[i].program, c.error.word, cases[i].word);
   }
 }
 
@@ -253,6 +257,7 @@ static collected *run_limited(const char *text, int dialect, long limit, collect
   swarf_gcode_parser *p = NULL;
   int status;
   swarf_gcode_parser_new("test.ngc", collect_move, c, &p);
+  swarf_gcode_parser_set_fragment(p, 1, NULL); /* test texts need not end */
   memset(c, 0, sizeof *c);
   status = swarf_gcode_parser_set_dialect(p, (swarf_gcode_dialect)dialect, NULL);
   if (status == SWARF_OK && limit > 0) status = swarf_gcode_parser_set_work_limit(p, limit, NULL);
@@ -302,6 +307,53 @@ static void test_work_limit(void) {
   swarf_gcode_parser_free(p);
 }
 
+/* A whole program in `dialect` (not a fragment): LinuxCNC's must end with
+ * M2, M30 or a closing `%`, as rs274 reads it ("File ended with no percent
+ * sign or program end", at the last line, after its moves); the others need
+ * no end. */
+static void test_program_end(void) {
+  static const struct {
+    const char *text;
+    int dialect, code;
+    long line, moves;
+  } k[] = {
+      {"G0 X1\nG0 X2\n", SWARF_GCODE_DIALECT_LINUXCNC, SWARF_GCODE_E_NO_PROGRAM_END, 2, 2},
+      {"G0 X1\nG0 X2", SWARF_GCODE_DIALECT_LINUXCNC, SWARF_GCODE_E_NO_PROGRAM_END, 2, 2},
+      {"", SWARF_GCODE_DIALECT_LINUXCNC, SWARF_GCODE_E_NO_PROGRAM_END, 1, 0},
+      {"%\nG0 X1\n", SWARF_GCODE_DIALECT_LINUXCNC, SWARF_GCODE_E_NO_CLOSING_PERCENT, 2, 1},
+      {"%\nG0 X1\nM2\n", SWARF_GCODE_DIALECT_LINUXCNC, 0, 0, 1},
+      {"%\nG0 X1\n%\n", SWARF_GCODE_DIALECT_LINUXCNC, 0, 0, 1},
+      {"G0 X1\nM30", SWARF_GCODE_DIALECT_LINUXCNC, 0, 0, 1},
+      {"G0 X1\nM2\nG0 X5\n", SWARF_GCODE_DIALECT_LINUXCNC, 0, 0, 1},
+      {"G0 X1\n", SWARF_GCODE_DIALECT_FANUC, 0, 0, 1},
+      {"G0 X1\n", SWARF_GCODE_DIALECT_HAAS, 0, 0, 1},
+      {"G0 X1\n", SWARF_GCODE_DIALECT_GRBL, 0, 0, 1},
+  };
+  static collected c;
+  for (size_t i = 0; i < sizeof k / sizeof k[0]; i++) {
+    swarf_gcode_parser *p = NULL;
+    swarf_gcode_parser_new("end.ngc", collect_move, &c, &p);
+    memset(&c, 0, sizeof c);
+    swarf_gcode_parser_set_dialect(p, (swarf_gcode_dialect)k[i].dialect, NULL);
+    collect_end(&c, p, swarf_gcode_parser_feed(p, k[i].text, strlen(k[i].text)));
+    if (k[i].code == 0)
+      CHECK(c.status == SWARF_OK && c.n == k[i].moves, "%zu: accepted with %ld moves: %d %s (%d)",
+            i, k[i].moves, c.status, c.error.message, c.n);
+    else
+      CHECK(c.status == SEM && c.error.code == k[i].code && c.error.line == k[i].line &&
+                c.error.column == 1 && c.n == k[i].moves,
+            "%zu: no end: status %d code %d at %ld:%d after %d moves (%s)", i, c.status,
+            c.error.code, c.error.line, c.error.column, c.n, c.error.message);
+  }
+  swarf_gcode_parser *p = NULL;
+  swarf_gcode_parser_new("end.ngc", collect_move, &c, &p);
+  memset(&c, 0, sizeof c);
+  CHECK(swarf_gcode_parser_set_fragment(p, 1, NULL) == SWARF_OK, "a fragment");
+  collect_end(&c, p, swarf_gcode_parser_feed(p, "G0 X1\n", 6));
+  CHECK(c.status == SWARF_OK && c.n == 1, "a fragment needs no end: %s", c.error.message);
+  CHECK(swarf_gcode_parser_set_fragment(NULL, 1, NULL) == SWARF_ERR_ARG, "no parser");
+}
+
 int main(void) {
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
     check_case(&cases[i]);
@@ -313,5 +365,6 @@ int main(void) {
   test_files();
   test_long_line();
   test_work_limit();
+  test_program_end();
   return check_done();
 }

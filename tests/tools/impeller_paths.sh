@@ -19,7 +19,7 @@ swarf=$1 real=$2 voxel=$3 env=$4 what=$5
 }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-head -600 "$real/lcnc-impeller-7bl-xyzac.ngc" > "$tmp/imp600.ngc"
+{ head -600 "$real/lcnc-impeller-7bl-xyzac.ngc"; echo M2; } > "$tmp/imp600.ngc"
 opts=(--machine xyzac-trt --stock cylinder:z,42,0,30 --tool T1=ball,D4,L30 --voxel "$voxel" --quiet)
 "$swarf" simulate "$tmp/imp600.ngc" "${opts[@]}" --out "$tmp/default.vdb" 2> /dev/null || {
   echo "FAIL: the default run"; exit 1; }

@@ -17,9 +17,9 @@ swarf=$1 real=$2
 }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-{ head -1 "$real/camotics-tiger.nc"; echo F300; sed -n 17011,19010p "$real/camotics-tiger.nc"; } \
+{ head -1 "$real/camotics-tiger.nc"; echo F300; sed -n 17011,19010p "$real/camotics-tiger.nc"; echo M2; } \
   > "$tmp/tiger.nc"
-head -3000 "$real/camotics-bear.nc" > "$tmp/bear.nc"
+{ head -3000 "$real/camotics-bear.nc"; echo M2; } > "$tmp/bear.nc"
 declare -A opts=([tiger]="--stock box:-2,-1,-32,92,89,0 --tool T1=flat,D2.5,L20"
                  [bear]="--stock box:0,0,-20,80,80,0 --tool T1=ball,D3.175,L25")
 for job in tiger bear; do

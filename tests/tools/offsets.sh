@@ -15,7 +15,7 @@ pass=0 fail=0
 # remaining PROGRAM-TEXT -> prints "VOLUME ACTIVE": the remaining grid's
 # volume (mm^3, as `swarf info` reads it back) and its active voxel count.
 remaining() {
-  printf '%b' "$1" > "$dir/p.ngc"
+  printf '%b\nM2\n' "$1" > "$dir/p.ngc"
   "$swarf" simulate "$dir/p.ngc" --stock box:0,0,-10,40,30,0 --tool T1=ball,D3,L12 \
     --voxel 0.25 --out "$dir/out.vdb" --quiet 2> "$dir/stderr" || { cat "$dir/stderr" >&2; echo fail; return; }
   "$swarf" info "$dir/out.vdb" | awk '/^volume/ { v = $2 } /^active_voxels/ { n = $2 }
@@ -62,6 +62,22 @@ if awk -v v="$removed" 'BEGIN { w = 10 * 4 * 1 + 3.14159265 * 4 * 1; exit !(v > 
 bad=$("$swarf" parse "$dir/f.ngc" --g54 1,2 2>&1)
 if [ $? -eq 2 ] && [[ "$bad" == *"--g54: give X,Y,Z"* ]]; then pass=$((pass + 1)); else
   fail=$((fail + 1)); echo "FAIL parse --g54 1,2: $bad"; fi
+
+# parse --tool-table (point 9): the table's G43 lengths, the moves listed at
+# the tip of the tool in the spindle, where simulate cuts with the same table
+# (without it parse used rs274's built-in T1 length, 0.7 in: Z 11.9794).
+printf 'T1 P1 D4 Z+30 ;flat\nT2 P2 D6 Z+20\n' > "$dir/t.tbl"
+printf 'G21 G90\nT1 M6\nG43 H1\nG0 X5 Y5 Z5\nG1 Z-1 F100\nG1 X15\nG0 Z5\nT2 M6\nG43 H2\nG0 Z20\nM2\n' > "$dir/t.ngc"
+got=$("$swarf" parse "$dir/t.ngc" --tool-table "$dir/t.tbl" 2> /dev/null |
+  awk '$2 != "TOOL" { printf "%s %s %s|", $1, $3, $5 }')
+want="4 5.0000 5.0000|5 5.0000 -1.0000|6 15.0000 -1.0000|7 15.0000 5.0000|10 15.0000 20.0000|"
+if [ "$got" = "$want" ]; then pass=$((pass + 1)); else
+  fail=$((fail + 1)); echo "FAIL parse --tool-table: $got (want $want)"; fi
+"$swarf" simulate "$dir/t.ngc" --tool-table "$dir/t.tbl" --stock box:0,0,-10,40,30,0 \
+  --start 0,0,40 --voxel 0.25 --out "$dir/t.vdb" > "$dir/t.txt" 2> /dev/null
+removed=$(sed -n 's/.*removed \([0-9.]*\) mm^3.*/\1/p' "$dir/t.txt")
+if awk -v v="$removed" 'BEGIN { w = 10 * 4 * 1 + 3.14159265 * 4 * 1; exit !(v > 0.97 * w && v < 1.03 * w) }'; then
+  pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL simulate with the table: removed $removed"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -27,6 +27,7 @@ static void base_config(swarf_sim_config *cfg) {
   swarf_error err;
   swarf_sim_tool t;
   swarf_sim_config_init(cfg);
+  cfg->fragment = 1; /* the test texts need not end (one case checks the rule) */
   cfg->voxel = VOXEL;
   CHECK(swarf_sim_parse_stock("box:0,0,-10,40,30,0", &cfg->stock, &err) == SWARF_OK, "%s",
         err.message);
@@ -265,6 +266,11 @@ static void test_errors(void) {
             !strcmp(err.file, "bad.ngc"),
         "input error at bad.ngc:3 with an identity (%s %ld %d)", swarf_status_name(err.status),
         err.line, err.code);
+  cfg.fragment = 0; /* a whole LinuxCNC program must end (rs274), after its moves */
+  CHECK(swarf_sim_run_text(&cfg, "open.ngc", tool, 6, &out, NULL, &err) == SWARF_ERR_SEMANTIC &&
+            out == NULL && err.line == 1 && err.code == SWARF_GCODE_E_NO_PROGRAM_END,
+        "no M2: refused at its last line (%s %ld)", err.message, err.line);
+  cfg.fragment = 1;
   { /* issue 30: a config on the heap, with the defaults; the handle keeps its copy */
     swarf_sim_config *heap = swarf_sim_config_new();
     swarf_sim *one = NULL;
@@ -287,8 +293,10 @@ static void test_errors(void) {
     CHECK(swarf_sim_parse_stock("box:0,0,-1,1,1,0", NULL, &err) == SWARF_ERR_ARG &&
               strstr(err.message, "out is NULL") != NULL,
           "parse_stock(spec, NULL): %s", err.message);
-    CHECK(swarf_sim_parse_tool("T1=flat,D1", NULL, &err) == SWARF_ERR_ARG, "parse_tool(spec, NULL)");
-    CHECK(swarf_sim_parse_holder("T1=20x40", NULL, &err) == SWARF_ERR_ARG, "parse_holder(spec, NULL)");
+    CHECK(swarf_sim_parse_tool("T1=flat,D1", NULL, &err) == SWARF_ERR_ARG,
+          "parse_tool(spec, NULL)");
+    CHECK(swarf_sim_parse_holder("T1=20x40", NULL, &err) == SWARF_ERR_ARG,
+          "parse_holder(spec, NULL)");
     CHECK(swarf_sim_parse_fixture("box:0,0,0,1,1,1", NULL, &err) == SWARF_ERR_ARG,
           "parse_fixture(spec, NULL)");
     base_config(&c2);

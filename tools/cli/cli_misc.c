@@ -9,16 +9,17 @@
 #include <string.h>
 
 #include "cli.h"
-#include "swarf_file.h"
 #include "cli_stock.h"
 #include "gcode.h"
 #include "stock.h"
+#include "swarf_file.h"
 #include "swarf_sim.h"
 
 static const char parse_help[] =
     "usage: swarf parse PROGRAM [--quiet | --canon] [--tools TABLE] [--dialect NAME]\n"
     "                   [--block-delete] [--subroutine-path DIRS] [--start X,Y,Z]\n"
     "                   [--g54 X,Y,Z] [--offsets FILE] [--units mm|in]\n"
+    "                   [--tool-table FILE [--tool-table-units mm|in]]\n"
     "\n"
     "Checks PROGRAM and lists its canonical moves, one per line:\n"
     "  LINE KIND X Y Z [centre CX CY CZ normal NX NY NZ angle DEG rise MM] F feed T tool\n"
@@ -39,6 +40,9 @@ static const char parse_help[] =
     "  --g54 X,Y,Z      G54's origin in machine coordinates (mm)\n"
     "  --offsets FILE   LinuxCNC's parameter file (its .var)\n"
     "  --units mm|in    the machine's length unit\n"
+    "  --tool-table FILE  a LinuxCNC tool table: its tools and G43 lengths are the\n"
+    "                   program's (without one, rs274's built-in T1-T3 lengths)\n"
+    "  --tool-table-units mm|in  the table's unit (default mm)\n"
     "What was accepted without effect (a vendor M code, a grbl $ line, a probe move\n"
     "that found nothing) is told as FILE:LINE:COL: note: ... on stderr.\n"
     "Exit status 2 with FILE:LINE:COL: message on the first error.\n";
@@ -66,13 +70,39 @@ static const char render_help[] =
 /* The workpiece frame the moves are listed in (identity without a setup). */
 static swarf_sim_frame parse_frame = {{0, 0, 0}, 1, 0};
 
+/* With --tool-table the moves are listed where simulate cuts: at the tip of
+ * the tool in the spindle, its length below the controlled point (one tool
+ * is loaded from the start, as simulate loads it). */
+static struct {
+  int n, number[SWARF_SIM_MAX_TOOLS];
+  double length[SWARF_SIM_MAX_TOOLS], spindle;
+} parse_tips;
+
+static void tips_from(const swarf_sim_config *cfg) {
+  parse_tips.n = cfg->ntools;
+  for (int i = 0; i < cfg->ntools; i++)
+    parse_tips.number[i] = cfg->tools[i].number, parse_tips.length[i] = cfg->tools[i].length;
+  parse_tips.spindle = cfg->ntools == 1 ? cfg->tools[0].length : 0.0;
+}
+
+static void tips_change(int tool) {
+  parse_tips.spindle = 0.0;
+  for (int i = 0; i < parse_tips.n; i++)
+    if (parse_tips.number[i] == tool) parse_tips.spindle = parse_tips.length[i];
+}
+
 static int print_move(const swarf_move *m, void *user) {
   static const char *kinds[] = {"RAPID", "LINE", "ARC", "DWELL", "TOOL"};
   const swarf_sim_frame *f = &parse_frame;
+  swarf_move tip;
   long *count = user;
   double end[3], c[3];
   (*count)++;
+  if (m->kind == SWARF_MOVE_TOOL_CHANGE) tips_change(m->tool);
   if (count[1]) return 0;
+  tip = *m;
+  tip.end[2] -= parse_tips.spindle, tip.center[2] -= parse_tips.spindle;
+  m = &tip;
   swarf_sim_frame_point(f, m->end, end);
   printf("%ld %s %.4f %.4f %.4f", m->line, kinds[m->kind], end[0], end[1], end[2]);
   if (m->kind == SWARF_MOVE_ARC) {
@@ -99,9 +129,9 @@ static int count_move(const swarf_move *m, void *user) {
 }
 
 typedef struct {
-  const char *program, *tools, *dialect, *subpath, *offsets, *units;
+  const char *program, *tools, *dialect, *subpath, *offsets, *units, *tool_table;
   int canon, quiet, block_delete, start_set, g54_set;
-  double start[3], g54[3];
+  double start[3], g54[3], table_mm_per_unit;
 } parse_options;
 
 /* The machine's setup (--start, --g54, --offsets, --units) by the code
@@ -109,10 +139,16 @@ typedef struct {
 static int machine_setup(swarf_gcode_parser *p, const parse_options *o, swarf_error *err) {
   swarf_sim_config *cfg;
   swarf_status rc;
-  if (!o->start_set && !o->g54_set && o->offsets == NULL && o->units == NULL) return SWARF_OK;
+  if (!o->start_set && !o->g54_set && o->offsets == NULL && o->units == NULL &&
+      o->tool_table == NULL)
+    return SWARF_OK;
   if ((cfg = swarf_sim_config_new()) == NULL) return SWARF_ERR_MEMORY;
-  cfg->units = o->units != NULL && !strcmp(o->units, "in") ? SWARF_GCODE_UNITS_INCH
-                                                            : SWARF_GCODE_UNITS_MM;
+  if (o->tool_table != NULL && (rc = swarf_sim_config_load_tool_table(
+                                    cfg, o->tool_table, o->table_mm_per_unit, err)) != SWARF_OK)
+    return swarf_sim_config_free(cfg), rc;
+  tips_from(cfg);
+  cfg->units =
+      o->units != NULL && !strcmp(o->units, "in") ? SWARF_GCODE_UNITS_INCH : SWARF_GCODE_UNITS_MM;
   cfg->offsets_file = o->offsets;
   cfg->g54_set = o->g54_set;
   memcpy(cfg->g54, o->g54, sizeof cfg->g54);
@@ -200,7 +236,16 @@ int swarf_cli_parse(int argc, char **argv) {
       o.subpath = argv[++i];
     else if (!strcmp(a, "--offsets") && i + 1 < argc)
       o.offsets = argv[++i];
-    else if (!strcmp(a, "--start") && i + 1 < argc) {
+    else if (!strcmp(a, "--tool-table") && i + 1 < argc)
+      o.tool_table = argv[++i];
+    else if (!strcmp(a, "--tool-table-units") && i + 1 < argc) {
+      const char *u = argv[++i];
+      if (strcmp(u, "mm") && strcmp(u, "in")) {
+        fprintf(stderr, "swarf parse: --tool-table-units: give mm or in (got \"%s\")\n", u);
+        return 2;
+      }
+      o.table_mm_per_unit = u[0] == 'i' ? 25.4 : 1.0;
+    } else if (!strcmp(a, "--start") && i + 1 < argc) {
       if (read_point(a, argv[++i], o.start)) return 2;
       o.start_set = 1;
     } else if (!strcmp(a, "--g54") && i + 1 < argc) {
@@ -212,8 +257,7 @@ int swarf_cli_parse(int argc, char **argv) {
         fprintf(stderr, "swarf parse: --units: give mm or in (got \"%s\")\n", o.units);
         return 2;
       }
-    }
-    else if (!strcmp(a, "--dialect") && i + 1 < argc) {
+    } else if (!strcmp(a, "--dialect") && i + 1 < argc) {
       o.dialect = argv[++i];
       if (swarf_gcode_dialect_from_name(o.dialect, NULL) != 0) {
         fprintf(stderr, "swarf parse: --dialect: give linuxcnc, fanuc, haas or grbl (got \"%s\")\n",
@@ -227,6 +271,12 @@ int swarf_cli_parse(int argc, char **argv) {
       o.program = a;
   }
   if (o.program == NULL) return fputs(parse_help, stderr), 2;
+  if (o.table_mm_per_unit == 0) o.table_mm_per_unit = 1.0;
+  if (o.tools != NULL && o.tool_table != NULL) {
+    fprintf(stderr, "swarf parse: give --tools (rs274's table, with --canon) or --tool-table "
+                    "(simulate's), not both\n");
+    return 2;
+  }
   if (o.tools != NULL && !o.canon) {
     fprintf(stderr, "swarf parse: --tools needs --canon\n");
     return 2;
@@ -337,10 +387,10 @@ int swarf_cli_render(int argc, char **argv) {
   int rc = render_args(&o, argc, argv);
   if (rc) return rc == 1 ? 0 : rc;
   if ((s = open_grid("render", o.in)) == NULL) return 2;
-  if (o.design && swarf_stock_read_design_band(
-                      o.design, swarf_stock_voxel(s),
-                      swarf_stock_design_band(s, swarf_stock_voxel(s), o.tolerance, 1), &design,
-                      &err) != SWARF_OK) {
+  if (o.design &&
+      swarf_stock_read_design_band(o.design, swarf_stock_voxel(s),
+                                   swarf_stock_design_band(s, swarf_stock_voxel(s), o.tolerance, 1),
+                                   &design, &err) != SWARF_OK) {
     swarf_error_format(&err, msg, sizeof msg);
     fprintf(stderr, "swarf render: --design: %s\n", msg);
     swarf_stock_free(s);

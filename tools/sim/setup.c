@@ -49,6 +49,16 @@ static swarf_status setup_offsets(const swarf_sim_config *cfg, swarf_gcode_parse
   return st;
 }
 
+/* The parser's tool table is the tools given, with their length offsets
+ * (G43 H<n> applies tool n's; an H of a tool not given is an error at its
+ * line). With length 0 (tools given by --tool alone) G43 changes nothing. */
+static void set_tools(const swarf_sim_config *cfg, swarf_gcode_parser *parser) {
+  swarf_gcode_parser_clear_tools(parser);
+  for (int i = 0; i < cfg->ntools; i++)
+    swarf_gcode_parser_set_tool(parser, cfg->tools[i].number, cfg->tools[i].length,
+                                cfg->tools[i].cutter.diameter);
+}
+
 swarf_status swarf_sim_setup_parser(const swarf_sim_config *cfg, swarf_gcode_parser *parser,
                                     const double start_w[3], swarf_sim_frame *frame,
                                     swarf_error *err) {
@@ -56,8 +66,10 @@ swarf_status swarf_sim_setup_parser(const swarf_sim_config *cfg, swarf_gcode_par
   const double *w = start_w;
   swarf_status st;
   if (cfg == NULL || parser == NULL || frame == NULL)
-    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_setup_parser: no config, parser or frame");
+    return swarf_error_set(err, SWARF_ERR_ARG,
+                           "swarf_sim_setup_parser: no config, parser or frame");
   if ((st = setup_offsets(cfg, parser, err)) != SWARF_OK) return st;
+  if (cfg->ntools > 0) set_tools(cfg, parser);
   swarf_gcode_parser_work_system(parser, 1, origin, &rot);
   memcpy(frame->origin, origin, sizeof frame->origin);
   frame->cos_rot = cos(rot * DEG);

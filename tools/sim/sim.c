@@ -75,10 +75,19 @@ static const swarf_sim_tool *find_tool(const swarf_sim *s, int number) {
   return NULL;
 }
 
+/* Fanuc and Haas controls hold their tool data: a change to a tool not
+ * given is an error only once that tool cuts (take_motion). */
+static int holds_tool_data(const swarf_sim *s) {
+  return s->cfg.dialect == SWARF_GCODE_DIALECT_FANUC || s->cfg.dialect == SWARF_GCODE_DIALECT_HAAS;
+}
+
 static int on_tool_change(swarf_sim *s, const swarf_move *mv) {
   const swarf_sim_tool *t = find_tool(s, mv->tool);
   s->rep.tool_changes++;
-  if (mv->tool != 0 && t == NULL) {
+  s->unknown_tool = 0;
+  if (mv->tool != 0 && t == NULL && holds_tool_data(s)) {
+    s->unknown_tool = mv->tool, s->unknown_line = mv->line;
+  } else if (mv->tool != 0 && t == NULL) {
     swarf_sim_fail(s, SWARF_ERR_TOOL, mv->line, mv->column,
                    "tool T%d is not in the tool table; describe it with --tool T%d=<shape>,"
                    "D<diameter>",
@@ -131,6 +140,13 @@ static int take_motion(swarf_sim *s, swarf_motion *m) {
   if (swarf_sim_lines_add(s, m, tool) != 0) return 1;
   if (tell_progress(s, m->line, tool)) return 1;
   if (swarf_motion_is_null(m)) return 0;
+  if (s->unknown_tool != 0 && !m->rapid) {
+    swarf_sim_fail(s, SWARF_ERR_TOOL, m->line, m->column,
+                   "a feed move with tool T%d (changed at line %ld), which is not in the tool "
+                   "table; describe it with --tool T%d=<shape>,D<diameter>",
+                   s->unknown_tool, s->unknown_line, s->unknown_tool);
+    return 1;
+  }
   if (s->tool == NULL) return swarf_sim_batch_check_empty(s, m);
   if (!(s->tool->cutter.diameter > 0)) {
     swarf_sim_fail(s, SWARF_ERR_TOOL, m->line, m->column,
@@ -190,16 +206,6 @@ static int on_move(const swarf_move *machine_mv, void *user) {
   return take_motion(s, &m);
 }
 
-/* The parser's tool table is the tools given, with their length offsets
- * (G43 H<n> applies tool n's; an H of a tool not given is an error at its
- * line). With length 0 (tools given by --tool alone) G43 changes nothing. */
-static void set_tool_table(swarf_sim *s) {
-  swarf_gcode_parser_clear_tools(s->parser);
-  for (int i = 0; i < s->cfg.ntools; i++)
-    swarf_gcode_parser_set_tool(s->parser, s->cfg.tools[i].number, s->cfg.tools[i].length,
-                                s->cfg.tools[i].cutter.diameter);
-}
-
 /* The stock of cfg's spec: whole (rlo NULL), or only its part [rlo, rhi]
  * (stock.h's swarf_stock_new_box_part). */
 static swarf_stock *build_stock(const swarf_sim_config *cfg, const int *rlo, const int *rhi,
@@ -251,6 +257,7 @@ static void on_note(long line, int column, const char *text, void *user) {
 static swarf_status set_reading(swarf_sim *s, swarf_error *err) {
   swarf_status st = swarf_gcode_parser_set_dialect(s->parser, s->cfg.dialect, err);
   if (st == SWARF_OK) st = swarf_gcode_parser_set_block_delete(s->parser, s->cfg.block_delete, err);
+  if (st == SWARF_OK) st = swarf_gcode_parser_set_fragment(s->parser, s->cfg.fragment, err);
   if (st == SWARF_OK && s->cfg.subroutine_path != NULL)
     st = swarf_gcode_parser_set_subroutine_path(s->parser, s->cfg.subroutine_path, err);
   if (st == SWARF_OK) swarf_gcode_parser_set_notes(s->parser, on_note, s);
@@ -262,7 +269,6 @@ static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
   if (swarf_gcode_parser_new(s->name, on_move, s, &s->parser) != SWARF_OK ||
       swarf_sim_batch_init(s) != 0)
     return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
-  set_tool_table(s);
   if ((st = set_reading(s, err)) != SWARF_OK) return st;
   if ((st = swarf_sim_setup(s, err)) != SWARF_OK ||
       (st = swarf_sim_design_init(s, err)) != SWARF_OK)

@@ -25,6 +25,8 @@ struct swarf_sim {
   swarf_gcode_parser *parser;
   swarf_stock *stock;
   const swarf_sim_tool *tool; /* in the spindle, NULL when empty */
+  int unknown_tool;           /* Fanuc/Haas: the T loaded that was not given (0: none) */
+  long unknown_line;          /* and the line of its change */
   swarf_sim_state state;
   swarf_error err;
   swarf_sim_report rep;
@@ -46,15 +48,15 @@ struct swarf_sim {
   int npending, pending_cap;
   swarf_sim_collide col; /* collisions (collide.c) */
   int moved;             /* a motion move was seen (the start position is the tip's) */
-  long cur_id;   /* lines opened so far: cur's id; pending[i]'s is cur_id - npending + i */
-  long *cut_id;  /* batch: the line each cut belongs to (measured removal) */
+  long cur_id;           /* lines opened so far: cur's id; pending[i]'s is cur_id - npending + i */
+  long *cut_id;          /* batch: the line each cut belongs to (measured removal) */
   swarf_stock_cut_effect *effects; /* batch: what each cut did (measured removal) */
-  int measured;  /* removal measures each cut (line volumes or a design) */
-  int volumes;   /* the measured removal gives each cut's volume (lines report them) */
-  double tolerance; /* gouges deeper than this, mm */
-  swarf_stock *initial; /* the stock before the run, for the design comparison */
+  int measured;                    /* removal measures each cut (line volumes or a design) */
+  int volumes;           /* the measured removal gives each cut's volume (lines report them) */
+  double tolerance;      /* gouges deeper than this, mm */
+  swarf_stock *initial;  /* the stock before the run, for the design comparison */
   swarf_sim_frame frame; /* the workpiece frame (setup.c) */
-  int units_checked; /* the first move was checked for a units word */
+  int units_checked;     /* the first move was checked for a units word */
   /* parts (part.c): the index box's blocks, nb[k] a side from blo; columns
    * across ax[0], ax[1] */
   int planned;    /* the parts are planned (several processes or a tally) */
@@ -63,12 +65,12 @@ struct swarf_sim {
   int index_lo[3], index_hi[3]; /* the stock's index box */
   double *work;                 /* estimated work per column (the survey's) */
   unsigned long long *tally;    /* cuts visiting each block (cfg.tally) */
-  swarf_sim *surveyor;           /* non-NULL: this is a survey handle feeding it */
-  int abort_pending;             /* a progress callback asked to stop (several processes) */
+  swarf_sim *surveyor;          /* non-NULL: this is a survey handle feeding it */
+  int abort_pending;            /* a progress callback asked to stop (several processes) */
 };
 
 /* part.c. Return 0, or 1 after swarf_sim_fail. */
-int swarf_sim_parts(const swarf_sim *s); /* 1 with several processes */
+int swarf_sim_parts(const swarf_sim *s);                 /* 1 with several processes */
 int swarf_sim_part_plan(swarf_sim *s, const char *path); /* path NULL: even slabs */
 /* The stock's part [lo, hi] (index box) built from cfg.stock in place of the
  * shell (sim.c; part_build); 0 or 1 on failure (s's error set). */

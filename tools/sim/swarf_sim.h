@@ -227,10 +227,13 @@ typedef struct {
   /* How the program is read (gcode.h): its dialect (swarf_gcode_dialect,
    * 0: LinuxCNC), the block delete switch (1: `/` blocks are skipped), the
    * directories where `o<name> call` finds <name>.ngc (':'-separated,
-   * borrowed until new returns; NULL: none). */
+   * borrowed until new returns; NULL: none), and whether the text is a
+   * fragment (1: it need not end; 0: a LinuxCNC program must end with M2,
+   * M30 or a closing `%`, as rs274 requires: swarf_gcode_parser_set_fragment). */
   int dialect;
   int block_delete;
   const char *subroutine_path;
+  int fragment;
   /* The part as designed (a level set, stock.h): each move that removes
    * material deeper than `tolerance` inside it raises SWARF_ALARM_GOUGE
    * (depth: that move's deepest, as measured against the stock as it stood,
@@ -264,7 +267,8 @@ typedef struct {
 
 /* The machine's setup exactly as swarf_sim_new makes it, on a parser of the
  * caller's (`swarf parse` lists the moves in the frame `swarf simulate` cuts
- * in): cfg's length unit, offsets file and G54, then the start, start_w
+ * in): cfg's length unit, offsets file and G54, its tools as the parser's
+ * tool table when it has any (their G43 lengths), then the start, start_w
  * (the tool tip in the workpiece frame, mm; NULL: the machine's 0,0,0).
  * *frame gets the workpiece frame. Call before the parser's first feed. */
 SWARF_API swarf_status swarf_sim_setup_parser(const swarf_sim_config *cfg,

@@ -251,8 +251,14 @@ def test_stock_reuse_and_streaming():
     swarf.set_read_isolation(True)
     again = swarf.Stock.read(p)
     # A second program on the first one's result: the slot deepened by 1 mm.
+    # It is a fragment (no M2): as a whole program rs274 refuses it at its end.
     deeper = "G0 X5 Y5 Z2\nG1 Z-2 F100\nG1 X15\nG0 Z2\n"
-    r = swarf.simulate(text=deeper, stock=again, tools=["T1=flat,D4"])
+    try:
+        swarf.simulate(text=deeper, stock="box:0,0,-5,20,10,0", tools=["T1=flat,D4"])
+        check(False, "a whole program with no end is refused")
+    except swarf.InputError as e:
+        check(e.line == 4 and "program end" in str(e), "no end: refused at line 4: %s" % e)
+    r = swarf.simulate(text=deeper, stock=again, tools=["T1=flat,D4"], fragment=True)
     check(again._h is None, "the Stock given to a simulation is the simulation's")
     near(r.removed, 1.0 * (10 * 4 + math.pi * 4), 0.02, "second pass removes the next 1 mm")
     near(r.report.volume_before, first.stock.volume, 1e-12, "second pass starts from the first")

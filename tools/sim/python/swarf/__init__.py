@@ -426,11 +426,13 @@ class Simulation:
     --dialect and --block-delete: dialect ("linuxcnc", the default, "fanuc",
     "haas" or "grbl"), block_delete (True: `/` blocks are skipped),
     subroutine_path (where `o<name> call` finds <name>.ngc: directories
-    joined by ':'). name is the program's name in messages."""
+    joined by ':'), fragment (True: the text is not a whole program and need
+    not end; False, the default: a LinuxCNC program must end with M2, M30 or
+    a closing %, as rs274 requires). name is the program's name in messages."""
 
     def __init__(self, stock, tools=(), *, voxel=None, machine=None, band=None, batch=None,
                  line_volumes=False, start=None, g54=None, units=None, offsets=None,
-                 dialect=None, block_delete=False, subroutine_path=None,
+                 dialect=None, block_delete=False, subroutine_path=None, fragment=False,
                  name="program", progress=None, alarm=None, line=None):
         self._h = c_void_p()
         self._exc = None
@@ -448,6 +450,7 @@ class Simulation:
                            % (dialect,), "dialect")
             cfg.dialect = _DIALECTS[dialect]
         cfg.block_delete = 1 if block_delete else 0
+        cfg.fragment = 1 if fragment else 0
         subpath = None
         if subroutine_path is not None:
             subpath = _path(subroutine_path)  # borrowed by new (it copies it)
@@ -575,7 +578,7 @@ class Simulation:
 
 def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=None, band=None,
              batch=None, line_volumes=False, start=None, g54=None, units=None, offsets=None,
-             dialect=None, block_delete=False, subroutine_path=None,
+             dialect=None, block_delete=False, subroutine_path=None, fragment=False,
              name=None, progress=None, alarm=None, line=None) -> Result:
     """Runs a program: the G-code file at `program`, or the string `text`.
     Options as Simulation (and `swarf simulate`). Returns the Result; raises
@@ -587,7 +590,7 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
     with Simulation(stock, tools, voxel=voxel, machine=machine, band=band, batch=batch,
                     line_volumes=line_volumes, start=start, g54=g54, units=units,
                     offsets=offsets, dialect=dialect, block_delete=block_delete,
-                    subroutine_path=subroutine_path,
+                    subroutine_path=subroutine_path, fragment=fragment,
                     name=name, progress=progress, alarm=alarm,
                     line=line) as sim:
         if text is not None:

@@ -69,8 +69,8 @@ swarf_status swarf_gcode_parser_set_work_limit(swarf_gcode_parser *p, long lines
                                                swarf_error *err) {
   swarf_status s = check_setup(p, err);
   if (s != SWARF_OK) return s;
-  if (lines < 1 || lines > SWARF_GCODE_WORK_LIMIT)
-    return SWARF_GC_ERROR(SWARF_GCODE_E_WORK_LIMIT_VALUE, err, lines, SWARF_GCODE_WORK_LIMIT);
+  if (lines < 1 || lines > SWARF_GCODE_WORK_LIMIT_MAX)
+    return SWARF_GC_ERROR(SWARF_GCODE_E_WORK_LIMIT_VALUE, err, lines, SWARF_GCODE_WORK_LIMIT_MAX);
   p->work_limit = lines;
   swarf_gc_flow_set_limit(p->flow, lines);
   return SWARF_OK;

@@ -635,8 +635,8 @@ int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_gc_fault *f) {
     const fline *l = &fa->v[pc];
     *err_line = l->line;
     fa->p->cur_line = l->line;
-    if (++run > (long)fa->n + fa->p->work_limit) {
-      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT, 1, (long)run);
+    if (++run + fa->p->work_extra > (long)fa->n + fa->p->work_limit) {
+      status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT, 1, fa->p->work_limit);
       break;
     }
     if (l->onum >= 0) {

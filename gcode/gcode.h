@@ -258,13 +258,17 @@ SWARF_API swarf_status swarf_gcode_parser_set_block_delete(swarf_gcode_parser *p
                                                            swarf_error *err);
 
 /* The bound on work: lines run by loops, calls and subprograms together
- * (O-word flow, M98/M97/G65 and GOTO/WHILE), beyond the program's own lines.
- * A program that would run more stops with a work-limit error at its line.
- * Default and most: SWARF_GCODE_WORK_LIMIT (a few seconds of interpreting);
- * lower it for quick checks (the fuzz target runs at 100,000). SWARF_ERR_ARG
- * outside 1..SWARF_GCODE_WORK_LIMIT, SWARF_ERR_STATE once the first byte was
- * fed. */
+ * (O-word flow, M98/M97/G65 and GOTO/WHILE), beyond the program's own lines,
+ * and the moves and arc turns beyond one a line those lines make (a loop of
+ * many-turn helixes or of pecking cycles is bounded by its work, not its
+ * lines). A program that would do more stops with a work-limit error at its
+ * line. Default SWARF_GCODE_WORK_LIMIT (a few seconds of interpreting); lower
+ * it for quick checks (the fuzz target runs at 100,000), raise it up to
+ * SWARF_GCODE_WORK_LIMIT_MAX for long generated programs. SWARF_ERR_ARG
+ * outside 1..SWARF_GCODE_WORK_LIMIT_MAX, SWARF_ERR_STATE once the first byte
+ * was fed. */
 #define SWARF_GCODE_WORK_LIMIT 5000000L
+#define SWARF_GCODE_WORK_LIMIT_MAX 1000000000L
 SWARF_API swarf_status swarf_gcode_parser_set_work_limit(swarf_gcode_parser *p, long lines,
                                                          swarf_error *err);
 

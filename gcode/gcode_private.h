@@ -550,6 +550,12 @@ int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long lin
 void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs);
 /* The bound on stored lines run (swarf_gcode_parser_set_work_limit). */
 void swarf_gc_flow_set_limit(swarf_gc_flow *fl, long lines);
+/* The parser's count of moves and arc turns beyond one a line, run by stored
+ * lines (the work bound counts them with the lines: a loop of helixes or
+ * pecks is bounded by its work, not its lines). */
+void swarf_gc_flow_set_extra(swarf_gc_flow *fl, const long *extra);
+/* Stored lines (a loop, a call) are running. */
+int swarf_gc_flow_running(const swarf_gc_flow *fl);
 /* A construct still open at the end of the program (0: none). */
 long swarf_gc_flow_open_line(const swarf_gc_flow *fl);
 
@@ -592,6 +598,8 @@ struct swarf_gcode_parser {
   int block_delete; /* skip `/` blocks */
   int fragment;     /* the text need not end (swarf_gcode_parser_set_fragment) */
   long work_limit;  /* lines run by loops, calls and subprograms, at most */
+  long work_extra;  /* and the moves and arc turns beyond one a line they ran */
+  int fanuc_running; /* a Fanuc/Haas program kept whole is running */
   char *subpath;    /* ':'-separated directories of subroutine files, or NULL */
   swarf_gcode_note_fn note_fn;
   void *note_user;

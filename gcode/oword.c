@@ -90,15 +90,25 @@ struct swarf_gc_flow {
   open_ctl open[MAX_NEST];
   int nopen;
   sub_def *subs;
-  int depth;     /* calls running */
-  long executed; /* stored lines run so far */
-  long limit;    /* at most this many (SWARF_GCODE_WORK_LIMIT unless lowered) */
+  int depth;         /* calls running */
+  long executed;     /* stored lines run so far */
+  const long *extra; /* and the parser's moves and turns beyond one a line */
+  int running;       /* run_lines calls under way */
+  long limit;        /* at most this many (SWARF_GCODE_WORK_LIMIT unless lowered) */
   long *err_line;
   const char *path; /* subroutine files: ':'-separated directories (borrowed) */
 };
 
 void swarf_gc_flow_set_limit(swarf_gc_flow *fl, long lines) {
   fl->limit = lines;
+}
+
+void swarf_gc_flow_set_extra(swarf_gc_flow *fl, const long *extra) {
+  fl->extra = extra;
+}
+
+int swarf_gc_flow_running(const swarf_gc_flow *fl) {
+  return fl->running > 0;
 }
 
 void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs) {
@@ -348,8 +358,8 @@ static int read_sub_file(swarf_gc_flow *fl, FILE *in, const char *name, long lin
  * (LinuxCNC's SUBROUTINE_PATH), in order. Only a regular file is read (a
  * FIFO or /dev/zero there hung the call): anything else that exists there
  * is an error at the call (*bad set, f filled). */
-static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line, int column,
-                              int *bad, swarf_gc_fault *f) {
+static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line, int column, int *bad,
+                              swarf_gc_fault *f) {
   const char *d = fl->path;
   while (d != NULL && *d) {
     size_t n = strcspn(d, ":");
@@ -362,7 +372,7 @@ static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line, in
         *bad = 1;
         SWARF_GC_FAIL(f, SWARF_GCODE_E_O_SUB_FILE, column, name, path,
                       S_ISFIFO(st.st_mode) ? "a FIFO, not a regular file"
-                                            : "not a regular file (a device or a folder)");
+                                           : "not a regular file (a device or a folder)");
         return NULL;
       }
       if ((in = fopen(path, "r")) != NULL) {
@@ -500,17 +510,20 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
   int status = SWARF_OK;
   double v;
   if (counts == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_OUT_OF_MEMORY, 1);
+  fl->running++;
   while (status == SWARF_OK && pc < l->n) {
     stored *s = &l->v[pc];
     *fl->err_line = s->line;
-    if (++fl->executed > fl->limit) {
+    if (++fl->executed + (fl->extra != NULL ? *fl->extra : 0) > fl->limit) {
       status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT,
                              s->ctl.kind != O_NONE ? s->ctl.column : 1, fl->limit);
       break;
     }
     switch (s->ctl.kind) {
-    case O_NONE:
+    case O_NONE: /* the line's own moves and turns may take it over: stop at it */
       status = fl->run(fl->ctx, s->text, s->len, s->line);
+      if (status == SWARF_OK && fl->executed + (fl->extra != NULL ? *fl->extra : 0) > fl->limit)
+        status = SWARF_GC_FAIL(f, SWARF_GCODE_E_O_WORK_LIMIT, 1, fl->limit);
       pc++;
       break;
     case O_CALL:
@@ -552,6 +565,7 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
     }
   }
   free(counts);
+  fl->running--;
   if (status == DONE_END) return fl->depth > 0 ? SWARF_OK : status;
   return status;
 }

@@ -178,19 +178,29 @@ static void print_call(swarf_gcode_parser *p, const swarf_gc_call *c, const char
 
 /* ---- blocks ------------------------------------------------------------ */
 
+/* Moves and arc turns beyond one a line, run by stored lines, count toward
+ * the work bound (a loop of helixes or pecks is as much work as its moves). */
+static void charge_work(swarf_gcode_parser *p, long units) {
+  if (units > 1 && (p->fanuc_running || swarf_gc_flow_running(p->flow))) p->work_extra += units - 1;
+}
+
 static swarf_status emit(swarf_gcode_parser *p, const char *text, size_t n) {
   char nf[24];
+  long units = 0;
   if (p->canon != NULL) n_field(text, n, nf);
   for (size_t i = 0; i < p->out.ready; i++) {
     swarf_gc_call *c = &p->out.calls[i];
     if (p->canon != NULL) print_call(p, c, nf);
     if (c->kind == SWARF_GC_CALL_TEXT) continue;
+    units +=
+        1 + (c->move.kind == SWARF_MOVE_ARC ? (long)(fabs(c->move.angle) / 6.283185307179586) : 0);
     if (p->fn != NULL && p->fn(&c->move, p->user) != 0) {
       swarf_gc_fault f;
       SWARF_GC_FAIL(&f, SWARF_GCODE_E_STOPPED, c->move.column);
       return fail(p, &f, text, n);
     }
   }
+  charge_work(p, units);
   return SWARF_OK;
 }
 
@@ -324,7 +334,9 @@ static swarf_status run_fanuc(swarf_gcode_parser *p) {
   int status;
   swarf_gc_fanuc *fa = p->fanuc;
   p->fanuc = NULL; /* runs once */
+  p->fanuc_running = 1;
   status = swarf_gc_fanuc_run(fa, &err_line, &f);
+  p->fanuc_running = 0;
   swarf_gc_fanuc_free(fa);
   if (status != SWARF_OK && p->status == SWARF_OK) {
     p->cur_line = err_line;
@@ -511,6 +523,7 @@ swarf_status swarf_gcode_parser_new(const char *filename, swarf_gcode_move_fn fn
   default_tools(p);
   p->work_limit = SWARF_GCODE_WORK_LIMIT;
   p->flow = swarf_gc_flow_new(&p->params, run_line, p);
+  if (p->flow != NULL) swarf_gc_flow_set_extra(p->flow, &p->work_extra);
   if (p->flow == NULL) {
     free(p);
     *out = NULL;

@@ -278,7 +278,7 @@ std::unique_ptr<swarf_stock> read_vdb(const char *path, const swarf_stock_placem
   std::unique_ptr<swarf_stock> s(wrap_grid(grid));  // checks the transform and the background
   normalize_band(*grid, s->background);
   s.reset(wrap_grid(grid));
-  if (!has_material(*grid)) throw Error(SWARF_ERR_FORMAT, std::string(path) + ": the grid holds no material");
+  if (!has_material(*grid)) throw Error(SWARF_ERR_FORMAT, "the grid holds no material");
   const bool revoxel = voxel > 0.0 && std::fabs(voxel - s->voxel) > 1e-9 * voxel;
   if (revoxel || (p && !placement_is_identity(*p))) {
     const int hw = half_width > 0 ? half_width : std::max(3, s->half_width);
@@ -310,11 +310,7 @@ swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double v
   }
   std::vector<Vec3I> tris(mesh.triangles());
   for (size_t t = 0; t < tris.size(); t++) tris[t] = Vec3I(mesh.tri[3 * t], mesh.tri[3 * t + 1], mesh.tri[3 * t + 2]);
-  try {
-    return mesh_stock(pts, tris, {}, voxel, half_width, keep_surface);
-  } catch (const Error &e) {
-    throw Error(e.status, std::string(path) + ": " + e.what());
-  }
+  return mesh_stock(pts, tris, {}, voxel, half_width, keep_surface);  // the guard names the path
 }
 
 }  // namespace
@@ -377,7 +373,7 @@ extern "C" swarf_status swarf_stock_read_design_band(const char *path, double vo
     } else if (ext == "vdb") {
       *out = swarf::read_vdb(path, nullptr, voxel, 0).release();
     } else {
-      throw Error(SWARF_ERR_ARG, std::string(path) + ": a design is a .stl or a .vdb file");
+      throw Error(SWARF_ERR_ARG, "a design is a .stl or a .vdb file");
     }
   });
 }

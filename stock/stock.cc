@@ -297,7 +297,11 @@ swarf_status set_error(swarf_error *err, swarf_status status, const char *file,
   if (err == nullptr) return status;
   swarf_error_init(err);
   swarf_error_at(err, file, 0, 0, nullptr);
-  swarf_error_set(err, status, "%s", text.c_str());
+  // The error names the file; a message that starts with it (the readers
+  // name it for their own callers) would say it twice.
+  const std::string lead = file != nullptr ? std::string(file) + ": " : std::string();
+  const bool named = !lead.empty() && text.compare(0, lead.size(), lead) == 0;
+  swarf_error_set(err, status, "%s", text.c_str() + (named ? lead.size() : 0));
   return status;
 }
 

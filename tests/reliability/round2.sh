@@ -131,10 +131,103 @@ case_tiny_tool_values() { # tiny tool values exited 1 with no location (now: cut
     --out u.vdb --quiet 2> err
   [ $? -eq 2 ] && [ ! -e u.vdb ] && grep -q "tiny.tbl:1: the diameter must be between" err
 }
+case_loop_helix_turns() { # a loop of many-turn helixes: the bound counted lines, not turns
+  printf 'G21 G90 G17\nG0 X10 Y10 Z5\n#1=0\no1 while [#1 lt 100000]\nG2 X10 Y10 I5 Z-1 P1000 F1000\n#1=[#1+1]\no1 endwhile\nM2\n' > hx.ngc
+  timeout 60 "$swarf" simulate hx.ngc "${S[@]}" --out hx.vdb 2> err
+  [ $? -eq 2 ] && [ ! -e hx.vdb ] && grep -q "hx.ngc:5:1: Work limit reached (5000000: lines run by loops" err
+}
+case_loop_pecks() { # a loop of pecking cycles: each within its own bound, the loop without one
+  printf 'G21 G90\nG0 X10 Y10 Z5\n#1=0\no1 while [#1 lt 100000]\nG83 X10 Y10 Z-4 R1 Q0.001 F100\n#1=[#1+1]\no1 endwhile\nM2\n' > pk.ngc
+  timeout 60 "$swarf" parse --quiet pk.ngc 2> err # 5000 pecks a cycle: 1,000 cycles at most
+  [ $? -eq 2 ] && grep -q "pk.ngc:5:1: Work limit reached (5000000: " err || return 1
+  timeout 60 "$swarf" simulate pk.ngc "${S[@]}" --work-limit 200000 --out pk.vdb 2> err
+  [ $? -eq 2 ] && [ ! -e pk.vdb ] && grep -q "pk.ngc:5:1: Work limit reached (200000: " err
+}
+case_vdb_stock_named() { # a bad .vdb stock was blamed on a program line (and named twice)
+  echo garbage > bad.vdb
+  "$swarf" simulate p.ngc --stock vdb:bad.vdb --tool T1=flat,D4 --out v.vdb 2> err
+  [ $? -eq 2 ] && [ ! -e v.vdb ] && grep -q "^swarf simulate: --stock: bad.vdb: not a readable VDB file" err &&
+    ! grep -q "p.ngc:" err
+}
+case_stl_stock_tiny_voxel() { # an STL stock at a tiny voxel: refused up front, not out of memory
+  (ulimit -v 4000000 && timeout 60 "$swarf" simulate p.ngc --stock stl:b.stl --tool T1=flat,D4 \
+    --voxel 0.001 --out s.vdb 2> err)
+  [ $? -eq 2 ] && [ ! -e s.vdb ] && grep -q "b.stl: the mesh's surface is too large for this voxel" err
+}
+case_design_band() { # the design's band (4 tolerances) in the size check
+  (ulimit -v 4000000 && timeout 60 "$swarf" simulate p.ngc "${S[@]/0.5/0.05}" --design b.stl \
+    --tolerance 5 --out band.vdb 2> err)
+  local rc=$?; [ $rc -eq 2 ] && [ ! -e band.vdb ] && grep -q -- "--design: b.stl: " err || { echo "  design_band: exit $rc: $(head -c 300 err)"; return 1; }
+}
+py() { # the Python module of this build, under Debian's Python (numpy, pyopenvdb)
+  PYTHONPATH="$(dirname "$swarf")/../python" /usr/bin/python3 -c "$1"
+}
+have_py() { # a sanitized libswarf cannot load into a plain Python (tools/doc/testing.md)
+  grep -qa __asan_init "$swarf" && { echo "  (sanitized build: the Python cases not run)" >&2; return 1; }
+  [ -f "$(dirname "$swarf")/../python/swarf/__init__.py" ] && [ -x /usr/bin/python3 ] && return 0
+  echo "  (the Python module is not built beside $swarf: not run)" >&2
+  return 1
+}
+case_py_library_size() { # the library had no size check: Python ran out of memory after seconds
+  have_py || return 0
+  (ulimit -v 3000000 && timeout 60 env PYTHONPATH="$(dirname "$swarf")/../python" /usr/bin/python3 -c "
+import swarf, sys
+try:
+    swarf.simulate(text='G0 X1\nM2\n', stock='box:0,0,-100,100,100,0', tools='T1=flat,D4', voxel=0.03)
+except swarf.SwarfError as e:
+    sys.exit(0 if 'give a voxel of' in str(e) else 1)
+sys.exit(1)")
+}
+case_py_close_in_callback() { # close() inside a progress callback segfaulted
+  have_py || return 0
+  py "
+import swarf
+sim = swarf.Simulation('box:0,0,-5,20,10,0', ['T1=flat,D4'], voxel=0.25, progress=lambda p: sim.close())
+try:
+    sim.feed('G0 X5 Y5 Z2\nG1 Z-1 F100\nG1 X15\nM2\n')
+except swarf.SwarfError:
+    pass"
+}
+case_py_stock_int() { # swarf.Stock(12345678) segfaulted
+  have_py || return 0
+  py "
+import swarf, sys
+try:
+    swarf.Stock(12345678)
+except TypeError:
+    sys.exit(0)
+sys.exit(1)"
+}
+case_py_batch_band() { # Python accepted batch=0 and -1, and turned band=2**32+3 into 3
+  have_py || return 0
+  py "
+import swarf, sys
+bad = 0
+for kw in (dict(batch=0), dict(batch=-1), dict(band=2**32 + 3)):
+    try:
+        swarf.simulate(text='M2\n', stock='box:0,0,-5,20,10,0', tools='T1=flat,D4', **kw)
+        bad += 1
+    except (ValueError, TypeError, OverflowError):
+        pass
+sys.exit(bad)"
+}
+case_mpi_different_inputs() { # ranks given different programs: rank 0 spun in a collective
+  command -v mpirun > /dev/null || { echo "  (mpi_different_inputs: no mpirun, not run)"; return 0; }
+  mkdir -p wa wb
+  printf 'G21 G90 G0 Z5\nG0 X5 Y5\nG1 Z-2 F300\nG1 X15\nG0 Z5\nM2\n' > wa/p.ngc
+  printf 'G21 G90 G0 Z5\nG0 X5 Y5\nG1 Z-2 F300\nG1 X15 Y15\nG0 Z5\nM2\n' > wb/p.ngc
+  local job=("$swarf" simulate p.ngc "${S[@]}" --out "$work/mixed.vdb")
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 mpirun --oversubscribe \
+    -n 1 --wdir "$work/wa" "${job[@]}" : -n 1 --wdir "$work/wb" "${job[@]}" > /dev/null 2> err
+  local rc=$?
+  [ $rc -ne 0 ] && [ $rc -ne 124 ] && [ ! -e mixed.vdb ] && grep -q "rank 1 of 2 was given a different program" err
+}
 
 all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
   sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report
-  peck_tiny_q peck_huge_l threads_as_limit sub_fifo sub_dev_zero tiny_tool_values)
+  peck_tiny_q peck_huge_l threads_as_limit sub_fifo sub_dev_zero tiny_tool_values
+  loop_helix_turns loop_pecks vdb_stock_named stl_stock_tiny_voxel design_band py_library_size
+  py_close_in_callback py_stock_int py_batch_band mpi_different_inputs)
 [ $# -gt 0 ] && all=("$@")
 fixed=0 present=0
 for c in "${all[@]}"; do

@@ -80,8 +80,9 @@ static void test_stl_box(void) {
     CHECK(st == SWARF_OK && s != NULL, "read %s STL: %s", ascii ? "ASCII" : "binary", err.message);
     if (s == NULL) continue;
     double d = max_diff(box, s) / v;
-    printf("STL box (%s) vs box stock: max %.2e voxel, active %llu / %llu\n", ascii ? "ASCII" : "binary", d,
-           swarf_stock_active_voxels(s), swarf_stock_active_voxels(box));
+    printf("STL box (%s) vs box stock: max %.2e voxel, active %llu / %llu\n",
+           ascii ? "ASCII" : "binary", d, swarf_stock_active_voxels(s),
+           swarf_stock_active_voxels(box));
     CHECK(d <= 0.01, "STL stock = box stock: %.3g voxel", d);
     CHECK(swarf_stock_active_voxels(s) == swarf_stock_active_voxels(box), "same band");
     CHECK(swarf_stock_check(s, &err) == SWARF_OK, "valid level set: %s", err.message);
@@ -99,10 +100,11 @@ static void test_stl_placed(void) {
   CHECK(stl_box_write("stockio_box.stl", lo, hi, 0, STL_GOOD) == 0, "write");
   CHECK(swarf_stock_read_stl("stockio_box.stl", &p, v, 3, &s, &err) == SWARF_OK, "%s", err.message);
   if (s == NULL) return;
-  rotated_box r = {{{0, 0, -3}, {10, 6, 0}}, cos(M_PI / 6), sin(M_PI / 6), {5, -2.5, 0}, 0, 3 * v, 0};
+  rotated_box r = {
+      {{0, 0, -3}, {10, 6, 0}}, cos(M_PI / 6), sin(M_PI / 6), {5, -2.5, 0}, 0, 3 * v, 0};
   swarf_stock_visit_active(s, rotated_visit, &r);
-  printf("STL box placed rz=30: max %.2e voxel over %llu voxels, volume %.4f (180)\n", r.max / v, r.n,
-         swarf_stock_volume(s));
+  printf("STL box placed rz=30: max %.2e voxel over %llu voxels, volume %.4f (180)\n", r.max / v,
+         r.n, swarf_stock_volume(s));
   CHECK(r.max / v <= 0.01, "placed STL = the rotated box's distance: %.3g voxel", r.max / v);
   CHECK(fabs(swarf_stock_volume(s) - 180.0) < 0.002 * 180.0, "volume %.4f", swarf_stock_volume(s));
   swarf_stock_free(s);
@@ -128,7 +130,8 @@ static void test_place(void) {
     double d = max_diff(e, t);
     printf("placed rx=180,tz=-25 vs the analytic image: max %.2e mm\n", d);
     CHECK(d <= 1e-6, "quarter-turn placement exact: %.3g mm", d);
-    CHECK(fabs(swarf_stock_volume(t) - swarf_stock_volume(s)) <= 1e-9 * swarf_stock_volume(s), "volume kept");
+    CHECK(fabs(swarf_stock_volume(t) - swarf_stock_volume(s)) <= 1e-9 * swarf_stock_volume(s),
+          "volume kept");
     swarf_stock_free(e);
     swarf_stock_free(t);
     t = NULL;
@@ -138,12 +141,14 @@ static void test_place(void) {
   CHECK(swarf_stock_placement_parse("tx=5,rz=30", &p, &err) == SWARF_OK, "%s", err.message);
   CHECK(swarf_stock_place(b, &p, &t, &err) == SWARF_OK, "place: %s", err.message);
   if (t != NULL) {
-    rotated_box r = {{{0, 0, -5}, {10, 8, 0}}, cos(M_PI / 6), sin(M_PI / 6), {5, 0, 0}, 0, 3 * v, 0};
+    rotated_box r = {
+        {{0, 0, -5}, {10, 8, 0}}, cos(M_PI / 6), sin(M_PI / 6), {5, 0, 0}, 0, 3 * v, 0};
     swarf_stock_visit_active(t, rotated_visit, &r);
-    printf("placed rz=30 (resampled): max %.3f voxel over %llu voxels, volume %.3f (400)\n", r.max / v, r.n,
-           swarf_stock_volume(t));
+    printf("placed rz=30 (resampled): max %.3f voxel over %llu voxels, volume %.3f (400)\n",
+           r.max / v, r.n, swarf_stock_volume(t));
     CHECK(r.max / v <= 0.3, "resampled placement within 0.3 voxel: %.3f", r.max / v);
-    CHECK(fabs(swarf_stock_volume(t) - 400.0) <= 0.002 * 400.0, "volume %.3f", swarf_stock_volume(t));
+    CHECK(fabs(swarf_stock_volume(t) - 400.0) <= 0.002 * 400.0, "volume %.3f",
+          swarf_stock_volume(t));
     CHECK(swarf_stock_check(t, &err) == SWARF_OK, "valid level set: %s", err.message);
     swarf_stock_free(t);
   }
@@ -188,19 +193,22 @@ static void test_vdb(void) {
     printf("resampled at 0.1 mm: volume %.3f (was %.3f at 0.2 mm)\n", b, a);
     CHECK(swarf_stock_voxel(r) == 0.1, "voxel %g", swarf_stock_voxel(r));
     CHECK(fabs(a - b) < 0.01 * a, "resampled volume %.3f vs %.3f", b, a);
-    CHECK(fabs(swarf_stock_sample(r, 3.0, 4.85, -2.0) - (-0.15)) < 1e-6, "a face's distance kept: %.6f",
-          swarf_stock_sample(r, 3.0, 4.85, -2.0));
+    CHECK(fabs(swarf_stock_sample(r, 3.0, 4.85, -2.0) - (-0.15)) < 1e-6,
+          "a face's distance kept: %.6f", swarf_stock_sample(r, 3.0, 4.85, -2.0));
     CHECK(swarf_stock_check(r, &err) == SWARF_OK, "valid: %s", err.message);
   }
   swarf_stock_free(r);
   swarf_stock_free(s);
 }
 
-/* A bad input: the status and a word of the message. */
+/* A bad input: the status and a word of the message as the user reads it
+ * (FILE: message: the error names the file once). */
 static void expect_bad(swarf_status got, swarf_status want, const swarf_error *e, const char *words,
                        const char *what) {
-  CHECK(got == want, "%s: status %d, want %d (%s)", what, (int)got, (int)want, e->message);
-  CHECK(strstr(e->message, words) != NULL, "%s: message \"%s\" lacks \"%s\"", what, e->message, words);
+  char msg[1024];
+  swarf_error_format(e, msg, sizeof msg);
+  CHECK(got == want, "%s: status %d, want %d (%s)", what, (int)got, (int)want, msg);
+  CHECK(strstr(msg, words) != NULL, "%s: message \"%s\" lacks \"%s\"", what, msg, words);
 }
 
 static void test_bad_input(void) {
@@ -211,43 +219,48 @@ static void test_bad_input(void) {
   static const struct {
     int how;
     const char *words;
-  } cases[] = {{STL_OPEN, "not closed"}, {STL_NONMANIFOLD, "not manifold"}, {STL_FLIPPED, "not consistently oriented"}};
+  } cases[] = {{STL_OPEN, "not closed"},
+               {STL_NONMANIFOLD, "not manifold"},
+               {STL_FLIPPED, "not consistently oriented"}};
   for (int ascii = 0; ascii < 2; ascii++)
     for (int i = 0; i < 3; i++) {
       stl_box_write("stockio_bad.stl", lo, hi, ascii, cases[i].how);
       swarf_status st = swarf_stock_read_stl("stockio_bad.stl", NULL, 0.2, 3, &s, &err);
       expect_bad(st, SWARF_ERR_FORMAT, &err, cases[i].words, cases[i].words);
       CHECK(s == NULL, "no stock");
-      CHECK(strstr(err.message, "stockio_bad.stl") != NULL, "the file is named: %s", err.message);
+      CHECK(!strcmp(err.file, "stockio_bad.stl") && strstr(err.message, "stockio_bad") == NULL,
+            "the file is named once: %s: %s", err.file, err.message);
     }
   FILE *f = fopen("stockio_empty.stl", "wb");
   unsigned char head[84] = {0};
   fwrite(head, 1, 84, f), fclose(f);
-  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT, &err,
-             "no triangles", "empty binary STL");
+  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT,
+             &err, "no triangles", "empty binary STL");
   f = fopen("stockio_empty.stl", "wb");
   fputs("solid nothing\nendsolid nothing\n", f), fclose(f);
-  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT, &err,
-             "no triangles", "empty ASCII STL");
+  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT,
+             &err, "no triangles", "empty ASCII STL");
   f = fopen("stockio_empty.stl", "wb");
   fclose(f);
-  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT, &err,
-             "not an STL", "empty file");
+  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT,
+             &err, "not an STL", "empty file");
   f = fopen("stockio_empty.stl", "wb");
   fputs("solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 nan\n", f), fclose(f);
-  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT, &err,
-             "stockio_empty.stl:4:", "ASCII error at its line");
+  expect_bad(swarf_stock_read_stl("stockio_empty.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_FORMAT,
+             &err, "stockio_empty.stl:4:", "ASCII error at its line");
   expect_bad(swarf_stock_read_stl("stockio_none.stl", NULL, 0.2, 3, &s, &err), SWARF_ERR_OPEN, &err,
              "cannot open", "missing STL");
   expect_bad(swarf_stock_read_vdb("stockio_none.vdb", NULL, 0, 0, &s, &err), SWARF_ERR_OPEN, &err,
              "cannot open", "missing .vdb");
-  expect_bad(swarf_stock_read_vdb("stockio_empty.stl", NULL, 0, 0, &s, &err), SWARF_ERR_FORMAT, &err,
-             "stockio_empty.stl", "not a .vdb");
-  static const char *bad_places[] = {"", "tx=1,tx=2", "tq=1", "tx=", "tx=1,", "rx=nan", "ty=1e999", "tx=1;ty=2"};
+  expect_bad(swarf_stock_read_vdb("stockio_empty.stl", NULL, 0, 0, &s, &err), SWARF_ERR_FORMAT,
+             &err, "stockio_empty.stl", "not a .vdb");
+  static const char *bad_places[] = {
+      "", "tx=1,tx=2", "tq=1", "tx=", "tx=1,", "rx=nan", "ty=1e999", "tx=1;ty=2"};
   for (size_t i = 0; i < sizeof bad_places / sizeof bad_places[0]; i++)
-    CHECK(swarf_stock_placement_parse(bad_places[i], &p, &err) == SWARF_ERR_ARG, "placement \"%s\" refused",
-          bad_places[i]);
-  CHECK(swarf_stock_placement_parse("rz=-90,ty=3.5", &p, &err) == SWARF_OK && p.r[2] == -90 && p.t[1] == 3.5,
+    CHECK(swarf_stock_placement_parse(bad_places[i], &p, &err) == SWARF_ERR_ARG,
+          "placement \"%s\" refused", bad_places[i]);
+  CHECK(swarf_stock_placement_parse("rz=-90,ty=3.5", &p, &err) == SWARF_OK && p.r[2] == -90 &&
+            p.t[1] == 3.5,
         "placement parsed");
 }
 

@@ -10,6 +10,7 @@
  *   9 --offsets: LinuxCNC's parameter file (gcode/params_file.c), from a
  *     memfd, into a parser then run on a probe program that uses every
  *     offset (G54-G59.3, G28, G30, G92, G43)
+ *   10 --stock-transform (a placement), 11 --view (stock.h)
  * Invariants (a breach aborts): a reader returns OK or an input status
  * (exit 2 class) with a message; a table error names a line within the
  * input; what a reader accepts is finite (lengths, diameters, boxes), tool
@@ -32,6 +33,7 @@
 
 #include "gcode.h"
 #include "modbus_private.h"
+#include "stock.h"
 #include "swarf_sim.h"
 
 static void fail(const char *why, const swarf_error *e) {
@@ -113,9 +115,20 @@ static void spec(int which, const char *text) {
   swarf_sim_stock_spec st;
   swarf_machine m;
   swarf_sim_fixture fx;
+  swarf_stock_placement pl;
+  swarf_stock_view view;
   swarf_status s = SWARF_OK;
   swarf_error_init(&e);
   switch (which) {
+  case 10:
+    if ((s = swarf_stock_placement_parse(text, &pl, &e)) == SWARF_OK)
+      for (int k = 0; k < 3; k++)
+        if (!isfinite(pl.t[k]) || !isfinite(pl.r[k]))
+          fail("--stock-transform accepted a bad value", &e);
+    break;
+  case 11:
+    s = swarf_stock_view_parse(text, &view, &e);
+    break;
   case 2:
     if ((s = swarf_sim_parse_tool(text, &t, &e)) == SWARF_OK &&
         (!isfinite(t.cutter.diameter) || t.cutter.diameter < 0 || !isfinite(t.stickout)))
@@ -233,7 +246,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   int which;
   char *text;
   if (size == 0) return 0;
-  which = data[0] % 10;
+  which = data[0] % 12;
   data++, size--;
   if (which == 0) return tool_table(data, size), 0;
   if (which == 1) return tool_library(data, size), 0;

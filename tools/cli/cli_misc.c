@@ -17,7 +17,8 @@
 
 static const char parse_help[] =
     "usage: swarf parse PROGRAM [--quiet | --canon] [--tools TABLE] [--dialect NAME]\n"
-    "                   [--block-delete] [--subroutine-path DIRS] [--start X,Y,Z]\n"
+    "                   [--block-delete] [--subroutine-path DIRS] [--work-limit N]\n"
+    "                   [--start X,Y,Z]\n"
     "                   [--g54 X,Y,Z] [--offsets FILE] [--units mm|in]\n"
     "                   [--tool-table FILE [--tool-table-units mm|in]]\n"
     "\n"
@@ -33,6 +34,8 @@ static const char parse_help[] =
     "                   they run, as rs274 runs them)\n"
     "  --subroutine-path DIRS  where `o<name> call` finds <name>.ngc (':' between\n"
     "                   directories)\n"
+    "  --work-limit N   the bound on the work of loops and calls: lines run, and\n"
+    "                   moves and arc turns beyond one a line (default 5000000)\n"
     "The machine's setup, as swarf simulate takes it (then the moves are listed in\n"
     "the workpiece frame simulate cuts in: G54 as set up is its origin):\n"
     "  --start X,Y,Z    where the tool tip is when the program starts (workpiece mm;\n"
@@ -131,6 +134,7 @@ static int count_move(const swarf_move *m, void *user) {
 typedef struct {
   const char *program, *tools, *dialect, *subpath, *offsets, *units, *tool_table;
   int canon, quiet, block_delete, start_set, g54_set;
+  long work_limit;
   double start[3], g54[3], table_mm_per_unit;
 } parse_options;
 
@@ -177,6 +181,8 @@ static int parse_setup(swarf_gcode_parser *p, const parse_options *o, swarf_erro
   if (o->dialect != NULL) swarf_gcode_dialect_from_name(o->dialect, &d);
   rc = swarf_gcode_parser_set_dialect(p, d, err);
   if (rc == SWARF_OK) rc = swarf_gcode_parser_set_block_delete(p, o->block_delete, err);
+  if (rc == SWARF_OK && o->work_limit != 0)
+    rc = swarf_gcode_parser_set_work_limit(p, o->work_limit, err);
   if (rc == SWARF_OK && o->subpath != NULL)
     rc = swarf_gcode_parser_set_subroutine_path(p, o->subpath, err);
   if (rc == SWARF_OK && o->tools != NULL) rc = swarf_gcode_parser_load_tools(p, o->tools, err);
@@ -236,7 +242,16 @@ int swarf_cli_parse(int argc, char **argv) {
       o.subpath = argv[++i];
     else if (!strcmp(a, "--offsets") && i + 1 < argc)
       o.offsets = argv[++i];
-    else if (!strcmp(a, "--tool-table") && i + 1 < argc)
+    else if (!strcmp(a, "--work-limit") && i + 1 < argc) {
+      char *end;
+      o.work_limit = strtol(argv[++i], &end, 10);
+      if (*end || end == argv[i] || o.work_limit < 1 || o.work_limit > SWARF_GCODE_WORK_LIMIT_MAX) {
+        fprintf(stderr,
+                "swarf parse: --work-limit: give a count from 1 to 1000000000 (got \"%s\")\n",
+                argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(a, "--tool-table") && i + 1 < argc)
       o.tool_table = argv[++i];
     else if (!strcmp(a, "--tool-table-units") && i + 1 < argc) {
       const char *u = argv[++i];
@@ -296,8 +311,11 @@ int swarf_cli_parse(int argc, char **argv) {
 static swarf_stock *open_grid(const char *cmd, const char *path) {
   swarf_error err;
   swarf_stock *s = NULL;
-  if (swarf_stock_read(path, &s, &err) != SWARF_OK)
-    fprintf(stderr, "swarf %s: %s\n", cmd, err.message);
+  char msg[1024];
+  if (swarf_stock_read(path, &s, &err) != SWARF_OK) {
+    swarf_error_format(&err, msg, sizeof msg); /* FILE: what */
+    fprintf(stderr, "swarf %s: %s\n", cmd, msg);
+  }
   return s;
 }
 

@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -358,66 +357,15 @@ static int parse_args(sim_options *o, int argc, char **argv) {
   return check_outputs(o);
 }
 
-/* Bytes a narrow-band voxel costs at the peak of a run (grid, removal
- * passes, writing): measured with /usr/bin/time on a 40 x 40 x 10 mm box,
- * 0.1 mm to 0.05 mm voxels (2.40 M to 9.59 M active voxels, 84.5 MB to 193 MB:
- * 15.5 bytes a voxel), with a margin. */
-#define BYTES_PER_VOXEL 18.0
-
-/* The memory a run may take: 80 % of the physical memory, or of the
- * address-space limit if lower. */
-static double memory_budget(void) {
-  double phys = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
-  struct rlimit as;
-  if (!(phys > 0)) phys = 8e9;
-  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY && (double)as.rlim_cur < phys)
-    phys = (double)as.rlim_cur;
-  return 0.8 * phys;
-}
-
-/* Refuse a voxel larger than the stock's smallest side (the grid could not
- * hold the stock: volumes off by orders of magnitude), or so small that the
- * narrow band of the stock's surface would not fit in memory (suggesting a
- * voxel that fits). */
+/* The voxel against the stock and the memory (the library's check, before
+ * any other work: its message says what to give). */
 static int check_size(const swarf_sim_config *cfg) {
-  double d[3], area, voxels, bytes, budget, smallest;
-  char what[320];
-  for (int k = 0; k < 3; k++)
-    d[k] = cfg->stock.hi[k] - cfg->stock.lo[k];
-  smallest = fmin(d[0], fmin(d[1], d[2]));
-  if (smallest < 1e-3) {
-    snprintf(
-        what, sizeof what,
-        "--stock: %g mm thick, thinner than the smallest voxel (0.001 mm): no grid can hold it",
-        smallest);
-    return usage_error(what);
-  }
-  if (cfg->voxel > smallest) {
-    snprintf(what, sizeof what,
-             "--voxel %g: larger than the stock's smallest side (%g mm): the grid cannot hold the "
-             "stock; give --voxel %.3g or less (a quarter of that side or less for usable volumes)",
-             cfg->voxel, smallest, smallest);
-    return usage_error(what);
-  }
-  area = 2.0 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]);
-  voxels = area / (cfg->voxel * cfg->voxel) * 2.0 * cfg->half_width;
-  bytes = voxels * BYTES_PER_VOXEL;
-  budget = memory_budget();
-  if (bytes <= budget) return 0;
-  if (cfg->voxel * sqrt(bytes / budget) * 1.05 > smallest) { /* no voxel fits: the stock's fault */
-    snprintf(what, sizeof what,
-             "--stock: %g x %g x %g mm: its surface needs more than the %.3g GB this machine can "
-             "give at any voxel up to its smallest side (%g mm); give a smaller stock",
-             d[0], d[1], d[2], budget / 1e9, smallest);
-    return usage_error(what);
-  }
-  snprintf(
-      what, sizeof what,
-      "--voxel %g: the stock's surface alone would need ~%.3g GB (%.3g M voxels at %.0f bytes), "
-      "more than the %.3g GB this machine can give; use --voxel %.3g or more",
-      cfg->voxel, bytes / 1e9, voxels / 1e6, BYTES_PER_VOXEL, budget / 1e9,
-      cfg->voxel * sqrt(bytes / budget) * 1.05);
-  return usage_error(what);
+  swarf_error err;
+  swarf_error_init(&err);
+  char flagged[sizeof err.message + 2];
+  if (swarf_sim_config_check(cfg, 1, &err) == SWARF_OK) return 0;
+  snprintf(flagged, sizeof flagged, "--%s", err.message); /* it starts with the setting's name */
+  return usage_error(flagged);
 }
 
 /* The .vdb, mesh, picture and report: all or none (held unnamed,
@@ -429,8 +377,10 @@ static int write_outputs(sim_options *o, const swarf_stock *stock, const swarf_s
   swarf_error_init(&err);
   swarf_stock_outputs_begin();
   if (swarf_stock_write_vdb(stock, o->out, &err) != SWARF_OK) {
+    char msg[1024];
     swarf_stock_outputs_abort();
-    fprintf(stderr, "swarf simulate: %s\n", err.message);
+    swarf_error_format(&err, msg, sizeof msg); /* FILE: what */
+    fprintf(stderr, "swarf simulate: %s\n", msg);
     return (int)swarf_status_classify(err.status);
   }
   rc = swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
@@ -441,7 +391,9 @@ static int write_outputs(sim_options *o, const swarf_stock *stock, const swarf_s
     return rc;
   }
   if (swarf_stock_outputs_commit(&err) != SWARF_OK) {
-    fprintf(stderr, "swarf simulate: %s\n", err.message);
+    char msg[1024];
+    swarf_error_format(&err, msg, sizeof msg);
+    fprintf(stderr, "swarf simulate: %s\n", msg);
     return 1;
   }
   return 0;
@@ -477,8 +429,11 @@ static void print_alarm(const sim_options *o, const swarf_alarm *a) {
 /* Each alarm as a located warning, in program order: the first 100 of each
  * kind, then how many more. */
 static void print_alarms(const sim_options *o, const alarm_list *l, const swarf_sim_report *r) {
-  static const char *what[] = {"rapid moves cut into the material", "shank collisions",
-                               "holder collisions", "fixture collisions", "gouges",
+  static const char *what[] = {"rapid moves cut into the material",
+                               "shank collisions",
+                               "holder collisions",
+                               "fixture collisions",
+                               "gouges",
                                "feed moves with an empty spindle"};
   long told[SWARF_ALARM_KINDS] = {0};
   for (long i = 0; i < l->n; i++) {
@@ -616,10 +571,10 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   if (rc == 0 && parts) rc = check_program(o.program);
   if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
   {
-    static const char *const names[] = {"program",      "--stock file", "--design",
+    static const char *const names[] = {"program",      "--stock file",   "--design",
                                         "--tool-table", "--tool-library", "--offsets"};
-    const char *const files[] = {o.program,       o.stock.file,   o.verify.design_path,
-                                 o.tool_table,    o.tool_library, o.verify.offsets};
+    const char *const files[] = {o.program,    o.stock.file,   o.verify.design_path,
+                                 o.tool_table, o.tool_library, o.verify.offsets};
     if ((rc = swarf_cli_mpi_same_inputs(mpi, argc, argv, names, files, 6))) return rc;
   }
   rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial);

@@ -37,6 +37,9 @@ const char swarf_verify_help[] =
     "                   they run, as in LinuxCNC)\n"
     "  --subroutine-path DIRS  where `o<name> call` finds <name>.ngc (':' between\n"
     "                   directories)\n"
+    "  --work-limit N   the bound on work of loops and subroutine calls: the lines\n"
+    "                   they run and the moves and arc turns beyond one a line\n"
+    "                   (default 5000000; a program over it stops at its line)\n"
     "Verification against the part:\n"
     "  --design FILE.stl  the part as designed (a closed mesh, mm): each move that cuts\n"
     "                   into it is told as FILE:LINE:COL: warning: gouge D mm into the\n"
@@ -84,6 +87,14 @@ static int value_option(swarf_verify *v, const char *flag, const char *val) {
       return option_error(flag, "give linuxcnc, fanuc, haas or grbl", val);
     return v->dialect = val, 0;
   }
+  if (!strcmp(flag, "--work-limit")) {
+    errno = 0;
+    v->work_limit = strtol(val, &end, 10);
+    if (end == val || *end || errno || v->work_limit < 1 ||
+        v->work_limit > SWARF_GCODE_WORK_LIMIT_MAX)
+      return option_error(flag, "give a count from 1 to 1000000000", val);
+    return 0;
+  }
   if (!strcmp(flag, "--start")) return v->start_set = 1, read_triple(flag, val, v->start);
   if (!strcmp(flag, "--g54")) return v->g54_set = 1, read_triple(flag, val, v->g54);
   if (!strcmp(flag, "--units")) {
@@ -102,9 +113,9 @@ static int value_option(swarf_verify *v, const char *flag, const char *val) {
 }
 
 int swarf_verify_option(swarf_verify *v, const char *flag, const char *val, int *i) {
-  static const char *mine[] = {"--report",  "--design",          "--offsets", "--start",
-                               "--g54",     "--units",           "--fail-on", "--tolerance",
-                               "--dialect", "--subroutine-path", NULL};
+  static const char *mine[] = {"--report",  "--design",          "--offsets",    "--start",
+                               "--g54",     "--units",           "--fail-on",    "--tolerance",
+                               "--dialect", "--subroutine-path", "--work-limit", NULL};
   int k = 0;
   if (!strcmp(flag, "--block-delete")) return v->block_delete = 1, 0;
   if (val != NULL && !strcmp(flag, "--stock")) v->stock_spec = val;
@@ -169,6 +180,7 @@ int swarf_verify_prepare(swarf_verify *v, swarf_sim_config *cfg) {
   if (v->dialect != NULL)
     swarf_gcode_dialect_from_name(v->dialect, (swarf_gcode_dialect *)&cfg->dialect);
   cfg->block_delete = v->block_delete;
+  cfg->work_limit = v->work_limit;
   cfg->subroutine_path = v->subroutine_path;
   cfg->g54_set = v->g54_set;
   memcpy(cfg->g54, v->g54, sizeof cfg->g54);

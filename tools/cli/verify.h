@@ -30,6 +30,7 @@ typedef struct {
   double start[3], g54[3];
   const char *dialect, *subroutine_path; /* --dialect, --subroutine-path */
   int block_delete;                      /* --block-delete */
+  long work_limit;                       /* --work-limit (0: the default) */
   long notes;                            /* the program's notes (the first ones are kept) */
   char *note_text[SWARF_VERIFY_NOTES];
   /* the inputs as given, for the report */

@@ -317,7 +317,9 @@ static int fixture_init(swarf_sim *s, int f) {
                         ? swarf_stock_read_stl(fx->stl, NULL, voxel, hw, &s->col.fixture[f], &e)
                         : swarf_stock_new_box(fx->lo, fx->hi, voxel, hw, &s->col.fixture[f], &e);
   if (st != SWARF_OK) {
-    swarf_sim_fail(s, e.status, 0, 0, "fixture %d: %s", f + 1, e.message);
+    char msg[sizeof e.message];
+    swarf_error_format(&e, msg, sizeof msg); /* the STL's name, then what */
+    swarf_sim_fail(s, e.status, 0, 0, "fixture %d: %s", f + 1, msg);
     return 1;
   }
   if (fx->stl != NULL) swarf_stock_bounds(s->col.fixture[f], fx->lo, fx->hi);

@@ -258,6 +258,8 @@ static swarf_status set_reading(swarf_sim *s, swarf_error *err) {
   swarf_status st = swarf_gcode_parser_set_dialect(s->parser, s->cfg.dialect, err);
   if (st == SWARF_OK) st = swarf_gcode_parser_set_block_delete(s->parser, s->cfg.block_delete, err);
   if (st == SWARF_OK) st = swarf_gcode_parser_set_fragment(s->parser, s->cfg.fragment, err);
+  if (st == SWARF_OK && s->cfg.work_limit != 0)
+    st = swarf_gcode_parser_set_work_limit(s->parser, s->cfg.work_limit, err);
   if (st == SWARF_OK && s->cfg.subroutine_path != NULL)
     st = swarf_gcode_parser_set_subroutine_path(s->parser, s->cfg.subroutine_path, err);
   if (st == SWARF_OK) swarf_gcode_parser_set_notes(s->parser, on_note, s);
@@ -363,69 +365,19 @@ swarf_status swarf_sim_new_with_stock(const swarf_sim_config *cfg, const char *n
   return sim_new(cfg, name, stock, NULL, out, err);
 }
 
-/* A voxel larger than the stock's smallest side cannot hold the stock: the
- * volumes would be off by orders of magnitude. The command checks this too,
- * with its flags' names; here every client (C, Python) gets it. */
-static swarf_status check_voxel(const swarf_sim_config *cfg, swarf_error *err) {
-  double smallest = INFINITY;
-  for (int k = 0; k < 3; k++)
-    smallest = fmin(smallest, cfg->stock.hi[k] - cfg->stock.lo[k]);
-  if (!(cfg->voxel > 0) || !isfinite(cfg->voxel))
-    return swarf_error_set(err, SWARF_ERR_ARG, "voxel: a size in mm > 0 is needed (got %g)",
-                           cfg->voxel);
-  if (cfg->half_width < 3 || cfg->half_width > 64)
-    return swarf_error_set(err, SWARF_ERR_ARG, "band: 3 to 64 voxels (got %d)", cfg->half_width);
-  if (cfg->batch < 1)
-    return swarf_error_set(err, SWARF_ERR_ARG, "batch: 1 move or more (got %d)", cfg->batch);
-  if (cfg->voxel > smallest)
-    return swarf_error_set(err, SWARF_ERR_ARG,
-                           "voxel %g mm: larger than the stock's smallest side (%g mm): the grid "
-                           "cannot hold the stock; give a voxel of %.3g mm or less",
-                           cfg->voxel, smallest, smallest);
-  return SWARF_OK;
-}
-
-/* Address space a thread reserves: its stack (8 MiB) and, up to 8 per core,
- * a malloc arena (64 MiB). Under an address-space limit (ulimit -v) too many
- * threads made TBB abort the process; here they are refused in words. */
-#define THREAD_RESERVE ((8.0 + 64.0) * 1048576.0)
-
-static swarf_status check_threads(const swarf_sim_config *cfg, swarf_error *err) {
-  struct rlimit as;
-  long pages = 0, page = sysconf(_SC_PAGESIZE);
-  FILE *f;
-  if (cfg->threads <= 0 || getrlimit(RLIMIT_AS, &as) != 0 || as.rlim_cur == RLIM_INFINITY)
-    return SWARF_OK;
-  if ((f = fopen("/proc/self/statm", "r")) != NULL) {
-    if (fscanf(f, "%ld", &pages) != 1) pages = 0;
-    fclose(f);
-  }
-  const double room = (double)as.rlim_cur - (double)pages * (double)page;
-  const long fit = room > 0 ? (long)(room / THREAD_RESERVE) : 0;
-  if (cfg->threads > fit)
-    return swarf_error_set(err, SWARF_ERR_LIMIT,
-                           "threads %d: under this address-space limit (ulimit -v: %.0f MB, "
-                           "%.0f MB free) about %ld threads fit, each reserving ~72 MB (stack "
-                           "and malloc arena); give %ld or fewer, or raise the limit",
-                           cfg->threads, (double)as.rlim_cur / 1e6, room > 0 ? room / 1e6 : 0.0,
-                           fit, fit > 1 ? fit - 1 : 1);
-  return SWARF_OK;
-}
-
 swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_sim **out,
                            swarf_error *err) {
   swarf_stock *stock;
+  swarf_status st;
   if (out != NULL) *out = NULL;
   if (cfg == NULL || out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no config or output");
-  if (check_voxel(cfg, err) != SWARF_OK) return SWARF_ERR_ARG;
-  if (check_threads(cfg, err) != SWARF_OK) return SWARF_ERR_LIMIT;
+  if ((st = swarf_sim_config_check(cfg, 1, err)) != SWARF_OK) return st;
   /* Under MPI, the processes other than rank 0 (which gathers the whole
    * stock) build only their part, once it is planned: a shell until then.
    * Not with a design, which compares against a copy of the whole stock. */
   const int part =
       cfg->comm != NULL && cfg->comm->size > 1 && cfg->comm->rank != 0 && cfg->design == NULL;
   static const int none_lo[3] = {8, 8, 8}, none_hi[3] = {0, 0, 0};
-  swarf_status st;
   if ((stock = build_stock(cfg, part ? none_lo : NULL, part ? none_hi : NULL, err)) == NULL)
     return SWARF_ERR_ARG;
   st = sim_new(cfg, name, stock, &cfg->stock, out, err);

@@ -234,6 +234,7 @@ typedef struct {
   int block_delete;
   const char *subroutine_path;
   int fragment;
+  long work_limit; /* the bound on work (swarf_gcode_parser_set_work_limit); 0: the default */
   /* The part as designed (a level set, stock.h): each move that removes
    * material deeper than `tolerance` inside it raises SWARF_ALARM_GOUGE
    * (depth: that move's deepest, as measured against the stock as it stood,
@@ -282,6 +283,16 @@ SWARF_API void swarf_sim_frame_point(const swarf_sim_frame *frame, const double 
  * NULL when out of memory. Free it with swarf_sim_config_free (NULL is
  * fine); swarf_sim_new copies what it needs, so it may be freed after. */
 SWARF_API swarf_sim_config *swarf_sim_config_new(void);
+
+/* What a run of cfg may take, checked before any work (swarf_sim_new does it
+ * too): voxel, band and batch in range; with stock_from_spec (the stock is
+ * cfg's box or cylinder), the voxel against the stock's smallest side and
+ * the grid of its surface against the memory this process can have (80 % of
+ * the machine's, or of ulimit -v), with a voxel that fits in the message;
+ * threads against an address-space limit. SWARF_ERR_ARG or SWARF_ERR_LIMIT
+ * with what to give instead. */
+SWARF_API swarf_status swarf_sim_config_check(const swarf_sim_config *cfg, int stock_from_spec,
+                                              swarf_error *err);
 SWARF_API void swarf_sim_config_free(swarf_sim_config *cfg);
 
 /* Adds a tool; SWARF_ERR_ARG when the table is full or the number is taken. */

@@ -137,6 +137,7 @@ static void structs(void) {
   FIELD(swarf_sim_config, block_delete, "c_int");
   FIELD(swarf_sim_config, subroutine_path, "c_char_p");
   FIELD(swarf_sim_config, fragment, "c_int");
+  FIELD(swarf_sim_config, work_limit, "c_long");
   end();
   fprintf(out, "]\n\n");
 }

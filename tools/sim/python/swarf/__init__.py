@@ -269,7 +269,8 @@ class Stock:
 
     def sample(self, x, y, z) -> float:
         """Interpolated level-set value at a point (mm; < 0 inside material)."""
-        return lib.swarf_stock_sample(self._handle(), x, y, z)
+        p = [_number(v, name, -math.inf, math.inf) for v, name in ((x, "x"), (y, "y"), (z, "z"))]
+        return lib.swarf_stock_sample(self._handle(), *p)
 
     def check(self):
         """Raises InternalError unless the grid is a valid narrow-band level set."""
@@ -294,7 +295,8 @@ class Stock:
 
     def write_png(self, path, width=1024, height=768):
         """Shaded picture (OpenVDB's level-set ray tracer)."""
-        self._write(lib.swarf_stock_write_png, path, int(width), int(height))
+        self._write(lib.swarf_stock_write_png, path, _whole(width, "width", 1, 16384),
+                    _whole(height, "height", 1, 16384))
 
 
 def set_read_isolation(on: bool):
@@ -347,6 +349,13 @@ def _point(value, what):
     return x, y, z
 
 
+def _spec(v, name):
+    """A spec string as bytes for the C parser, or TypeError naming the argument."""
+    if not isinstance(v, str):
+        raise TypeError("%s: a spec string, not %r" % (name, v))
+    return v.encode()
+
+
 def _whole(v, name, lo, hi):
     """An int within [lo, hi], or TypeError/ValueError naming the argument
     (ctypes would wrap 2**32+3 into 3)."""
@@ -372,7 +381,7 @@ def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units,
     lib.swarf_sim_config_init(byref(cfg))
     err = S["swarf_error"]()
     if machine is not None:
-        if lib.swarf_machine_parse(byref(cfg.machine), machine.encode(), byref(err)) != _OK:
+        if lib.swarf_machine_parse(byref(cfg.machine), _spec(machine, "machine"), byref(err)) != _OK:
             _raise(err)
     if start is not None:
         cfg.start_set, cfg.start[:] = 1, _point(start, "start")
@@ -395,7 +404,7 @@ def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units,
     cfg.line_volumes = 1 if line_volumes else 0
     for spec in [tools] if isinstance(tools, str) else tools:
         tool = S["swarf_sim_tool"]()
-        if lib.swarf_sim_parse_tool(spec.encode(), byref(tool), byref(err)) != _OK:
+        if lib.swarf_sim_parse_tool(_spec(spec, "tools"), byref(tool), byref(err)) != _OK:
             _raise(err)
         if lib.swarf_sim_config_add_tool(byref(cfg), byref(tool), byref(err)) != _OK:
             _raise(err)
@@ -464,7 +473,7 @@ class Simulation:
             rc = lib.swarf_sim_new_with_stock(byref(cfg), self.name.encode(), stock._release(),
                                               byref(self._h), byref(err))
         else:
-            if lib.swarf_sim_parse_stock(str(stock).encode(), byref(cfg.stock),
+            if lib.swarf_sim_parse_stock(_spec(stock, "stock"), byref(cfg.stock),
                                          byref(err)) != _OK:
                 _raise(err)
             rc = lib.swarf_sim_new(byref(cfg), self.name.encode(), byref(self._h), byref(err))
@@ -537,7 +546,12 @@ class Simulation:
 
     def feed(self, text):
         """Program text (str or bytes, any split); complete lines run at once."""
-        data = text.encode() if isinstance(text, str) else bytes(text)
+        if isinstance(text, str):
+            data = text.encode()
+        elif isinstance(text, (bytes, bytearray, memoryview)):
+            data = bytes(text)
+        else:
+            raise TypeError("feed: program text as str or bytes, not %r" % (text,))
         self._run(lib.swarf_sim_feed, data, len(data))
 
     def feed_file(self, path):

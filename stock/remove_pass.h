@@ -1,0 +1,107 @@
+/// @file remove_pass.h
+/// @brief What the files of the removal share (remove.cc: the passes in
+/// order and the entry points; remove_blocks.cc: which blocks the cuts meet
+/// and what becomes of them; remove_visit.cc: the voxels of a block, plain
+/// and measured; remove_query.cc: the read-only questions, overlap,
+/// penetration, gouge): a pass's frame and band, the margins of its
+/// hierarchical tests, and the steps each file gives the others.
+#ifndef SWARF_STOCK_REMOVE_PASS_H
+#define SWARF_STOCK_REMOVE_PASS_H
+
+#include <openvdb/tree/ValueAccessor.h>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "stock_private.h"
+
+namespace swarf {
+namespace removal {
+
+using openvdb::Coord;
+using openvdb::Vec3d;
+using Tree = openvdb::FloatTree;
+using Leaf = Tree::LeafNodeType;
+using ConstAcc = openvdb::tree::ValueAccessor<const Tree, false>;
+using Acc = openvdb::tree::ValueAccessor<Tree, false>;
+
+enum Action : uint8_t { kSkip, kClear, kVisitLeaf, kVisitTile, kCollapse };
+
+/// What every pass needs: the stock's frame and band and the cuts.
+struct Pass {
+  swarf_stock &s;
+  const swarf_stock_cut *cuts;
+  double voxel;                     ///< mm
+  float bgf;                        ///< band half-width (the background), mm
+  double reach;                     ///< half diagonal of a block plus the band, mm
+  float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
+  double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
+  double rcube[64]; ///< distance (mm) from the block centre to each 2^3 cube's farthest voxel
+  const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
+  bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)
+  bool plain = false;               ///< SWARF_REMOVE_PLAIN=1: no range functions (tests)
+  const swarf_stock_support_fn *support = nullptr; ///< per cut, may be null (stock.h)
+};
+
+/// World position (mm) of the point at (fractional) offset d from block origin o.
+inline Vec3d block_point(const Pass &p, const Coord &o, double dx, double dy, double dz) {
+  return p.s.origin + p.voxel * Vec3d(o.x() + dx, o.y() + dy, o.z() + dz);
+}
+
+/// Margin (mm) of the hierarchical tests below: above the certified error of
+/// any cut's sdf (1e-6 mm for rotary sweeps), so that a voxel they pass over
+/// or clear ends exactly as if its sdf had been evaluated.
+constexpr double kMargin = 1e-5;
+/// A voxel within kTie voxels of the surface is on it, for gouges: a cut
+/// whose surface passes through a voxel centre (a tie, the sign of the
+/// zero left to rounding) gouges there if the voxel was material, and the
+/// next cut through the same centre (a retract from that pose) removes
+/// nothing more and gouges nothing.
+constexpr double kTie = 1e-9;
+
+/// A cut's sdf at q where only values in (lo, hi) decide anything: with the
+/// cut's range function (rotary sweeps: their search is pruned by both), a
+/// value <= lo (still >= the sdf) below lo, >= hi at or above hi; else sdf.
+/// Every test below that reads it gives what the full sdf would give (to the
+/// cut's certified error, under kMargin).
+inline double cut_value(const Pass &p, const swarf_stock_cut &cut, const Vec3d &q, double lo,
+                        double hi) {
+  if (cut.range == nullptr || p.plain || !(lo < hi)) return cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+  const double qq[3] = {q.x(), q.y(), q.z()};
+  return cut.range(cut.ctx, qq, lo, hi);
+}
+
+/// The depth of a gouge at a voxel whose design value is dq, with r mm of
+/// removed material vouched beyond its centre. A design without triangles
+/// (a .vdb) knows only its band: where dq is at the band's edge the gouge
+/// reads as the band's depth (the reach; the summary says "or more").
+inline double gouge_depth(const swarf_stock &design, double dq, double r, double voxel) {
+  const double bg = design.background;
+  if (!design.surface && dq <= -bg * (1.0 - 1e-6)) return bg;
+  return -dq + vouched_radius(r, voxel);
+}
+
+/// A pass over the cuts: the per-voxel distances of its frame.
+void init_pass(Pass &p);
+/// The index range of the 8^3 blocks the cut's padded bounds meet inside the
+/// stock's content box; false if none.
+bool cut_blocks(const Pass &p, const swarf_stock_cut &c, Coord &bmin, Coord &bmax);
+/// Pass 1: the (block, cut) pairs of the pass, sorted and grouped by block.
+void list_pairs(Pass &p, size_t ncuts);
+/// Pass 2: what the pass does to block b (dacc: the design's tree when it
+/// shares the stock's lattice, else null).
+void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc);
+/// Pass 3: cleared blocks become outside tiles (serial).
+void change_topology(Pass &p);
+/// Pass 4 for one block (remove_visit.cc).
+void visit_block(const Pass &p, Acc &acc, Block &b, GridProbe *design, ConstAcc *dacc,
+                 std::unique_ptr<Leaf> &fresh);
+/// An argument check of the entry points: an sdf, finite bounds, lo < hi.
+void check_cut(const swarf_stock_cut &c, size_t i);
+
+} // namespace removal
+} // namespace swarf
+
+#endif

@@ -282,7 +282,7 @@ SWARF_API swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, s
 SWARF_API swarf_status swarf_stock_part_load(swarf_stock *s, const void *buf, size_t len,
                                              swarf_error *err);
 
-/* ==== Stock from files, placement for a setup (issue 11) ====================
+/* ==== Stock from files, placement for a setup ====================
  * The functions below return a swarf_status and fill `err` (may be NULL):
  * SWARF_ERR_OPEN (the file cannot be opened), SWARF_ERR_FORMAT (it is not a
  * usable mesh or grid: the message says what and, for meshes, where),

@@ -1,5 +1,5 @@
 /// @file write_leaves.cc
-/// @brief The .vdb writer's leaf buffers on the stock's threads (issue 12):
+/// @brief The .vdb writer's leaf buffers on the stock's threads:
 /// a shallow copy of the stock's grid whose writeBuffers, the part of
 /// io::Archive::write that compresses every leaf (mask compression, then
 /// Blosc), runs OpenVDB's own LeafNode::writeBuffers on many leaves at once,
@@ -9,7 +9,7 @@
 /// leaves, as a leaf iterator visits them) writes: the leaves' stream state
 /// (the grid's data compression and background) is copied to each buffer's
 /// stream. At 0.1 mm on bear.nc that loop was the largest serial part of a
-/// run (about 0.25 s of 3.5, issue 12's two-thread goal).
+/// run (about 0.25 s of 3.5, two-thread goal).
 /// SWARF_VDB_SERIAL_WRITE=1 in the environment writes with OpenVDB's loop
 /// (tests compare the two files byte for byte).
 /// Owns nothing beyond the copy: the tree is shared with the stock.

@@ -32,7 +32,7 @@
  *     to their lower end, at the distance d where g(end) - K d^2 / 2 meets
  *     best - EPS (the piece beside a minimum is certified at once instead
  *     of by a bisection per halving), or in the middle when d is half the
- *     interval or more. (Issue 12: 2.4x fewer evaluations here, the same
+ *     interval or more. (2.4x fewer evaluations here, the same
  *     certificate.)
  * A ball end mill takes sweep_rigid_ball.c first (the characteristic
  * circles at the time steps, a local refinement certified by convexity) and

@@ -1,6 +1,6 @@
 /* sweep_rigid_ball.c -- the volume swept by a ball end mill under a rigid
  * motion with rotation, built from the characteristic circles at the time
- * steps (issue 12): per point a local refinement certified by convexity
+ * steps: per point a local refinement certified by convexity
  * instead of the general search over the move (sweep_rigid.c).
  *
  * The cutter is a capsule: the points within R of its axis segment from the

@@ -11,7 +11,7 @@
  *     A and B (xyzab-tdr);
  *   - the nearest points lie on the characteristic curves of their time;
  *   - the pruned search (swarf_sweep_sdf_range, what the stock calls) against
- *     the full certified one, a short move as the impeller's (issue 12).
+ *     the full certified one, a short move as the impeller's.
  * All through the general search (SWARF_SWEEP_GENERAL=1): the ball end
  * mill's own path is test_sweep_ball's.
  */
@@ -238,7 +238,7 @@ int main(void) {
   test_five_axis();
   test_on_characteristic();
   test_range();
-  { /* no sweep: NAN, not a NULL dereference (issue 31) */
+  { /* no sweep: NAN, not a NULL dereference */
     const double p[3] = {0, 0, 0};
     CHECK(isnan(swarf_sweep_rigid_sdf(NULL, p, NULL)), "NULL sweep: NAN");
   }

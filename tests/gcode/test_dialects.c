@@ -471,7 +471,7 @@ static void test_error_order(void) {
           SWARF_GCODE_E_PERCENT_NOT_OPEN);
 }
 
-/* Tool selection (issue 27, point 5). LinuxCNC stops at a T word whose tool
+/* Tool selection. LinuxCNC stops at a T word whose tool
  * the table lacks, as rs274 does ("Requested tool 5 not found in the tool
  * table", at the T word); T0, the empty spindle, is always there. A Fanuc or
  * Haas control holds its tool data: any T, and G43 H of a tool the table
@@ -494,7 +494,7 @@ static void test_tool_words(void) {
   }
 }
 
-/* grbl's $H homes (issue 27, point 6): a file of two jobs, each `$H` then
+/* grbl's $H homes: a file of two jobs, each `$H` then
  * G10 L20 P1 X0 Y0 Z0, cuts the second where it cut the first (ignoring $H,
  * G10 L20 set the second origin where the first job ended: 10 mm off). */
 static void test_grbl_home(void) {

@@ -93,7 +93,7 @@ echo stale > "o.vdb.swarf.tmp.$dead"
 echo mine > "o.vdb.tmp.$dead"
 "$swarf" simulate p.ngc $S --out o.vdb 2> err
 ok "a dead process's temporary is swept" '[ $? -eq 0 ] && [ ! -e "o.vdb.swarf.tmp.$dead" ]'
-# issue 28: a user's own file named like an old temporary is never removed
+# a user's own file named like an old temporary is never removed
 ok "a user's o.vdb.tmp.N is kept" '[ "$(cat "o.vdb.tmp.$dead")" = mine ]'
 rm -f "o.vdb.tmp.$dead"
 echo "$pass passed, $fail failed"

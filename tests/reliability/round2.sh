@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# round2.sh SWARF [CASE...] -- the reproducers of issue 28 (hardening, round
+# round2.sh SWARF [CASE...] -- the hardening reproducers (round
 # 2), one function a case, each made of its own inputs in a scratch folder.
 # Prints one line a case, FIXED or PRESENT, and a count. With CASEs it runs
 # those and fails when any is PRESENT (ctest runs the fixed ones so); with

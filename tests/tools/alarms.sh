@@ -28,7 +28,7 @@ printf 'G21 G0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y10\nG0 Z5\nG0 X0 Y0\nM2\n' > 
   --out "$dir/out.vdb" > "$dir/summary" 2> "$dir/stderr"
 ok "a clean program has no alarm" 'grep -q "alarms 0 " "$dir/summary" && ! grep -q warning "$dir/stderr"'
 
-# An empty spindle (issue 27, point 4; CamBam posts write T0 M6): a slot with
+# An empty spindle (CamBam posts write T0 M6): a slot with
 # T1, then T0 M6 and feed moves into the stock (lines 9, 10: warned, nothing
 # cut), then feed moves above it (line 12: none).
 printf 'G21 G90

@@ -44,11 +44,11 @@ expect apt-inconsistent '--tool: F: .* F = \(R \+ E sin A\) / cos A = 1 \(got 3\
   --tool T1=apt,D6,R1,E2,F3,A0,B0,H10
 expect qss-axis '--tool: the QSS profile crosses its axis' 'G0 X1\n' "${stock[@]}" --tool T1=qss,-1,1,0,0
 expect lollipop-neck '--tool: K: the neck must be thinner' 'G0 X1\n' "${stock[@]}" --tool T1=lollipop,D6,K6
-# an axis swarf's machines do not have: named, with what to do (issue 27, point 10)
+# an axis swarf's machines do not have: named, with what to do
 expect u-axis 'prog\.ngc:1:7: U5: the U axis is not supported .*remove the U words' 'G0 X1 U5\n' \
   "${stock[@]}" "${tool[@]}"
 # one task of a multi-task launch that MPI sees alone (srun without PMI): refused
-# before any work, nothing written (issue 36); an sbatch script's plain run works
+# before any work, nothing written; an sbatch script's plain run works
 SLURM_STEP_NUM_TASKS=2 expect slurm-copies 'one of 2 tasks of a Slurm step.*srun --mpi=pmix' \
   'G0 X1\nM2\n' "${stock[@]}" "${tool[@]}"
 PMI_SIZE=3 expect pmi-copies 'the launcher started 3 tasks \(PMI_SIZE\)' 'G0 X1\nM2\n' \
@@ -61,7 +61,7 @@ else
   fail=$((fail + 1)); echo "FAIL sbatch-plain: a plain run inside an allocation must work"
 fi
 rm -f "$dir/out.vdb"
-# absurd sizes (issue 27, point 8): refused with the field, not simulated
+# absurd sizes: refused with the field, not simulated
 expect tool-huge-d '--tool: D: 1e\+100 mm is beyond any cutter' 'G0 X1\n' "${stock[@]}" --tool T1=flat,D1e100
 expect tool-tiny-d '--tool: D: the diameter 1e-09 mm is below 0.001 mm' 'G0 X1\n' "${stock[@]}" \
   --tool T1=flat,D1e-9

@@ -16,7 +16,7 @@ written here (a faced box; a box with a pocket).
 - a retract from a pose whose tool surface passes through voxel centres
   inside the design (a tie: the cut's sdf is 0 there, its sign rounding's)
   gouges nothing and removes nothing: the gouges stay with the moves that
-  cut (issue 27, point 2), with and without --report.
+  cut, with and without --report.
 - --fail-on gouge: exit status 4, outputs still written; --tolerance;
   the report's gouge alarms; a design that misses the stock is an error
   (exit 2, nothing written).

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""faces.py SWARF -- cuts that end exactly on a stock face are exact (issue 27,
-point 1): a box's faces on the lattice hold 0 at their voxel centres, and a
-cut through them used to leave a sheet of no thickness counted as half a
-voxel (4948.8 instead of 5000 mm^3 for the slot below at 0.2 mm).
+"""faces.py SWARF -- cuts that end exactly on a stock face are exact: a box's
+faces on the lattice hold 0 at their voxel centres, and a cut through them
+used to leave a sheet of no thickness counted as half a voxel (4948.8 instead
+of 5000 mm^3 for the slot below at 0.2 mm).
 
 - slot: a D10 flat end mill along Y20 from X-10 to X60 through a 50 x 40 x
   10 mm box: 5000 mm^3 within 0.2 % for every depth at or below Z-10, at

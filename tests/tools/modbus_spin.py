@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""modbus_spin.py SWARF -- the Modbus servers never spin (issue 28, point 5).
+"""modbus_spin.py SWARF -- the Modbus servers never spin.
 
 - TCP out of descriptors: swarf runs under a limit of 48 open files, and 80
   clients connect and stay; once accept fails (EMFILE) the connection stays

@@ -44,7 +44,7 @@ same "parameters and a subroutine" "$plain" "$(remaining 'o100 sub\nG1 Z#1 F100\
 same "a slot moved 100 mm off the stock by G10 L2 cuts nothing" "$untouched" \
   "$(remaining 'G10 L2 P1 X100\nG0 Z5\nG0 X5 Y10\nG1 Z-2 F100\nG1 X30 Y12\nG0 Z5\n')"
 
-# swarf parse with simulate's setup (issue 27, point 9): --g54 and --start list
+# swarf parse with simulate's setup: --g54 and --start list
 # the moves in the workpiece frame simulate cuts in (G54's as set up), a G53
 # move where the machine puts it; simulate with the same setup cuts there.
 printf 'G21 G90\nG0 X5 Y5 Z5\nG1 Z-1 F100\nG1 X15\nG0 Z5\nG53 G0 X0 Y0\nM2\n' > "$dir/f.ngc"

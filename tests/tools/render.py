@@ -227,7 +227,7 @@ if vk.check(r.status == 0 and os.path.exists(ply), "--mesh dev.ply with a design
     vk.check(len(floor) > 0 and all(abs(v["deviation"] + 1) < 0.02 for v in floor),
              "the floor's vertices: deviation -1 mm (a gouge), %d of them" % len(floor))
     vk.check(all(hue((v["red"], v["green"], v["blue"])) == "blue" for v in floor), "and blue, as in the picture")
-# Colours agree with the legend at every voxel size (issue 27, point 3): at
+# Colours agree with the legend at every voxel size: at
 # tolerance 0.25 the legend's range is 1 mm, so the 1 mm gouge or excess of
 # the pocket's floor takes the legend's end colour (blue 0.12,0.20,0.75; red
 # 0.80,0.10,0.10; the light scales all three channels alike), not a colour

@@ -131,7 +131,7 @@ vk.check(r.status == 2 and not os.path.exists(r.json) and not os.path.exists(r.o
 r = vk.Run(swarf, slot, common + ["--report", "/nonexistent/r.json"], d, report=False)
 vk.check(r.status == 2 and "--report" in r.stderr and not os.path.exists(r.out),
          "unwritable --report: status %d, %s" % (r.status, r.stderr.strip()))
-# Rotary moves' times follow LinuxCNC's feed rule (issue 27, point 7; LinuxCNC's
+# Rotary moves' times follow LinuxCNC's feed rule (LinuxCNC's
 # G-code manual, "Feed Rate"): under G94, when any of X Y Z moves F is in mm/min
 # along the X Y Z path and the rotary axes keep step; when only rotary axes
 # move, F is in degrees/min along them; under G93 a move takes 1/F minutes.

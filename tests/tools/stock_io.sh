@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # stock_io.sh SWARF PYTHON SOURCE_DIR -- stocks from files and the next setup,
-# end to end on the command line (issue 11), read back by an independent
+# end to end on the command line, read back by an independent
 # reader (stock_check.py: pyopenvdb, numpy):
 #  - an STL box stock (written by the test) = the box stock, voxel by voxel;
 #  - a .vdb stock: run A, then program B on A's output = one run of A + B

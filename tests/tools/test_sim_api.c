@@ -271,7 +271,7 @@ static void test_errors(void) {
             out == NULL && err.line == 1 && err.code == SWARF_GCODE_E_NO_PROGRAM_END,
         "no M2: refused at its last line (%s %ld)", err.message, err.line);
   cfg.fragment = 1;
-  { /* issue 30: a config on the heap, with the defaults; the handle keeps its copy */
+  { /* a config on the heap, with the defaults; the handle keeps its copy */
     swarf_sim_config *heap = swarf_sim_config_new();
     swarf_sim *one = NULL;
     CHECK(heap != NULL && heap->voxel == 0.2 && heap->half_width == 3 && heap->batch == 1024,
@@ -287,7 +287,7 @@ static void test_errors(void) {
     }
     swarf_sim_config_free(NULL);
   }
-  { /* issue 28: NULL outputs and ranges refused with the argument's name, no crash */
+  { /* NULL outputs and ranges refused with the argument's name, no crash */
     swarf_sim_config c2;
     swarf_sim *none = NULL;
     CHECK(swarf_sim_parse_stock("box:0,0,-1,1,1,0", NULL, &err) == SWARF_ERR_ARG &&

@@ -143,7 +143,7 @@ static void bad_tables(void) {
   bad_table("T1 P1 D6 X0.5 Z10\n", 1, "only Z offsets");
   bad_table("T1 P1 D6 Znan\n", 1, "bad number");
   /* accepted: comments, blank lines, tabs, lower case, lathe fields, no final newline, and
-   * T0 (LinuxCNC's empty spindle: rs274 reads the line, issue 27 point 5) */
+   * T0 (LinuxCNC's empty spindle: rs274 reads the line) */
   char path[] = "/tmp/swarf_tbl_XXXXXX";
   FILE *f = fdopen(mkstemp(path), "w");
   fputs(";T9 is a comment\nT0 P0 Z0 D0 ;empty spindle\n t7\tp3 d0.25 z-1.5 i95 j155 q2 ;a ; b\nT8 P4 D3",

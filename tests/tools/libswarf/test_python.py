@@ -303,7 +303,7 @@ def test_errors():
             check(False, "bad %s spec raises" % what)
         except swarf.InputError as e:
             check(e.message != "", "bad %s: InputError: %s" % (what, e))
-    try:  # issue 27, point 8: as the command refuses it
+    try:  # as the command refuses it
         swarf.simulate(text="M2\n", stock="box:0,0,-5,20,10,0", tools="T1=flat,D1", voxel=6)
         check(False, "a voxel larger than the stock's smallest side raises")
     except swarf.InputError as e:
@@ -346,7 +346,7 @@ def test_abort():
 
 
 def test_arguments():
-    """Issue 28: wrong types and ranges raise, never crash or wrap."""
+    """wrong types and ranges raise, never crash or wrap."""
     try:
         swarf.Stock(12345678)
         check(False, "Stock(12345678) raises (it segfaulted)")

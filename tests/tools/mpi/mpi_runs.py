@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""mpi_runs.py SWARF FIXTURES MPIRUN -- `swarf simulate` under mpirun (issue 13).
+"""mpi_runs.py SWARF FIXTURES MPIRUN -- `swarf simulate` under mpirun.
 
 Each case runs one process (no launcher) and then `mpirun --oversubscribe -n
 2` and `-n 3` with the same command line, and checks that the written grids
@@ -182,7 +182,7 @@ p = run(2, [bad, "--stock", "box:0,0,-10,40,30,0", "--tool", "T1=ball,D3",
 vk.check(p.returncode == 2 and len([l for l in ours(p.stderr) if "--out" in l]) == 1,
          "an unwritable --out under mpirun: one message, exit 2")
 
-# Ranks given different inputs (issue 28): the same command in two folders
+# Ranks given different inputs: the same command in two folders
 # whose p.ngc differ (mpirun's MPMD form, --wdir each). Every rank hashes its
 # command line and input files and compares with rank 0's before any work: a
 # refusal naming the rank and the program, nothing written (before, the ranks

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # slurm_real.sh SWARF FIXTURES -- `swarf simulate` under a real one-node Slurm
-# (issue 36): the test writes its own slurm.conf in a temporary folder, starts
+# The test writes its own slurm.conf in a temporary folder, starts
 # munged, slurmctld and slurmd itself (ports chosen free on 127.0.0.1), then
 #   - `srun -n 2 --mpi=pmix swarf simulate` and an `sbatch` script running the
 #     same: each grid identical voxel for voxel to one process (same_grid.py,

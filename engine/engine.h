@@ -144,9 +144,9 @@ typedef struct {
  * shorter than the diameter are allowed (a face mill); a bull needs length
  * >= 2 R, a ball length >= R (below 2 R = D the ball is cut flat at the
  * top: a profile cutter, fast = 0). SWARF_ERR_TOOL when the dimensions are
- * impossible or outside [SWARF_CUTTER_MIN_MM, SWARF_CUTTER_MAX_MM]: *err (may be NULL) gets the reason and, as its word, the letter
- * of the tool spec's number that is wrong (D, R or L); SWARF_ERR_ARG for a
- * NULL cutter. */
+ * impossible or outside [SWARF_CUTTER_MIN_MM, SWARF_CUTTER_MAX_MM]: *err (may be NULL) gets the
+ * reason and, as its word, the letter of the tool spec's number that is wrong (D, R or L);
+ * SWARF_ERR_ARG for a NULL cutter. */
 SWARF_API swarf_status swarf_cutter_init(swarf_cutter *c, swarf_cutter_shape shape, double diameter,
                                          double corner_radius, double length, swarf_error *err);
 

@@ -52,8 +52,8 @@ typedef struct {
 
 typedef struct {
   swarf_tsample lo, hi;
-  double lb;  /* lower bound of g over [lo.a, hi.a] */
-  int depth;  /* splits so far (the helix search only) */
+  double lb; /* lower bound of g over [lo.a, hi.a] */
+  int depth; /* splits so far (the helix search only) */
 } swarf_tspan;
 
 /* A binary min-heap of spans by lb: heap[0 .. *n) (the caller checks room). */
@@ -164,23 +164,23 @@ typedef struct {
 } swarf_char_part;
 
 typedef struct {
-  int is_qss;          /* 1: phi(z) = q2 z^2 + q1 z + q0; 0: a cutter */
-  int npart;           /* > 0: a general hull, the parts below (a, R, L unused) */
+  int is_qss; /* 1: phi(z) = q2 z^2 + q1 z + q0; 0: a cutter */
+  int npart;  /* > 0: a general hull, the parts below (a, R, L unused) */
   swarf_char_part part[SWARF_CHAR_MAX_PARTS];
-  double a, R, L;      /* cutter: core radius, corner radius, length */
-  double q2, q1, q0;   /* QSS of revolution */
-  double plateau;      /* sigma length of the ruling: 1, or 0 when none */
-  double sigma_end;    /* pi + plateau */
-  double scale;        /* size of the surface, mm, for relative tolerances */
+  double a, R, L;    /* cutter: core radius, corner radius, length */
+  double q2, q1, q0; /* QSS of revolution */
+  double plateau;    /* sigma length of the ruling: 1, or 0 when none */
+  double sigma_end;  /* pi + plateau */
+  double scale;      /* size of the surface, mm, for relative tolerances */
 } swarf_char_profile;
 
 /* One slice: everything at parameter sigma. P = phi'(z) sqrt(1 - z^2) stays
  * finite at the poles; (At, Bt, C) are Fact 2's (A, B, C) with A, B scaled by
  * sqrt(1 - z^2), so Delta = At^2 + Bt^2 - C^2 is Fact 2's Delta. */
 typedef struct {
-  double z, sz;  /* n_z and sqrt(1 - n_z^2) */
-  double c;      /* cutter: height of the core point (R, ruling, L - R) */
-  double a, R;   /* cutter: the core radius and the corner radius at this slice */
+  double z, sz; /* n_z and sqrt(1 - n_z^2) */
+  double c;     /* cutter: height of the core point (R, ruling, L - R) */
+  double a, R;  /* cutter: the core radius and the corner radius at this slice */
   double At, Bt, C, delta;
 } swarf_char_slice;
 
@@ -189,8 +189,8 @@ void swarf_char_profile_qss(swarf_char_profile *pr, const swarf_qss *q);
 /* The profile of one piece of a profile cutter: a hull's parts, or a QSS
  * piece's QSS (its lift is the caller's: a shift along the axis). */
 void swarf_char_profile_piece(swarf_char_profile *pr, const swarf_profile_piece *pc);
-void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3],
-                           const double omega[3], double sigma, swarf_char_slice *sl);
+void swarf_char_slice_eval(const swarf_char_profile *pr, const double v[3], const double omega[3],
+                           double sigma, swarf_char_slice *sl);
 
 /* Point of branch s (+1 or -1) at sigma: unit normal n and surface point x.
  * Returns 0, or -1 where the slice has no real point (Delta < 0 beyond
@@ -265,21 +265,21 @@ void swarf_gen_normal(const swarf_gen_sweep *s, double phi, double theta, double
 /* ---- Sweeps: per-method evaluators -------------------------------------- */
 
 enum {
-  SWARF_SWEEP_PLUNGE,     /* vertical line, or no motion at all (one instance) */
-  SWARF_SWEEP_SLOT,       /* horizontal line */
-  SWARF_SWEEP_RAMP_BALL,  /* other line, ball cutter: parallelogram + ball */
-  SWARF_SWEEP_RAMP,       /* other line, flat or bull: convex 1-D minimum */
-  SWARF_SWEEP_ARC,        /* planar arc about a vertical axis, angle < 2 pi */
-  SWARF_SWEEP_RING,       /* planar full circle about a vertical axis */
-  SWARF_SWEEP_HELIX,      /* any other helix: sampling and refinement */
-  SWARF_SWEEP_RIGID,      /* motion with rotation (rotary machines) */
+  SWARF_SWEEP_PLUNGE,    /* vertical line, or no motion at all (one instance) */
+  SWARF_SWEEP_SLOT,      /* horizontal line */
+  SWARF_SWEEP_RAMP_BALL, /* other line, ball cutter: parallelogram + ball */
+  SWARF_SWEEP_RAMP,      /* other line, flat or bull: convex 1-D minimum */
+  SWARF_SWEEP_ARC,       /* planar arc about a vertical axis, angle < 2 pi */
+  SWARF_SWEEP_RING,      /* planar full circle about a vertical axis */
+  SWARF_SWEEP_HELIX,     /* any other helix: sampling and refinement */
+  SWARF_SWEEP_RIGID,     /* motion with rotation (rotary machines) */
   /* profile cutters (fast = 0; sweep_profile.c), convex pieces each: */
-  SWARF_SWEEP_P_SLOT,     /* horizontal line: the profile at the horizontal distance */
-  SWARF_SWEEP_P_PLUNGE,   /* vertical line: hulls stretched, QSS pieces minimised */
-  SWARF_SWEEP_P_RAMP,     /* other line: convex 1-D minimum per piece */
-  SWARF_SWEEP_P_HELIX,    /* helix: sweep_sampled.c per piece */
-  SWARF_SWEEP_P_RIGID,    /* rotation: sweep_rigid.c per piece */
-  SWARF_SWEEP_P_GENERAL   /* a non-convex QSS piece: sweep_general.c, any motion */
+  SWARF_SWEEP_P_SLOT,   /* horizontal line: the profile at the horizontal distance */
+  SWARF_SWEEP_P_PLUNGE, /* vertical line: hulls stretched, QSS pieces minimised */
+  SWARF_SWEEP_P_RAMP,   /* other line: convex 1-D minimum per piece */
+  SWARF_SWEEP_P_HELIX,  /* helix: sweep_sampled.c per piece */
+  SWARF_SWEEP_P_RIGID,  /* rotation: sweep_rigid.c per piece */
+  SWARF_SWEEP_P_GENERAL /* a non-convex QSS piece: sweep_general.c, any motion */
 };
 
 /* ---- The sweep's per-method data (swarf_sweep.internal_) ----------------- */
@@ -304,13 +304,13 @@ typedef struct {
 /* RAMP, RAMP_BALL: a climbing line, tip p0 + u (e, k) for u in [0, len]. */
 typedef struct {
   double p0[3];
-  double e[2];     /* unit horizontal direction */
-  double len;      /* horizontal length */
-  double k;        /* climb per horizontal mm */
-  double core_mid; /* middle of the core above the tip */
-  double core_half;/* half height of the core */
-  double core;     /* core radius a */
-  double w;        /* 1 / (1 + k^2) */
+  double e[2];      /* unit horizontal direction */
+  double len;       /* horizontal length */
+  double k;         /* climb per horizontal mm */
+  double core_mid;  /* middle of the core above the tip */
+  double core_half; /* half height of the core */
+  double core;      /* core radius a */
+  double w;         /* 1 / (1 + k^2) */
 } swarf_sweep_ramp;
 
 /* ARC, RING: a planar arc about a vertical axis through (cx, cy) at height z0,

@@ -28,7 +28,6 @@
 
 #include "ccomp.h"
 
-
 int swarf_gc_comp_active(const swarf_gc_state *st) {
   return st->comp_side != 0 && st->comp_radius > 0;
 }

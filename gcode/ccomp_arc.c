@@ -7,7 +7,6 @@
 
 #include "ccomp.h"
 
-
 /* ---- arcs ---------------------------------------------------------------- */
 
 /* The first move is an arc: to the end offset along its radius, about a

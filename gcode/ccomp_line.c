@@ -8,7 +8,6 @@
 
 #include "ccomp.h"
 
-
 /* ---- straight moves ------------------------------------------------------ */
 
 /* The first move: to the end offset perpendicular to the move. */

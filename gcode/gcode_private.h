@@ -595,12 +595,12 @@ struct swarf_gcode_parser {
   int params_set;            /* a parameter was set (the unit can no longer change) */
   int g92_restore;           /* #5210 = 1: the G92 offset #5211-#5216 is in force */
   /* The dialect and the operator's switches (dialect.c): */
-  int block_delete; /* skip `/` blocks */
-  int fragment;     /* the text need not end (swarf_gcode_parser_set_fragment) */
-  long work_limit;  /* lines run by loops, calls and subprograms, at most */
-  long work_extra;  /* and the moves and arc turns beyond one a line they ran */
+  int block_delete;  /* skip `/` blocks */
+  int fragment;      /* the text need not end (swarf_gcode_parser_set_fragment) */
+  long work_limit;   /* lines run by loops, calls and subprograms, at most */
+  long work_extra;   /* and the moves and arc turns beyond one a line they ran */
   int fanuc_running; /* a Fanuc/Haas program kept whole is running */
-  char *subpath;    /* ':'-separated directories of subroutine files, or NULL */
+  char *subpath;     /* ':'-separated directories of subroutine files, or NULL */
   swarf_gcode_note_fn note_fn;
   void *note_user;
   swarf_gc_notes notes; /* the running block's */

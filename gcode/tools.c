@@ -83,8 +83,10 @@ static swarf_status table_line(const table_at *at, char *text, int *t, double *z
     if (s != SWARF_OK) return s;
   }
   if (words > 0 && *t == 0) return SWARF_GC_ERROR(SWARF_GCODE_E_TOOL_TABLE_NO_T, at_line(at, ""));
-  if (*t > 0) (*t)--;
-  else *t = -1;
+  if (*t > 0)
+    (*t)--;
+  else
+    *t = -1;
   return SWARF_OK;
 }
 

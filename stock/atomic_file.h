@@ -16,6 +16,6 @@ namespace swarf {
 /// Error(SWARF_ERR_IO), an exception from body is rethrown as it is.
 void write_atomic(const char *path, const std::function<void(std::ostream &)> &body);
 
-}  // namespace swarf
+} // namespace swarf
 
 #endif

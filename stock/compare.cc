@@ -47,28 +47,31 @@ struct Work {
 /// The blocks of g that may hold values below `limit`: every leaf, and the
 /// tiles below it split into 8^3 blocks.
 std::vector<Work> blocks_below(const swarf_stock &g, float limit) {
-  constexpr uint64_t kMaxBlocks = uint64_t(1) << 27;  // 6.9e10 voxels
+  constexpr uint64_t kMaxBlocks = uint64_t(1) << 27; // 6.9e10 voxels
   std::vector<Work> w;
   const Tree &tree = g.grid->constTree();
-  for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) w.push_back({leaf->origin(), &*leaf, 0.0f});
+  for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf)
+    w.push_back({leaf->origin(), &*leaf, 0.0f});
   auto it = tree.cbeginValueAll();
   it.setMaxDepth(Tree::ValueAllCIter::LEAF_DEPTH - 1);
   for (; it; ++it) {
     if (!(*it < limit)) continue;
     const openvdb::CoordBBox b = it.getBoundingBox();
     if (w.size() + b.volume() / 512 > kMaxBlocks)
-      throw Error(SWARF_ERR_LIMIT, "the grid's material is too large to compare (over 6.9e10 voxels)");
+      throw Error(SWARF_ERR_LIMIT,
+                  "the grid's material is too large to compare (over 6.9e10 voxels)");
     for (int x = b.min()[0]; x <= b.max()[0]; x += 8)
       for (int y = b.min()[1]; y <= b.max()[1]; y += 8)
-        for (int z = b.min()[2]; z <= b.max()[2]; z += 8) w.push_back({Coord(x, y, z), nullptr, *it});
+        for (int z = b.min()[2]; z <= b.max()[2]; z += 8)
+          w.push_back({Coord(x, y, z), nullptr, *it});
   }
   return w;
 }
 
 /// One block's findings.
 struct Found {
-  double volume = 0.0, missing = 0.0;  ///< inside fractions, voxels
-  double depth = 0.0;                  ///< deepest (mm), 0 none
+  double volume = 0.0, missing = 0.0; ///< inside fractions, voxels
+  double depth = 0.0;                 ///< deepest (mm), 0 none
   Vec3d at = Vec3d(0.0);
   bool clamped = false; ///< a depth read the design at its band's edge (a lower bound)
 };
@@ -84,12 +87,12 @@ struct Frame {
   const swarf_stock &s, &design;
   const swarf_stock *initial;
   double tol;
-  bool same_lattice;  ///< design and stock: same voxel and origin
+  bool same_lattice; ///< design and stock: same voxel and origin
   /// The values the volumes need reach beyond the design's band (a design
   /// read from a mesh; exact_needed): design values at the band's edge are
   /// measured on its triangles.
   bool exact_far;
-  bool initial_same;  ///< the initial stock and the design: same voxel and origin
+  bool initial_same; ///< the initial stock and the design: same voxel and origin
 };
 
 /// True if a design (read from a mesh, band `bg` mm) must be measured on its
@@ -112,10 +115,10 @@ bool exact_needed(double bg, double tol, double vs, double vd, bool aligned) {
 /// by voxel on the triangles.
 struct FarValues {
   const Frame &f;
-  Vec3d centre;      ///< world centre of the block
-  double voxel;      ///< the block's grid's voxel
-  int state = 0;     ///< 0 not yet known, 1 far, 2 near
-  double far = 0.0;  ///< the value of a far block's edge voxels (magnitude)
+  Vec3d centre;     ///< world centre of the block
+  double voxel;     ///< the block's grid's voxel
+  int state = 0;    ///< 0 not yet known, 1 far, 2 near
+  double far = 0.0; ///< the value of a far block's edge voxels (magnitude)
   /// d: the grid's value at q (at the band's edge: |d| = background).
   double at(double d, const Vec3d &q) {
     if (!f.exact_far || std::fabs(d) < double(f.design.background) * (1.0 - 1e-6)) return d;
@@ -136,9 +139,11 @@ inline Vec3d block_centre(const swarf_stock &g, const Coord &o) {
 /// Excess in one block of the stock's material.
 void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &dacc, Found &out) {
   const double v = f.s.voxel;
-  if (w.leaf == nullptr && f.same_lattice && !f.exact_far && dacc.probeConstLeaf(w.origin) == nullptr) {
-    const double d = dacc.getValue(w.origin);  // both tiles here
-    out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile, v) - inside_fraction(d - f.tol, v));
+  if (w.leaf == nullptr && f.same_lattice && !f.exact_far &&
+      dacc.probeConstLeaf(w.origin) == nullptr) {
+    const double d = dacc.getValue(w.origin); // both tiles here
+    out.volume =
+        Leaf::SIZE * std::max(0.0, inside_fraction(w.tile, v) - inside_fraction(d - f.tol, v));
     const double h = d + vouched_radius(-double(w.tile), v);
     if (h > f.tol) out.depth = h, out.at = index_to_world(f.s, w.origin.offsetBy(4));
     out.clamped = w.tile < 0.0f && d > 0.0 && at_edge(d, f.design.background);
@@ -147,7 +152,7 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
   FarValues far{f, block_centre(f.s, w.origin), v};
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     const double s = w.leaf ? w.leaf->getValue(n) : w.tile;
-    if (!(s < 0.5 * v)) continue;  // no material in this voxel
+    if (!(s < 0.5 * v)) continue; // no material in this voxel
     const Coord ijk = w.origin + Leaf::offsetToLocalCoord(n);
     const Vec3d q = index_to_world(f.s, ijk);
     // one index space: the design's voxel ijk, as design.at(q) would round to
@@ -162,14 +167,17 @@ void excess_block(const Frame &f, const Work &w, GridProbe &design, ConstAcc &da
 }
 
 /// Gouge (and missing) in one block of the design's interior.
-void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *initial, ConstAcc &sacc,
-                 Found &out) {
+void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *initial,
+                 ConstAcc &sacc, Found &out) {
   const double v = f.design.voxel;
-  if (w.leaf == nullptr && f.same_lattice && !f.exact_far && initial == nullptr && sacc.probeConstLeaf(w.origin) == nullptr) {
-    const double s = sacc.getValue(w.origin);  // both tiles here
-    out.volume = Leaf::SIZE * std::max(0.0, inside_fraction(w.tile + f.tol, v) - inside_fraction(s, v));
+  if (w.leaf == nullptr && f.same_lattice && !f.exact_far && initial == nullptr &&
+      sacc.probeConstLeaf(w.origin) == nullptr) {
+    const double s = sacc.getValue(w.origin); // both tiles here
+    out.volume =
+        Leaf::SIZE * std::max(0.0, inside_fraction(w.tile + f.tol, v) - inside_fraction(s, v));
     const double g = -double(w.tile) + vouched_radius(s, v);
-    if (s > 0.0 && g > f.tol) out.depth = g, out.at = index_to_world(f.design, w.origin.offsetBy(4));
+    if (s > 0.0 && g > f.tol)
+      out.depth = g, out.at = index_to_world(f.design, w.origin.offsetBy(4));
     out.clamped = s > 0.0 && w.tile < 0.0f && at_edge(w.tile, f.design.background);
     return;
   }
@@ -182,12 +190,15 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
     const Vec3d q = index_to_world(f.design, ijk);
     // one index space: the voxel ijk, as at(q) would round to
     const double s = f.same_lattice ? double(stock.at_index(ijk)) : stock.at(q);
-    const double s0 = !initial ? -1e30 : f.initial_same ? double(initial->at_index(ijk)) : initial->at(q);
+    const double s0 = !initial         ? -1e30
+                      : f.initial_same ? double(initial->at_index(ijk))
+                                       : initial->at(q);
     if (f.exact_far) {
-      if (s <= -0.5 * f.s.voxel && s0 <= -0.5 * f.s.voxel) continue;  // material there, before and after
+      if (s <= -0.5 * f.s.voxel && s0 <= -0.5 * f.s.voxel)
+        continue; // material there, before and after
       d = far.at(d, q);
     }
-    const double in = inside_fraction(d + f.tol, v);  // deeper than the tolerance
+    const double in = inside_fraction(d + f.tol, v); // deeper than the tolerance
     if (!(in > 0.0)) continue;
     const double had = initial ? inside_fraction(s0, f.s.voxel) : 1.0;
     out.volume += std::max(0.0, std::min(in, had) - inside_fraction(s, f.s.voxel));
@@ -201,12 +212,15 @@ void gouge_block(const Frame &f, const Work &w, GridProbe &stock, GridProbe *ini
 
 /// Run `fn` on every block in parallel and add the findings up in order
 /// (each block's kept in `found`).
-template <class Fn> Found sum_blocks(const std::vector<Work> &blocks, Fn &&fn, std::vector<Found> &found) {
+template <class Fn>
+Found sum_blocks(const std::vector<Work> &blocks, Fn &&fn, std::vector<Found> &found) {
   found.assign(blocks.size(), Found());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 16), [&](const tbb::blocked_range<size_t> &r) {
-    auto state = fn.make();
-    for (size_t i = r.begin(); i != r.end(); ++i) fn(*state, blocks[i], found[i]);
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 16),
+                    [&](const tbb::blocked_range<size_t> &r) {
+                      auto state = fn.make();
+                      for (size_t i = r.begin(); i != r.end(); ++i)
+                        fn(*state, blocks[i], found[i]);
+                    });
   Found total;
   for (const Found &b : found) {
     total.volume += b.volume, total.missing += b.missing;
@@ -249,11 +263,12 @@ Found beyond_band(const swarf_stock &design, const swarf_stock &grid,
     return by_clamp ? surface_distance(design, q) : surface_distance_exact(design, q);
   };
   std::vector<size_t> idx;
-  Found best;  // the exact findings: blocks that stayed within the band
+  Found best; // the exact findings: blocks that stayed within the band
   for (size_t i = 0; i < found.size(); i++) {
     if (by_clamp ? found[i].clamped : found[i].depth >= reach)
       idx.push_back(i);
-    else if (found[i].depth > best.depth) best.depth = found[i].depth, best.at = found[i].at;
+    else if (found[i].depth > best.depth)
+      best.depth = found[i].depth, best.at = found[i].at;
   }
   if (idx.empty() || !design.surface) return total;
   std::vector<double> ub(idx.size()), lb(idx.size());
@@ -266,7 +281,8 @@ Found beyond_band(const swarf_stock &design, const swarf_stock &grid,
                       }
                     });
   std::vector<size_t> order(idx.size());
-  for (size_t k = 0; k < order.size(); k++) order[k] = k;
+  for (size_t k = 0; k < order.size(); k++)
+    order[k] = k;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return ub[a] > ub[b]; });
   auto state = pass.make();
   std::vector<Beyond> list;
@@ -313,9 +329,12 @@ struct ExcessPass {
     ConstAcc dacc;
   };
   std::unique_ptr<State> make() const {
-    return std::unique_ptr<State>(new State{GridProbe(f.design, f.s), ConstAcc(f.design.grid->constTree())});
+    return std::unique_ptr<State>(
+        new State{GridProbe(f.design, f.s), ConstAcc(f.design.grid->constTree())});
   }
-  void operator()(State &st, const Work &w, Found &out) const { excess_block(f, w, st.design, st.dacc, out); }
+  void operator()(State &st, const Work &w, Found &out) const {
+    excess_block(f, w, st.design, st.dacc, out);
+  }
 };
 
 struct GougePass {
@@ -326,24 +345,29 @@ struct GougePass {
     ConstAcc sacc;
   };
   std::unique_ptr<State> make() const {
-    std::unique_ptr<State> st(new State{GridProbe(f.s, f.design), nullptr, ConstAcc(f.s.grid->constTree())});
+    std::unique_ptr<State> st(
+        new State{GridProbe(f.s, f.design), nullptr, ConstAcc(f.s.grid->constTree())});
     if (f.initial) st->initial.reset(new GridProbe(*f.initial, f.design));
     return st;
   }
-  void operator()(State &st, const Work &w, Found &out) const { gouge_block(f, w, st.stock, st.initial.get(), st.sacc, out); }
+  void operator()(State &st, const Work &w, Found &out) const {
+    gouge_block(f, w, st.stock, st.initial.get(), st.sacc, out);
+  }
 };
 
 void set_point(double out[3], const Vec3d &p, bool any) {
-  for (int k = 0; k < 3; k++) out[k] = any ? p[k] : kNaN;
+  for (int k = 0; k < 3; k++)
+    out[k] = any ? p[k] : kNaN;
 }
 
 std::string box_text(const double lo[3], const double hi[3]) {
   char buf[200];
-  std::snprintf(buf, sizeof buf, "x %.3f..%.3f, y %.3f..%.3f, z %.3f..%.3f mm", lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
+  std::snprintf(buf, sizeof buf, "x %.3f..%.3f, y %.3f..%.3f, z %.3f..%.3f mm", lo[0], hi[0], lo[1],
+                hi[1], lo[2], hi[2]);
   return buf;
 }
 
-}  // namespace
+} // namespace
 
 /// Throw Error(ARG) unless the design's and the stock's bounds meet.
 void check_design(const swarf_stock &s, const swarf_stock &design) {
@@ -354,14 +378,16 @@ void check_design(const swarf_stock &s, const swarf_stock &design) {
   if (!std::isfinite(c[0])) throw Error(SWARF_ERR_ARG, "the design holds no material");
   for (int k = 0; k < 3; k++)
     if (b[k] < c[k] || d[k] < a[k])
-      throw Error(SWARF_ERR_ARG, "the design (" + box_text(c, d) + ") does not overlap the stock (" +
-                                           box_text(a, b) + "): is it in the same frame and place?");
+      throw Error(SWARF_ERR_ARG, "the design (" + box_text(c, d) +
+                                     ") does not overlap the stock (" + box_text(a, b) +
+                                     "): is it in the same frame and place?");
 }
 
-void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock *initial, double tol,
-             swarf_stock_deviation &out) {
+void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock *initial,
+             double tol, swarf_stock_deviation &out) {
   check_design(s, design);
-  const bool same = GridProbe::lattices_coincide(s, design) && (s.origin - design.origin).length() <= 1e-9 * s.voxel;
+  const bool same = GridProbe::lattices_coincide(s, design) &&
+                    (s.origin - design.origin).length() <= 1e-9 * s.voxel;
   const bool initial_same = initial != nullptr && GridProbe::lattices_coincide(*initial, design) &&
                             (initial->origin - design.origin).length() <= 1e-9 * s.voxel;
   const bool exact_far = design.surface != nullptr &&
@@ -424,12 +450,13 @@ void compare(const swarf_stock &s, const swarf_stock &design, const swarf_stock 
   set_point(out.gouge_at, go.at, go.depth > 0.0);
 }
 
-}  // namespace swarf
+} // namespace swarf
 
 extern "C" swarf_status swarf_stock_check_design(const swarf_stock *s, const swarf_stock *design,
                                                  swarf_error *err) {
   return swarf::guard(err, nullptr, [&] {
-    if (s == nullptr || design == nullptr) throw swarf::Error(SWARF_ERR_ARG, "stock or design is NULL");
+    if (s == nullptr || design == nullptr)
+      throw swarf::Error(SWARF_ERR_ARG, "stock or design is NULL");
     swarf::check_design(*s, *design);
   });
 }

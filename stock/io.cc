@@ -101,10 +101,10 @@ void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &path) {
   for (auto v = grid.cbeginValueAll(); v; ++v) // a NaN compares as neither inside nor out
     if (!std::isfinite(*v)) {
       const openvdb::Coord c = v.getCoord();
-      throw Error(SWARF_ERR_FORMAT, path + ": a value that is not a number (" +
-                                        std::to_string(*v) + ") at voxel " +
-                                        std::to_string(c.x()) + "," + std::to_string(c.y()) +
-                                        "," + std::to_string(c.z()) + ": not a level set");
+      throw Error(SWARF_ERR_FORMAT, path + ": a value that is not a number (" + std::to_string(*v) +
+                                        ") at voxel " + std::to_string(c.x()) + "," +
+                                        std::to_string(c.y()) + "," + std::to_string(c.z()) +
+                                        ": not a level set");
     }
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
   if (box.empty()) return;

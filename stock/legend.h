@@ -18,6 +18,6 @@ void deviation_colour(double dev, double tol, double range, float rgb[3]);
 /// Pictures smaller than 240 x 160 pixels get none.
 void draw_legend(unsigned char *rgb, int width, int height, double tol, double range);
 
-}  // namespace swarf
+} // namespace swarf
 
 #endif

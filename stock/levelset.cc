@@ -45,27 +45,31 @@ using openvdb::Vec4I;
 using Tree = openvdb::FloatTree;
 using Leaf = Tree::LeafNodeType;
 
-constexpr double kMaxIndex = 536870912.0;  ///< 2^29 voxels from the origin
+constexpr double kMaxIndex = 536870912.0; ///< 2^29 voxels from the origin
 constexpr double kMaxBandVoxels = 4e9;
 
 void check_grid_args(double voxel, int half_width) {
-  if (!std::isfinite(voxel) || !(voxel > 0.0)) throw Error(SWARF_ERR_ARG, "voxel must be finite and > 0");
-  if (half_width < 1 || half_width > 64) throw Error(SWARF_ERR_ARG, "half_width must be 1 to 64 voxels");
+  if (!std::isfinite(voxel) || !(voxel > 0.0))
+    throw Error(SWARF_ERR_ARG, "voxel must be finite and > 0");
+  if (half_width < 1 || half_width > 64)
+    throw Error(SWARF_ERR_ARG, "half_width must be 1 to 64 voxels");
 }
 
 /// Bring a level-set grid to swarf's band (see the file comment), background bg.
 void normalize_band(openvdb::FloatGrid &g, float bg) {
   Tree &tree = g.tree();
   openvdb::tree::LeafManager<Tree> leaves(tree);
-  leaves.foreach([bg](Leaf &leaf, size_t) {
+  leaves.foreach ([bg](Leaf &leaf, size_t) {
     for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
       const float v = leaf.getValue(n);
-      if (v < bg && v > -bg) leaf.setValueOn(n);
-      else leaf.setValueOff(n, v <= -bg ? -bg : bg);  // NaN: outside
+      if (v < bg && v > -bg)
+        leaf.setValueOn(n);
+      else
+        leaf.setValueOff(n, v <= -bg ? -bg : bg); // NaN: outside
     }
   });
   auto it = tree.beginValueAll();
-  it.setMaxDepth(Tree::ValueAllIter::LEAF_DEPTH - 1);  // tiles only
+  it.setMaxDepth(Tree::ValueAllIter::LEAF_DEPTH - 1); // tiles only
   for (; it; ++it) {
     const float v = *it;
     it.setValue(v < 0.0f ? -bg : bg);
@@ -100,16 +104,20 @@ void check_mesh_size(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tr
   for (const Vec3s &p : pts)
     for (int k = 0; k < 3; k++)
       if (!(std::fabs(double(p[k])) / voxel < kMaxIndex))
-        throw Error(SWARF_ERR_LIMIT, "the mesh reaches too far from the origin for this voxel size");
+        throw Error(SWARF_ERR_LIMIT,
+                    "the mesh reaches too far from the origin for this voxel size");
   double area = 0.0;
   auto tri_area = [&](unsigned a, unsigned b, unsigned c) {
     const Vec3d e1 = Vec3d(pts[b]) - Vec3d(pts[a]), e2 = Vec3d(pts[c]) - Vec3d(pts[a]);
     area += 0.5 * e1.cross(e2).length();
   };
-  for (const Vec3I &t : tris) tri_area(t[0], t[1], t[2]);
-  for (const Vec4I &q : quads) tri_area(q[0], q[1], q[2]), tri_area(q[0], q[2], q[3]);
+  for (const Vec3I &t : tris)
+    tri_area(t[0], t[1], t[2]);
+  for (const Vec4I &q : quads)
+    tri_area(q[0], q[1], q[2]), tri_area(q[0], q[2], q[3]);
   if (area / (voxel * voxel) * (2.0 * half_width + 1.0) > kMaxBandVoxels)
-    throw Error(SWARF_ERR_LIMIT, "the mesh's surface is too large for this voxel size (band over 4e9 voxels)");
+    throw Error(SWARF_ERR_LIMIT,
+                "the mesh's surface is too large for this voxel size (band over 4e9 voxels)");
 }
 
 /// A stock from a closed polygon mesh (world points, mm): the exact signed
@@ -125,13 +133,15 @@ swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> 
   for (size_t i = 0; i < pts.size(); i++)
     ip[i] = Vec3s(float(pts[i][0] / voxel), float(pts[i][1] / voxel), float(pts[i][2] / voxel));
   std::vector<Vec3I> t(tris);
-  for (const Vec4I &q : quads) t.emplace_back(q[0], q[1], q[2]), t.emplace_back(q[0], q[2], q[3]);
+  for (const Vec4I &q : quads)
+    t.emplace_back(q[0], q[1], q[2]), t.emplace_back(q[0], q[2], q[3]);
   const float bg = band_background(half_width, voxel);
   openvdb::FloatGrid::Ptr grid = mesh_band(ip, t, voxel, half_width, bg);
   set_stock_meta(*grid);
   normalize_band(*grid, bg);
   if (!has_material(*grid))
-    throw Error(SWARF_ERR_FORMAT, "the mesh holds no voxel centre at this voxel size (thinner than a voxel)");
+    throw Error(SWARF_ERR_FORMAT,
+                "the mesh holds no voxel centre at this voxel size (thinner than a voxel)");
   swarf_stock *s = wrap_grid(grid);
   if (keep_surface) s->surface = mesh_surface(std::move(ip), std::move(t));
   return s;
@@ -143,19 +153,21 @@ swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> 
 /// voxel) R^T (the new grid's origin is R o + t).
 struct Resampler {
   const swarf_stock &src;
-  double rt[9];  ///< A, row-major
-  bool exact;    ///< A is a signed permutation: voxels map onto voxels
-  float bg;      ///< the new band; source values at the source's band read as +-bg
+  double rt[9]; ///< A, row-major
+  bool exact;   ///< A is a signed permutation: voxels map onto voxels
+  float bg;     ///< the new band; source values at the source's band read as +-bg
 
   Vec3d source_index(const Vec3d &j) const {
-    return Vec3d(rt[0] * j[0] + rt[1] * j[1] + rt[2] * j[2], rt[3] * j[0] + rt[4] * j[1] + rt[5] * j[2],
+    return Vec3d(rt[0] * j[0] + rt[1] * j[1] + rt[2] * j[2],
+                 rt[3] * j[0] + rt[4] * j[1] + rt[5] * j[2],
                  rt[6] * j[0] + rt[7] * j[1] + rt[8] * j[2]);
   }
   template <class Acc> float value(Acc &acc, const Vec3d &j) const {
     const Vec3d i = source_index(j);
-    const float v = exact ? acc.getValue(Coord(int(std::lround(i[0])), int(std::lround(i[1])), int(std::lround(i[2]))))
+    const float v = exact ? acc.getValue(Coord(int(std::lround(i[0])), int(std::lround(i[1])),
+                                               int(std::lround(i[2]))))
                           : float(openvdb::tools::BoxSampler::sample(acc, i));
-    if (v >= src.background) return bg;  // beyond what the source knows: outside the band
+    if (v >= src.background) return bg; // beyond what the source knows: outside the band
     if (v <= -src.background) return -bg;
     return v;
   }
@@ -164,10 +176,12 @@ struct Resampler {
   template <class Acc> bool uniform(Acc &acc, const Coord &j0) const {
     Vec3d lo(1e300), hi(-1e300);
     for (int c = 0; c < 8; c++) {
-      const Vec3d i = source_index(Vec3d(j0[0] + (c & 1 ? 7 : 0), j0[1] + (c & 2 ? 7 : 0), j0[2] + (c & 4 ? 7 : 0)));
+      const Vec3d i = source_index(
+          Vec3d(j0[0] + (c & 1 ? 7 : 0), j0[1] + (c & 2 ? 7 : 0), j0[2] + (c & 4 ? 7 : 0)));
       lo = openvdb::math::minComponent(lo, i), hi = openvdb::math::maxComponent(hi, i);
     }
-    const Coord a(int(std::floor(lo[0])) - 1, int(std::floor(lo[1])) - 1, int(std::floor(lo[2])) - 1);
+    const Coord a(int(std::floor(lo[0])) - 1, int(std::floor(lo[1])) - 1,
+                  int(std::floor(lo[2])) - 1);
     const Coord b(int(std::ceil(hi[0])) + 1, int(std::ceil(hi[1])) + 1, int(std::ceil(hi[2])) + 1);
     for (int x = a[0] & ~7; x <= b[0]; x += 8)
       for (int y = a[1] & ~7; y <= b[1]; y += 8)
@@ -180,7 +194,7 @@ struct Resampler {
 /// What the placed grid gets at one block.
 struct PlacedBlock {
   Coord origin;
-  int kind;  ///< 0 outside (nothing), 1 inside tile, 2 leaf to sample
+  int kind; ///< 0 outside (nothing), 1 inside tile, 2 leaf to sample
 };
 
 /// Index box (block-aligned) of the new grid: R / scale applied to the source's content box.
@@ -188,9 +202,12 @@ openvdb::CoordBBox placed_box(const swarf_stock &s, const double rot[9], double 
   const openvdb::CoordBBox &c = s.content;
   Vec3d lo(1e300), hi(-1e300);
   for (int k = 0; k < 8; k++) {
-    const Vec3d i(k & 1 ? c.max()[0] : c.min()[0], k & 2 ? c.max()[1] : c.min()[1], k & 4 ? c.max()[2] : c.min()[2]);
-    const Vec3d j = Vec3d(rot[0] * i[0] + rot[1] * i[1] + rot[2] * i[2], rot[3] * i[0] + rot[4] * i[1] + rot[5] * i[2],
-                          rot[6] * i[0] + rot[7] * i[1] + rot[8] * i[2]) / scale;
+    const Vec3d i(k & 1 ? c.max()[0] : c.min()[0], k & 2 ? c.max()[1] : c.min()[1],
+                  k & 4 ? c.max()[2] : c.min()[2]);
+    const Vec3d j = Vec3d(rot[0] * i[0] + rot[1] * i[1] + rot[2] * i[2],
+                          rot[3] * i[0] + rot[4] * i[1] + rot[5] * i[2],
+                          rot[6] * i[0] + rot[7] * i[1] + rot[8] * i[2]) /
+                    scale;
     lo = openvdb::math::minComponent(lo, j), hi = openvdb::math::maxComponent(hi, j);
   }
   int a[3], b[3];
@@ -211,10 +228,13 @@ swarf_stock *resample(const swarf_stock &s, const Rigid &m, double voxel, int ha
   const double scale = voxel / s.voxel;
   const float bg = band_background(half_width, voxel);
   bool identity = scale == 1.0 && bg == s.background;
-  for (int k = 0; k < 9; k++) identity = identity && m.rot[k] == (k % 4 == 0 ? 1.0 : 0.0);
-  for (int k = 0; k < 3; k++) identity = identity && m.t[k] == 0.0;
-  if (identity) return wrap_grid(s.grid->deepCopy());  // a copy, bit for bit
-  if (!(scale > 1e-3 && scale < 1e3)) throw Error(SWARF_ERR_ARG, "the new voxel is too far from the old one");
+  for (int k = 0; k < 9; k++)
+    identity = identity && m.rot[k] == (k % 4 == 0 ? 1.0 : 0.0);
+  for (int k = 0; k < 3; k++)
+    identity = identity && m.t[k] == 0.0;
+  if (identity) return wrap_grid(s.grid->deepCopy()); // a copy, bit for bit
+  if (!(scale > 1e-3 && scale < 1e3))
+    throw Error(SWARF_ERR_ARG, "the new voxel is too far from the old one");
   Resampler rs{s, {}, scale == 1.0, bg};
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
@@ -233,57 +253,67 @@ swarf_stock *resample(const swarf_stock &s, const Rigid &m, double voxel, int ha
   if (!s.content.empty()) {
     const openvdb::CoordBBox box = placed_box(s, m.rot, scale);
     if (box.volume() / 512 > (uint64_t(1) << 27))
-      throw Error(SWARF_ERR_LIMIT, "the stock is too large to place or resample (over 6.9e10 voxels)");
+      throw Error(SWARF_ERR_LIMIT,
+                  "the stock is too large to place or resample (over 6.9e10 voxels)");
     for (int x = box.min()[0]; x <= box.max()[0]; x += 8)
       for (int y = box.min()[1]; y <= box.max()[1]; y += 8)
-        for (int z = box.min()[2]; z <= box.max()[2]; z += 8) blocks.push_back({Coord(x, y, z), 0});
+        for (int z = box.min()[2]; z <= box.max()[2]; z += 8)
+          blocks.push_back({Coord(x, y, z), 0});
   }
   const Tree &src = s.grid->constTree();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 64), [&](const tbb::blocked_range<size_t> &r) {
-    openvdb::tree::ValueAccessor<const Tree> acc(src);
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      PlacedBlock &b = blocks[i];
-      if (!rs.uniform(acc, b.origin)) b.kind = 2;
-      else b.kind = rs.value(acc, Vec3d(b.origin[0] + 3.5, b.origin[1] + 3.5, b.origin[2] + 3.5)) < 0.0f ? 1 : 0;
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, blocks.size(), 64), [&](const tbb::blocked_range<size_t> &r) {
+        openvdb::tree::ValueAccessor<const Tree> acc(src);
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          PlacedBlock &b = blocks[i];
+          if (!rs.uniform(acc, b.origin))
+            b.kind = 2;
+          else
+            b.kind =
+                rs.value(acc, Vec3d(b.origin[0] + 3.5, b.origin[1] + 3.5, b.origin[2] + 3.5)) < 0.0f
+                    ? 1
+                    : 0;
+        }
+      });
   Tree &tree = grid->tree();
   std::vector<Leaf *> dense;
   for (const PlacedBlock &b : blocks) {
     if (b.kind == 1) tree.addTile(1, b.origin, -bg, false);
     if (b.kind == 2) dense.push_back(tree.touchLeaf(b.origin));
   }
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, dense.size(), 4), [&](const tbb::blocked_range<size_t> &r) {
-    openvdb::tree::ValueAccessor<const Tree> acc(src);
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      Leaf &leaf = *dense[i];
-      const Coord o = leaf.origin();
-      for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
-        const Coord j = o + Leaf::offsetToLocalCoord(n);
-        leaf.setValueOnly(n, rs.value(acc, Vec3d(j[0], j[1], j[2])));
-      }
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, dense.size(), 4),
+                    [&](const tbb::blocked_range<size_t> &r) {
+                      openvdb::tree::ValueAccessor<const Tree> acc(src);
+                      for (size_t i = r.begin(); i != r.end(); ++i) {
+                        Leaf &leaf = *dense[i];
+                        const Coord o = leaf.origin();
+                        for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
+                          const Coord j = o + Leaf::offsetToLocalCoord(n);
+                          leaf.setValueOnly(n, rs.value(acc, Vec3d(j[0], j[1], j[2])));
+                        }
+                      }
+                    });
   normalize_band(*grid, bg);
   return wrap_grid(grid);
 }
 
-std::unique_ptr<swarf_stock> read_vdb(const char *path, const swarf_stock_placement *p, double voxel,
-                                      int half_width) {
+std::unique_ptr<swarf_stock> read_vdb(const char *path, const swarf_stock_placement *p,
+                                      double voxel, int half_width) {
   check_path(path);
   check_readable(path);
-  if (!(voxel >= 0.0) || !std::isfinite(voxel)) throw Error(SWARF_ERR_ARG, "voxel must be 0 (the file's) or > 0");
+  if (!(voxel >= 0.0) || !std::isfinite(voxel))
+    throw Error(SWARF_ERR_ARG, "voxel must be 0 (the file's) or > 0");
   init_openvdb();
   openvdb::FloatGrid::Ptr grid = read_grid(path);
-  std::unique_ptr<swarf_stock> s(wrap_grid(grid));  // checks the transform and the background
+  std::unique_ptr<swarf_stock> s(wrap_grid(grid)); // checks the transform and the background
   normalize_band(*grid, s->background);
   s.reset(wrap_grid(grid));
   if (!has_material(*grid)) throw Error(SWARF_ERR_FORMAT, "the grid holds no material");
   const bool revoxel = voxel > 0.0 && std::fabs(voxel - s->voxel) > 1e-9 * voxel;
   if (revoxel || (p && !placement_is_identity(*p))) {
     const int hw = half_width > 0 ? half_width : std::max(3, s->half_width);
-    s.reset(resample(*s, placement_map(p ? *p : swarf_stock_placement{}), revoxel ? voxel : s->voxel,
-                     revoxel ? hw : s->half_width));
+    s.reset(resample(*s, placement_map(p ? *p : swarf_stock_placement{}),
+                     revoxel ? voxel : s->voxel, revoxel ? hw : s->half_width));
   }
   return s;
 }
@@ -291,12 +321,13 @@ std::unique_ptr<swarf_stock> read_vdb(const char *path, const swarf_stock_placem
 std::string lower_extension(const char *path) {
   const char *dot = std::strrchr(path, '.'), *slash = std::strrchr(path, '/');
   std::string ext = dot && (!slash || dot > slash) ? dot + 1 : "";
-  for (char &c : ext) c = char(std::tolower((unsigned char)c));
+  for (char &c : ext)
+    c = char(std::tolower((unsigned char)c));
   return ext;
 }
 
-swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double voxel, int half_width,
-                      bool keep_surface = false) {
+swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double voxel,
+                      int half_width, bool keep_surface = false) {
   check_grid_args(voxel, half_width);
   const Rigid m = placement_map(p ? *p : swarf_stock_placement{});
   TriMesh mesh;
@@ -309,12 +340,13 @@ swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double v
     pts[i] = Vec3s(float(y[0]), float(y[1]), float(y[2]));
   }
   std::vector<Vec3I> tris(mesh.triangles());
-  for (size_t t = 0; t < tris.size(); t++) tris[t] = Vec3I(mesh.tri[3 * t], mesh.tri[3 * t + 1], mesh.tri[3 * t + 2]);
-  return mesh_stock(pts, tris, {}, voxel, half_width, keep_surface);  // the guard names the path
+  for (size_t t = 0; t < tris.size(); t++)
+    tris[t] = Vec3I(mesh.tri[3 * t], mesh.tri[3 * t + 1], mesh.tri[3 * t + 2]);
+  return mesh_stock(pts, tris, {}, voxel, half_width, keep_surface); // the guard names the path
 }
 
-}  // namespace
-}  // namespace swarf
+} // namespace
+} // namespace swarf
 
 using swarf::Error;
 
@@ -342,7 +374,8 @@ extern "C" swarf_status swarf_stock_place(const swarf_stock *s, const swarf_stoc
                                           swarf_stock **out, swarf_error *err) {
   if (out) *out = nullptr;
   return swarf::guard(err, nullptr, [&] {
-    if (s == nullptr || p == nullptr || out == nullptr) throw Error(SWARF_ERR_ARG, "stock, placement or out is NULL");
+    if (s == nullptr || p == nullptr || out == nullptr)
+      throw Error(SWARF_ERR_ARG, "stock, placement or out is NULL");
     *out = swarf::resample(*s, swarf::placement_map(*p), s->voxel, s->half_width);
   });
 }

@@ -68,6 +68,6 @@ MeshFormat mesh_format(const char *path);
 /// Write the mesh to the stream in the format (STL ignores colours).
 void write_mesh(std::ostream &os, const MeshView &m, MeshFormat f);
 
-}  // namespace swarf
+} // namespace swarf
 
 #endif

@@ -25,6 +25,6 @@ Rigid placement_map(const swarf_stock_placement &p);
 /// True if the placement is the identity (all zero).
 bool placement_is_identity(const swarf_stock_placement &p);
 
-}  // namespace swarf
+} // namespace swarf
 
 #endif

@@ -16,7 +16,8 @@ namespace swarf {
 namespace {
 
 void put_u32_be(std::string &out, uint32_t v) {
-  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(char((v >> shift) & 0xff));
+  for (int shift = 24; shift >= 0; shift -= 8)
+    out.push_back(char((v >> shift) & 0xff));
 }
 
 void put_chunk(std::string &out, const char type[4], const unsigned char *data, size_t len) {
@@ -46,7 +47,7 @@ std::vector<unsigned char> deflate_rows(const unsigned char *rgb, unsigned width
   return z;
 }
 
-}  // namespace
+} // namespace
 
 std::string png_encode_rgb(const unsigned char *rgb, unsigned width, unsigned height) {
   if (rgb == nullptr || width == 0 || height == 0 || uint64_t(width) * height > (1u << 28))
@@ -58,11 +59,11 @@ std::string png_encode_rgb(const unsigned char *rgb, unsigned width, unsigned he
     ihdr[i] = (unsigned char)(width >> (24 - 8 * i));
     ihdr[4 + i] = (unsigned char)(height >> (24 - 8 * i));
   }
-  ihdr[8] = 8;   // bits per sample
-  ihdr[9] = 2;   // colour type: RGB
-  ihdr[10] = 0;  // compression: deflate
-  ihdr[11] = 0;  // filter method 0
-  ihdr[12] = 0;  // no interlace
+  ihdr[8] = 8;  // bits per sample
+  ihdr[9] = 2;  // colour type: RGB
+  ihdr[10] = 0; // compression: deflate
+  ihdr[11] = 0; // filter method 0
+  ihdr[12] = 0; // no interlace
   put_chunk(out, "IHDR", ihdr, sizeof ihdr);
   const std::vector<unsigned char> z = deflate_rows(rgb, width, height);
   put_chunk(out, "IDAT", z.data(), z.size());
@@ -70,4 +71,4 @@ std::string png_encode_rgb(const unsigned char *rgb, unsigned width, unsigned he
   return out;
 }
 
-}  // namespace swarf
+} // namespace swarf

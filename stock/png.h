@@ -14,6 +14,6 @@ namespace swarf {
 /// when memory runs out.
 std::string png_encode_rgb(const unsigned char *rgb, unsigned width, unsigned height);
 
-}  // namespace swarf
+} // namespace swarf
 
 #endif

@@ -33,11 +33,11 @@ enum Action : uint8_t { kSkip, kClear, kVisitLeaf, kVisitTile, kCollapse };
 struct Pass {
   swarf_stock &s;
   const swarf_stock_cut *cuts;
-  double voxel;                     ///< mm
-  float bgf;                        ///< band half-width (the background), mm
-  double reach;                     ///< half diagonal of a block plus the band, mm
-  float radius[Leaf::SIZE];         ///< distance (mm) from each voxel centre to the block centre
-  double roct[Leaf::SIZE];          ///< distance (mm) from each voxel centre to its octant's centre
+  double voxel;             ///< mm
+  float bgf;                ///< band half-width (the background), mm
+  double reach;             ///< half diagonal of a block plus the band, mm
+  float radius[Leaf::SIZE]; ///< distance (mm) from each voxel centre to the block centre
+  double roct[Leaf::SIZE];  ///< distance (mm) from each voxel centre to its octant's centre
   double rcube[64]; ///< distance (mm) from the block centre to each 2^3 cube's farthest voxel
   const Measure *measure = nullptr; ///< measured removal (per-cut volumes, gouges)
   bool flat = false;                ///< SWARF_REMOVE_FLAT=1: no hierarchy (tests)

@@ -69,7 +69,8 @@ extern "C" swarf_status swarf_stock_clear_sheets(swarf_stock *s, long long *clea
     const float full = float(s->voxel * (1.0 - 1e-6));
     const std::vector<openvdb::Coord> sheets = swarf::find_sheets(*s, tie, full);
     openvdb::FloatGrid::Accessor acc(s->grid->tree());
-    for (const openvdb::Coord &c : sheets) acc.setValueOn(c, air);
+    for (const openvdb::Coord &c : sheets)
+      acc.setValueOn(c, air);
     if (cleared != nullptr) *cleared = (long long)sheets.size();
   });
 }

@@ -154,9 +154,9 @@ SWARF_API swarf_status swarf_stock_overlaps(const swarf_stock *s, const swarf_st
  * Read-only; *hit gets 1 or 0, where (may be NULL) the first such voxel
  * centre found. For the non-cutting parts of a tool (tools/sim/collide.c). */
 SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
-                                             const swarf_stock_cut *clear, size_t nclear,
-                                             double depth, int *hit, double where[3],
-                                             swarf_error *err);
+                                              const swarf_stock_cut *clear, size_t nclear,
+                                              double depth, int *hit, double where[3],
+                                              swarf_error *err);
 
 /* Threads the stock's passes (removal, the checks of cuts) may use: n >= 1,
  * or 0 for all cores (the default). Per handle; not while a pass runs on it. */
@@ -397,20 +397,20 @@ SWARF_API swarf_status swarf_stock_check_design(const swarf_stock *s, const swar
  * around p that the region is known to hold (|stock value|, at most one
  * voxel): exact for flat floors and walls, within a voxel always. */
 typedef struct {
-  double tolerance;       /* mm, as used */
-  double reach;           /* mm: deviations beyond it read as it (the design's band) */
-  double stock_volume;    /* mm^3 of material */
-  double design_volume;   /* mm^3 of the design */
-  double gouge_volume;    /* mm^3 */
-  double gouge_depth;     /* mm, deepest gouge below the design's surface; 0 if none */
-  double gouge_at[3];     /* mm, where (NaN if none) */
-  int gouge_clamped;      /* 1: gouge_depth reached the reach: the gouge is deeper */
-  double excess_volume;   /* mm^3 */
-  double excess_height;   /* mm, largest excess above the design's surface; 0 if none */
-  double excess_at[3];    /* mm, where (NaN if none) */
-  int excess_clamped;     /* 1: excess_height reached the reach: the excess is larger */
-  double missing_volume;  /* mm^3 of design deeper than t where `initial` had no
-                           * material (0 without `initial`) */
+  double tolerance;      /* mm, as used */
+  double reach;          /* mm: deviations beyond it read as it (the design's band) */
+  double stock_volume;   /* mm^3 of material */
+  double design_volume;  /* mm^3 of the design */
+  double gouge_volume;   /* mm^3 */
+  double gouge_depth;    /* mm, deepest gouge below the design's surface; 0 if none */
+  double gouge_at[3];    /* mm, where (NaN if none) */
+  int gouge_clamped;     /* 1: gouge_depth reached the reach: the gouge is deeper */
+  double excess_volume;  /* mm^3 */
+  double excess_height;  /* mm, largest excess above the design's surface; 0 if none */
+  double excess_at[3];   /* mm, where (NaN if none) */
+  int excess_clamped;    /* 1: excess_height reached the reach: the excess is larger */
+  double missing_volume; /* mm^3 of design deeper than t where `initial` had no
+                          * material (0 without `initial`) */
 } swarf_stock_deviation;
 
 /* Tolerance <= 0: half the stock's voxel. The grids may have different
@@ -436,13 +436,13 @@ SWARF_API swarf_status swarf_stock_gouge(const swarf_stock *s, const swarf_stock
 
 /* What one cut of a batch did (swarf_stock_remove_batch_measured). */
 typedef struct {
-  double removed;      /* mm^3 it removed from the stock as it stood: removed_voxels * voxel^3 */
+  double removed;        /* mm^3 it removed from the stock as it stood: removed_voxels * voxel^3 */
   double removed_voxels; /* the same in voxel volumes, summed per block in whole multiples
-                        * of 2^-16 (each block's rounded), so that the sums of parts
-                        * of a stock (swarf_stock_set_region) add up to the same bits */
-  double gouge_depth;  /* mm, as swarf_stock_gouge against the stock as it stood
-                        * (0: none deeper than the tolerance, or no design) */
-  double gouge_at[3];  /* mm, where (NaN when gouge_depth is 0) */
+                          * of 2^-16 (each block's rounded), so that the sums of parts
+                          * of a stock (swarf_stock_set_region) add up to the same bits */
+  double gouge_depth;    /* mm, as swarf_stock_gouge against the stock as it stood
+                          * (0: none deeper than the tolerance, or no design) */
+  double gouge_at[3];    /* mm, where (NaN when gouge_depth is 0) */
 } swarf_stock_cut_effect;
 
 /* swarf_stock_remove_batch, measuring each cut in order: cut i acts on the
@@ -452,12 +452,9 @@ typedef struct {
  * after (to rounding: 2^-17 voxel a block and cut at most). design (may be NULL) and tolerance
  * as in swarf_stock_gouge. effects[ncuts] is filled. The grid ends
  * bit-identical to swarf_stock_remove_batch's. */
-SWARF_API swarf_status swarf_stock_remove_batch_measured(swarf_stock *s,
-                                                         const swarf_stock_cut *cuts, size_t ncuts,
-                                                         const swarf_stock *design,
-                                                         double tolerance,
-                                                         swarf_stock_cut_effect *effects,
-                                                         swarf_error *err);
+SWARF_API swarf_status swarf_stock_remove_batch_measured(
+    swarf_stock *s, const swarf_stock_cut *cuts, size_t ncuts, const swarf_stock *design,
+    double tolerance, swarf_stock_cut_effect *effects, swarf_error *err);
 
 /* swarf_stock_remove_batch_measured with a companion per cut (support may be
  * NULL, as in swarf_stock_remove_batch_support): fewer sdf evaluations, the
@@ -497,12 +494,12 @@ SWARF_API swarf_status swarf_stock_view_parse(const char *name, swarf_stock_view
 
 /* Options of a picture or a mesh. Zero values: 1024 x 768, iso, no design. */
 typedef struct {
-  int width, height;           /* pixels (pictures only) */
+  int width, height; /* pixels (pictures only) */
   swarf_stock_view view;
-  const swarf_stock *design;   /* non-NULL: colour by signed deviation from it */
-  double tolerance;            /* mm, within +-tolerance is green; <= 0: half a voxel */
-  double range;                /* mm, full blue (gouge) / red (excess) at -+range;
-                                * <= 0: 4 tolerances */
+  const swarf_stock *design; /* non-NULL: colour by signed deviation from it */
+  double tolerance;          /* mm, within +-tolerance is green; <= 0: half a voxel */
+  double range;              /* mm, full blue (gouge) / red (excess) at -+range;
+                              * <= 0: 4 tolerances */
 } swarf_stock_output;
 
 /* A PNG ray traced with OpenVDB's LevelSetRayTracer from opt->view. With a

@@ -24,6 +24,6 @@ inline void check_path(const char *path) {
   if (path == nullptr || path[0] == '\0') throw Error(SWARF_ERR_ARG, "path is NULL or empty");
 }
 
-}  // namespace swarf
+} // namespace swarf
 
 #endif

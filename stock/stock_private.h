@@ -25,7 +25,7 @@
 
 namespace swarf {
 
-struct MeshSurface;  // mesh_sdf.h
+struct MeshSurface; // mesh_sdf.h
 
 /// Exact distance (mm, >= 0) from world point w to the surface of design d
 /// (d.surface non-null; mesh_sdf.cc).
@@ -46,35 +46,35 @@ struct BlockCut {
 
 /// A block of a removal and what the removal does to it.
 struct Block {
-  openvdb::Coord origin;  ///< index origin of the 8^3 block
-  uint32_t begin, count;  ///< its cuts: pairs[begin, begin + count) after classification
-  uint8_t action;         ///< see remove.cc
-  float tile;             ///< value of the tile replacing the block when it collapses; for a
-                          ///< block that was a tile, that tile's value until then
-  bool tile_on;           ///< a block that was a tile: that tile's active state
+  openvdb::Coord origin; ///< index origin of the 8^3 block
+  uint32_t begin, count; ///< its cuts: pairs[begin, begin + count) after classification
+  uint8_t action;        ///< see remove.cc
+  float tile;            ///< value of the tile replacing the block when it collapses; for a
+                         ///< block that was a tile, that tile's value until then
+  bool tile_on;          ///< a block that was a tile: that tile's active state
 };
 
 /// Buffers of the removal, kept in the handle so that a removal allocates nothing
 /// once they have grown (one removal at a time per handle).
 struct RemoveScratch {
   std::vector<BlockCut> pairs;
-  std::vector<double> centre_sdf;  ///< sdf (mm) at the block centre, one per pair
+  std::vector<double> centre_sdf; ///< sdf (mm) at the block centre, one per pair
   std::vector<Block> blocks;
-  std::vector<uint32_t> visit;     ///< blocks whose voxels are visited
+  std::vector<uint32_t> visit; ///< blocks whose voxels are visited
   /// Per visited block that was a tile: its leaf, made by the visit and put
   /// in the tree after it (null where it collapsed back to a tile).
   std::vector<std::unique_ptr<openvdb::FloatTree::LeafNodeType>> fresh;
   /// Measured removals only, one per pair: what the pair's cut did in the block.
-  std::vector<double> removed;     ///< inside fraction removed (voxels, not yet mm^3)
-  std::vector<double> gouge;       ///< deepest gouge (mm), 0 if none
+  std::vector<double> removed; ///< inside fraction removed (voxels, not yet mm^3)
+  std::vector<double> gouge;   ///< deepest gouge (mm), 0 if none
   std::vector<openvdb::Vec3d> gouge_at;
 };
 
 /// What a measured removal measures (remove_cuts).
 struct Measure {
-  const swarf_stock *design;  ///< may be NULL: no gouges
-  double tolerance;           ///< mm
-  swarf_stock_cut_effect *effects;  ///< one per cut, filled
+  const swarf_stock *design;       ///< may be NULL: no gouges
+  double tolerance;                ///< mm
+  swarf_stock_cut_effect *effects; ///< one per cut, filled
   /// false: the gouges only (swarf_stock_remove_batch_gouges_support): no
   /// volumes (removed left 0), and voxels that cannot gouge are not replayed
   bool volumes = true;
@@ -110,16 +110,16 @@ template <class F> swarf_status guard(swarf_error *err, const char *file, F &&bo
   }
 }
 
-}  // namespace swarf
+} // namespace swarf
 
 /// The stock: a float narrow-band level set (negative inside material).
 struct swarf_stock {
   openvdb::FloatGrid::Ptr grid;
-  double voxel;                 ///< voxel edge, mm
-  openvdb::Vec3d origin;        ///< world position (mm) of the voxel centre at index (0,0,0)
-  float background;             ///< band half-width in mm: inactive values are +-background
-  int half_width;               ///< band half-width in voxels (background / voxel, rounded)
-  openvdb::CoordBBox content;   ///< index box holding all material and band; never grows
+  double voxel;               ///< voxel edge, mm
+  openvdb::Vec3d origin;      ///< world position (mm) of the voxel centre at index (0,0,0)
+  float background;           ///< band half-width in mm: inactive values are +-background
+  int half_width;             ///< band half-width in voxels (background / voxel, rounded)
+  openvdb::CoordBBox content; ///< index box holding all material and band; never grows
   swarf::RemoveScratch scratch;
   /// A design read from a mesh: its triangles (index space of this grid),
   /// for exact distances beyond the band (mesh_sdf.h); null otherwise.
@@ -170,8 +170,7 @@ void fill_shape(swarf_stock &s, swarf_stock_sdf_fn outside, const void *ctx,
 /// assumed checked. On an exception the stock may be partly cut but stays a
 /// valid narrow band.
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts,
-                 const Measure *measure = nullptr,
-                 const swarf_stock_support_fn *support = nullptr);
+                 const Measure *measure = nullptr, const swarf_stock_support_fn *support = nullptr);
 
 /// Tolerance and colour range (mm) of an output's options with the defaults
 /// of stock.h filled in (render.cc). Throws Error(ARG) for bad values.
@@ -236,7 +235,9 @@ public:
   /// Value (mm) at world point w (a voxel centre of frame).
   double at(const openvdb::Vec3d &w) {
     const openvdb::Vec3d i = (w - g_.origin) / g_.voxel;
-    if (aligned_) return acc_.getValue(openvdb::Coord(int(std::lround(i[0])), int(std::lround(i[1])), int(std::lround(i[2]))));
+    if (aligned_)
+      return acc_.getValue(
+          openvdb::Coord(int(std::lround(i[0])), int(std::lround(i[1])), int(std::lround(i[2]))));
     return trilinear(i);
   }
   /// Value at the frame's voxel whose index in g is ijk (aligned probes only).
@@ -277,8 +278,10 @@ private:
 /// How far (mm) the region a voxel centre vouches for reaches beyond it: the
 /// radius of the ball the region is known to hold (|value| of the grids
 /// bounding it), capped at one voxel (the estimate of stock.h's depths).
-inline double vouched_radius(double r, double voxel) { return r < voxel ? r : voxel; }
+inline double vouched_radius(double r, double voxel) {
+  return r < voxel ? r : voxel;
+}
 
-}  // namespace swarf
+} // namespace swarf
 
 #endif

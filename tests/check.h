@@ -12,23 +12,23 @@
 
 static int check_passed_, check_failed_;
 
-#define CHECK(cond, ...)                                                                \
-  do {                                                                                  \
-    if (cond) {                                                                         \
-      check_passed_++;                                                                  \
-    } else {                                                                            \
-      check_failed_++;                                                                  \
-      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);         \
-      fprintf(stderr, __VA_ARGS__);                                                     \
-      fputc('\n', stderr);                                                              \
-    }                                                                                   \
+#define CHECK(cond, ...)                                                                           \
+  do {                                                                                             \
+    if (cond) {                                                                                    \
+      check_passed_++;                                                                             \
+    } else {                                                                                       \
+      check_failed_++;                                                                             \
+      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);                     \
+      fprintf(stderr, __VA_ARGS__);                                                                \
+      fputc('\n', stderr);                                                                         \
+    }                                                                                              \
   } while (0)
 
-#define CHECK_NEAR(a, b, tol, what)                                                     \
-  do {                                                                                  \
-    double check_a_ = (a), check_b_ = (b);                                              \
-    CHECK(fabs(check_a_ - check_b_) <= (tol), "%s: %.9g vs %.9g (tol %.3g)", (what),   \
-          check_a_, check_b_, (double)(tol));                                           \
+#define CHECK_NEAR(a, b, tol, what)                                                                \
+  do {                                                                                             \
+    double check_a_ = (a), check_b_ = (b);                                                         \
+    CHECK(fabs(check_a_ - check_b_) <= (tol), "%s: %.9g vs %.9g (tol %.3g)", (what), check_a_,     \
+          check_b_, (double)(tol));                                                                \
   } while (0)
 
 static inline int check_done(void) {

@@ -247,8 +247,9 @@ static swarf_status check_sizes(const swarf_cutter_spec *s, swarf_error *err) {
   static const char *const letter[] = {"D", "R", "L", "T", "E", "F", "H", "K"};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
     if (given(v[i]) && isfinite(v[i]) && fabs(v[i]) > SWARF_CUTTER_MAX_MM)
-      return bad(err, letter[i], "%g mm is beyond any cutter (at most %g mm; a typo or a unit slip)",
-                 v[i], SWARF_CUTTER_MAX_MM);
+      return bad(err, letter[i],
+                 "%g mm is beyond any cutter (at most %g mm; a typo or a unit slip)", v[i],
+                 SWARF_CUTTER_MAX_MM);
   if (given(s->d) && s->d > 0 && s->d < SWARF_CUTTER_MIN_MM)
     return bad(err, "D", "the diameter %g mm is below %g mm (a typo or a unit slip)", s->d,
                SWARF_CUTTER_MIN_MM);

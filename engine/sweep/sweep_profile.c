@@ -40,8 +40,8 @@ static void line_init(swarf_sweep *s, const double p0[3], const double p1[3]) {
     x->p0[k] = p0[k], x->d[k] = d[k];
   x->inv_h2 = h2 > 0.0 ? 1.0 / h2 : 0.0;
   sd->method = h2 == 0.0     ? SWARF_SWEEP_P_PLUNGE
-              : d[2] == 0.0 ? SWARF_SWEEP_P_SLOT
-                            : SWARF_SWEEP_P_RAMP;
+               : d[2] == 0.0 ? SWARF_SWEEP_P_SLOT
+                             : SWARF_SWEEP_P_RAMP;
 }
 
 void swarf_sweep_profile_init(swarf_sweep *s, double voxel) {

@@ -27,7 +27,8 @@ static volatile double sink;
 static void grid_point(const double lo[3], const double hi[3], int n, int i, int j, int k,
                        double p[3]) {
   int ijk[3] = {i, j, k};
-  for (int d = 0; d < 3; d++) p[d] = lo[d] - 1.0 + (hi[d] - lo[d] + 2.0) * (ijk[d] + 0.5) / n;
+  for (int d = 0; d < 3; d++)
+    p[d] = lo[d] - 1.0 + (hi[d] - lo[d] + 2.0) * (ijk[d] + 0.5) / n;
 }
 
 static double time_sdf(const swarf_sweep *s, const double lo[3], const double hi[3]) {
@@ -54,7 +55,8 @@ static double time_brute(const swarf_cutter *c, const swarf_motion *m, const dou
       for (int k = 0; k < BRUTE_GRID; k++) {
         double best = INFINITY;
         grid_point(lo, hi, BRUTE_GRID, i, j, k, p);
-        for (int a = 0; a <= BRUTE_N; a++) best = fmin(best, tk_instance(c, m, p, (double)a / BRUTE_N));
+        for (int a = 0; a <= BRUTE_N; a++)
+          best = fmin(best, tk_instance(c, m, p, (double)a / BRUTE_N));
         acc += best;
       }
   sink = acc;
@@ -68,8 +70,8 @@ static void run(const char *name, const swarf_cutter *c, swarf_motion m) {
   swarf_sweep_bounds(&s, lo, hi);
   fast = time_sdf(&s, lo, hi);
   slow = time_brute(c, &m, lo, hi);
-  printf("%-22s method %d  %8.1f ns/eval   brute(%d) %10.0f ns/eval   x%.0f\n", name, swarf_sweep_cdata(&s)->method,
-         fast, BRUTE_N + 1, slow, slow / fast);
+  printf("%-22s method %d  %8.1f ns/eval   brute(%d) %10.0f ns/eval   x%.0f\n", name,
+         swarf_sweep_cdata(&s)->method, fast, BRUTE_N + 1, slow, slow / fast);
 }
 
 int main(void) {

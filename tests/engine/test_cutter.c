@@ -60,7 +60,8 @@ static void check_point(const swarf_cutter *c, const double n[3], const char *wh
   CHECK(fabs(swarf_cutter_sdf(c, x)) < 1e-12, "%s: x_h(n) on the surface (sdf %.3g)", what,
         swarf_cutter_sdf(c, x));
   CHECK_NEAR(tk_dot(x, n), swarf_cutter_support(c, n), 1e-12, "h(n) = x_h(n) . n");
-  for (int k = 0; k < 3; k++) y[k] = x[k] + 0.1 * n[k];
+  for (int k = 0; k < 3; k++)
+    y[k] = x[k] + 0.1 * n[k];
   num_grad(c, y, g);
   CHECK(tk_dist(g, n) < 1e-6, "%s: n is the outward normal (|grad - n| = %.3g)", what,
         tk_dist(g, n));
@@ -93,11 +94,12 @@ static void surface_sample(const swarf_cutter *c, tk_rng *r, double x[3]) {
 static void check_cutter(const swarf_cutter *c, const char *what) {
   tk_rng r = {0x9e3779b97f4a7c15ull};
   static double samples[20000][3];
-  const double special[][3] = {{0, 0, 1},   {0, 0, -1}, {1, 0, 0},    {0, -1, 0},
+  const double special[][3] = {{0, 0, 1},     {0, 0, -1},    {1, 0, 0},   {0, -1, 0},
                                {0.6, 0.8, 0}, {1e-9, 0, -1}, {0, 1e-9, 1}};
   for (size_t i = 0; i < sizeof special / sizeof special[0]; i++) {
     double n[3] = {special[i][0], special[i][1], special[i][2]}, m = sqrt(tk_dot(n, n));
-    for (int k = 0; k < 3; k++) n[k] /= m;
+    for (int k = 0; k < 3; k++)
+      n[k] /= m;
     check_point(c, n, what);
   }
   for (int i = 0; i < 20000; i++) {
@@ -111,7 +113,8 @@ static void check_cutter(const swarf_cutter *c, const char *what) {
     double n[3], best = -INFINITY, h;
     tk_unit(&r, n);
     h = swarf_cutter_support(c, n);
-    for (int j = 0; j < 20000; j++) best = fmax(best, tk_dot(samples[j], n));
+    for (int j = 0; j < 20000; j++)
+      best = fmax(best, tk_dot(samples[j], n));
     CHECK(best <= h + 1e-12 && best >= h - 0.05 * c->diameter,
           "%s: h(n) = max x.n over the surface (%.6g vs %.6g)", what, h, best);
   }

@@ -53,8 +53,7 @@ static void canon_sink(const char *call, void *user) {
 }
 
 /* Program and moves at once; `tools` is the case folder's tools.tbl. */
-static int run(const char *path, const char *tools, canon_text *out, moves *m,
-               swarf_error *err) {
+static int run(const char *path, const char *tools, canon_text *out, moves *m, swarf_error *err) {
   size_t len;
   char *text = canon_slurp(path, &len);
   swarf_gcode_parser *p = NULL;
@@ -177,8 +176,7 @@ static void long_hold(void) {
   swarf_gcode_parser_set_canon(p, canon_sink, &out);
   status = swarf_gcode_parser_feed(p, text, n);
   if (status == SWARF_OK) status = swarf_gcode_parser_finish(p);
-  CHECK(status == SWARF_OK && m->n == MAX_MOVES, "long hold: status %d, %d moves", status,
-        m->n);
+  CHECK(status == SWARF_OK && m->n == MAX_MOVES, "long hold: status %d, %d moves", status, m->n);
   CHECK((double)(clock() - t0) / CLOCKS_PER_SEC < 10, "long hold took %.1f s of CPU",
         (double)(clock() - t0) / CLOCKS_PER_SEC);
   swarf_gcode_parser_free(p);

@@ -463,7 +463,8 @@ static void test_error_order(void) {
   static const char prog[] = "O1000\nG0 X1\nG2 X2 F100\n%\n";
   for (int d = 0; d < 2; d++) {
     const run_out *o = run(d ? SWARF_GCODE_DIALECT_HAAS : SWARF_GCODE_DIALECT_FANUC, prog);
-    CHECK(o->status != SWARF_OK && o->err.line == 3 && o->err.code != SWARF_GCODE_E_PERCENT_NOT_OPEN,
+    CHECK(o->status != SWARF_OK && o->err.line == 3 &&
+              o->err.code != SWARF_GCODE_E_PERCENT_NOT_OPEN,
           "%s: the arc's error at line 3 first (got line %ld: %s)", d ? "haas" : "fanuc",
           o->err.line, o->err.message);
   }
@@ -490,7 +491,8 @@ static void test_tool_words(void) {
     CHECK(out.nnotes >= 1 && out.note_line[out.nnotes - 1] == 4 &&
               strstr(out.note[out.nnotes - 1], "taken as 0") != NULL,
           "%s: G43 H5's note at line 4 (%d notes)", d ? "haas" : "fanuc", out.nnotes);
-    if (out.n == 2) CHECK(out.v[0].end[2] == 5.0, "%s: Z5 with no length offset", d ? "haas" : "fanuc");
+    if (out.n == 2)
+      CHECK(out.v[0].end[2] == 5.0, "%s: Z5 with no length offset", d ? "haas" : "fanuc");
   }
 }
 

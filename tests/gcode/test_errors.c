@@ -299,8 +299,7 @@ static void test_work_limit(void) {
   CHECK(swarf_gcode_parser_set_work_limit(p, 0, &err) == SWARF_ERR_ARG &&
             err.code == SWARF_GCODE_E_WORK_LIMIT_VALUE,
         "a limit of 0");
-  CHECK(swarf_gcode_parser_set_work_limit(p, SWARF_GCODE_WORK_LIMIT_MAX + 1, &err) ==
-            SWARF_ERR_ARG,
+  CHECK(swarf_gcode_parser_set_work_limit(p, SWARF_GCODE_WORK_LIMIT_MAX + 1, &err) == SWARF_ERR_ARG,
         "a limit above the most");
   CHECK(swarf_gcode_parser_set_work_limit(NULL, 10, &err) != SWARF_OK, "no parser");
   swarf_gcode_parser_feed(p, "G0 X1\n", 6);

@@ -134,8 +134,8 @@ static void run_bad(const char *root, const char *file) {
   int status;
   snprintf(path, sizeof path, "%s/linuxcnc/bad-rejected/%s", root, file);
   status = swarf_gcode_parse_file(path, NULL, NULL, &err);
-  CHECK(status == SWARF_ERR_SYNTAX || status == SWARF_ERR_SEMANTIC,
-        "%s: not rejected (status %d)", file, status);
+  CHECK(status == SWARF_ERR_SYNTAX || status == SWARF_ERR_SEMANTIC, "%s: not rejected (status %d)",
+        file, status);
   CHECK(err.line > 1 && err.column >= 1, "%s: error not located (%ld:%d)", file, err.line,
         err.column);
   printf("%-45s %ld:%d: %s\n", file, err.line, err.column, err.message);
@@ -153,7 +153,8 @@ int main(int argc, char **argv) {
   index = canon_slurp(probe, &n);
   if (index == NULL) { /* a clone without ../shared beside it */
     printf("SKIPPED: the conformance corpus is not here (%s): it lives in ../shared beside a "
-           "checkout\n", probe);
+           "checkout\n",
+           probe);
     return 77;
   }
   free(index);

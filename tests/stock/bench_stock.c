@@ -31,8 +31,10 @@ static void make_path(capsule_shape *moves, int n) {
   for (int i = 0; i < n; i++) {
     capsule_shape *c = &moves[i];
     c->a[0] = x, c->a[1] = y, c->a[2] = zc, c->r = r;
-    if (along < 70) x += dir, along++;
-    else y += 1.0, dir = -dir, along = 0;
+    if (along < 70)
+      x += dir, along++;
+    else
+      y += 1.0, dir = -dir, along = 0;
     c->b[0] = x, c->b[1] = y, c->b[2] = zc;
   }
 }
@@ -43,7 +45,8 @@ static int run(double voxel, int batch, int n) {
   capsule_shape *moves = malloc(n * sizeof *moves);
   swarf_stock_cut *cuts = malloc(n * sizeof *cuts);
   make_path(moves, n);
-  for (int i = 0; i < n; i++) cuts[i] = capsule_cut(&moves[i]);
+  for (int i = 0; i < n; i++)
+    cuts[i] = capsule_cut(&moves[i]);
   double t0 = now();
   swarf_stock *s = NULL;
   swarf_stock_new_box(lo, hi, voxel, 3, &s, &err);

@@ -39,11 +39,13 @@ void write_file(const std::string &path, const uint8_t *data, size_t size) {
   std::fclose(f);
 }
 
-double ball_sdf(const void *, double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 0.7; }
+double ball_sdf(const void *, double x, double y, double z) {
+  return std::sqrt(x * x + y * y + z * z) - 0.7;
+}
 
 void refused(swarf_status st, const swarf_error &e) {
   if (st == SWARF_OK) return;
-  if (e.message[0] == '\0') std::abort();  // a refusal says why
+  if (e.message[0] == '\0') std::abort(); // a refusal says why
 }
 
 /// Use a stock the way the simulator and the comparison do (small ones: a
@@ -52,7 +54,8 @@ void exercise(swarf_stock *s) {
   swarf_error err;
   double lo[3], hi[3], cells = 1.0;
   swarf_stock_bounds(s, lo, hi);
-  for (int k = 0; k < 3; k++) cells *= (hi[k] - lo[k]) / swarf_stock_voxel(s) + 1.0;
+  for (int k = 0; k < 3; k++)
+    cells *= (hi[k] - lo[k]) / swarf_stock_voxel(s) + 1.0;
   if (!(cells < 4e6)) return;
   (void)swarf_stock_volume(s);
   (void)swarf_stock_check(s, NULL);
@@ -85,7 +88,7 @@ void fuzz_stl(const uint8_t *data, size_t size) {
   }
   if (m.triangles() > 2000) return;
   for (float c : m.xyz)
-    if (!(std::fabs(c) < 50.0f)) return;  // keep the grids small
+    if (!(std::fabs(c) < 50.0f)) return; // keep the grids small
   const std::string path = temp_name(".stl");
   write_file(path, data, size);
   swarf_stock *s = nullptr;
@@ -113,9 +116,11 @@ void fuzz_vdb(const uint8_t *data, size_t size) {
   if (s == nullptr) return;
   double lo[3], hi[3], cells = 1.0;
   swarf_stock_bounds(s, lo, hi);
-  for (int k = 0; k < 3; k++) cells *= (hi[k] - lo[k]) / swarf_stock_voxel(s) + 1.0;
-  if (cells < 4e6 && (how & 7)) {  // placed, resampled: what read_vdb does with them
-    st = voxel > 0 ? swarf_stock_resample(s, voxel, 3, &t, &err) : swarf_stock_place(s, &p, &t, &err);
+  for (int k = 0; k < 3; k++)
+    cells *= (hi[k] - lo[k]) / swarf_stock_voxel(s) + 1.0;
+  if (cells < 4e6 && (how & 7)) { // placed, resampled: what read_vdb does with them
+    st = voxel > 0 ? swarf_stock_resample(s, voxel, 3, &t, &err)
+                   : swarf_stock_place(s, &p, &t, &err);
     refused(st, err);
     if (t) swarf_stock_free(s), s = t;
   }
@@ -130,14 +135,20 @@ void fuzz_placement(const uint8_t *data, size_t size) {
   refused(swarf_stock_placement_parse(text.c_str(), &p, &err), err);
 }
 
-}  // namespace
+} // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (size < 1) return 0;
   switch (data[0] % 3) {
-    case 0: fuzz_stl(data + 1, size - 1); break;
-    case 1: fuzz_vdb(data + 1, size - 1); break;
-    default: fuzz_placement(data + 1, size - 1); break;
+  case 0:
+    fuzz_stl(data + 1, size - 1);
+    break;
+  case 1:
+    fuzz_vdb(data + 1, size - 1);
+    break;
+  default:
+    fuzz_placement(data + 1, size - 1);
+    break;
   }
   return 0;
 }

@@ -100,7 +100,8 @@ static inline size_t stock_differences(const swarf_stock *a, const swarf_stock *
   if (la.n != lb.n) diff = la.n > lb.n ? la.n - lb.n : lb.n - la.n;
   for (size_t i = 0; i < la.n; i++) {
     double c[3];
-    float v = (float)swarf_stock_voxel_value(b, la.xyz[3 * i], la.xyz[3 * i + 1], la.xyz[3 * i + 2], c);
+    float v =
+        (float)swarf_stock_voxel_value(b, la.xyz[3 * i], la.xyz[3 * i + 1], la.xyz[3 * i + 2], c);
     if (memcmp(&v, &la.value[i], sizeof v) != 0) diff++;
   }
   voxel_list_free(&la);

@@ -20,12 +20,14 @@ static inline void stl_box_triangles(const double lo[3], const double hi[3], flo
     for (int h = 0; h < 2; h++) {
       const int idx[3] = {stl_box_faces[f][0], stl_box_faces[f][1 + h], stl_box_faces[f][2 + h]};
       for (int c = 0; c < 3; c++)
-        for (int k = 0; k < 3; k++) tri[2 * f + h][c][k] = (float)((idx[c] >> k) & 1 ? hi[k] : lo[k]);
+        for (int k = 0; k < 3; k++)
+          tri[2 * f + h][c][k] = (float)((idx[c] >> k) & 1 ? hi[k] : lo[k]);
     }
 }
 
 /* A box stock, NULL on failure. */
-static inline swarf_stock *test_box_(const double lo[3], const double hi[3], double voxel, int half_width) {
+static inline swarf_stock *test_box_(const double lo[3], const double hi[3], double voxel,
+                                     int half_width) {
   swarf_stock *s = NULL;
   return swarf_stock_new_box(lo, hi, voxel, half_width, &s, NULL) == SWARF_OK ? s : NULL;
 }
@@ -44,7 +46,8 @@ static inline int stl_box_write(const char *path, const double lo[3], const doub
   if (how == STL_NONMANIFOLD) memcpy(tri[12], tri[0], sizeof tri[0]), n = 13;
   if (how == STL_FLIPPED) {
     float t[3];
-    memcpy(t, tri[0][1], sizeof t), memcpy(tri[0][1], tri[0][2], sizeof t), memcpy(tri[0][2], t, sizeof t);
+    memcpy(t, tri[0][1], sizeof t), memcpy(tri[0][1], tri[0][2], sizeof t),
+        memcpy(tri[0][2], t, sizeof t);
   }
   if (ascii) {
     fprintf(f, "solid box\n");

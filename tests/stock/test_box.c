@@ -143,12 +143,16 @@ int main(void) {
   swarf_stock_bounds(s, lo, hi);
   for (int k = 0; k < 3; k++) {
     double bg = half_width * voxel;
-    CHECK(lo[k] > box.lo[k] - bg && lo[k] <= box.lo[k] - bg + voxel, "bounds lo[%d] = %g", k, lo[k]);
-    CHECK(hi[k] < box.hi[k] + bg && hi[k] >= box.hi[k] + bg - voxel, "bounds hi[%d] = %g", k, hi[k]);
+    CHECK(lo[k] > box.lo[k] - bg && lo[k] <= box.lo[k] - bg + voxel, "bounds lo[%d] = %g", k,
+          lo[k]);
+    CHECK(hi[k] < box.hi[k] + bg && hi[k] >= box.hi[k] + bg - voxel, "bounds hi[%d] = %g", k,
+          hi[k]);
   }
   CHECK(swarf_stock_check(s, &err) == 0, "checkLevelSet: %s", err.message);
-  CHECK(swarf_stock_sample(s, 1.0, 1.5, -0.5) == -(float)(half_width * voxel), "deep inside is -band");
-  CHECK(swarf_stock_sample(s, 50.0, 1.5, -0.5) == (float)(half_width * voxel), "far outside is +band");
+  CHECK(swarf_stock_sample(s, 1.0, 1.5, -0.5) == -(float)(half_width * voxel),
+        "deep inside is -band");
+  CHECK(swarf_stock_sample(s, 50.0, 1.5, -0.5) == (float)(half_width * voxel),
+        "far outside is +band");
   CHECK(isnan(swarf_stock_sample(s, NAN, 0, 0)), "NaN sample point gives NaN");
   swarf_stock_free(s);
   check_bad_arguments();

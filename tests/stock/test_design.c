@@ -44,7 +44,8 @@ static swarf_stock *design_box(const double lo[3], const double hi[3]) {
   swarf_stock *d = NULL;
   swarf_error err;
   CHECK(stl_box_write("design_box.stl", lo, hi, 0, STL_GOOD) == 0, "write");
-  CHECK(swarf_stock_read_design("design_box.stl", V, &d, &err) == SWARF_OK, "design: %s", err.message);
+  CHECK(swarf_stock_read_design("design_box.stl", V, &d, &err) == SWARF_OK, "design: %s",
+        err.message);
   return d;
 }
 
@@ -68,8 +69,10 @@ static void test_excess(const swarf_stock *s, const swarf_stock *d) {
   CHECK(swarf_stock_compare(s, d, NULL, T, &dev, &err) == SWARF_OK, "%s", err.message);
   const double layer = 9.9 * 9.9 * (1.5 - T);
   printf("excess %.4f mm^3 (analytic %.4f), largest %.3f (reach %.3f, clamped %d), gouge %.4f\n",
-         dev.excess_volume, layer, dev.excess_height, dev.reach, dev.excess_clamped, dev.gouge_volume);
-  CHECK_NEAR(dev.excess_volume, layer, 1e-6 * layer, "excess volume, a 1.5 mm layer less the tolerance");
+         dev.excess_volume, layer, dev.excess_height, dev.reach, dev.excess_clamped,
+         dev.gouge_volume);
+  CHECK_NEAR(dev.excess_volume, layer, 1e-6 * layer,
+             "excess volume, a 1.5 mm layer less the tolerance");
   /* A design read from a mesh keeps its triangles: deviations beyond its
    * band (SWARF_STOCK_DESIGN_BAND voxels, 0.2 mm) are measured against them exactly. */
   CHECK(isinf(dev.reach), "reach: unlimited for a mesh design (%g)", dev.reach);
@@ -97,13 +100,15 @@ static void test_excess_layer(void) {
   swarf_error err;
   CHECK(swarf_stock_compare(s, d, NULL, 0, &dev, &err) == SWARF_OK, "%s", err.message);
   const double layer = 9.9 * 9.9 * (0.32 - T);
-  printf("0.32 mm layer: excess %.4f mm^3 (%.4f), largest %.4f at %.2f %.2f %.2f\n", dev.excess_volume,
-         layer, dev.excess_height, dev.excess_at[0], dev.excess_at[1], dev.excess_at[2]);
+  printf("0.32 mm layer: excess %.4f mm^3 (%.4f), largest %.4f at %.2f %.2f %.2f\n",
+         dev.excess_volume, layer, dev.excess_height, dev.excess_at[0], dev.excess_at[1],
+         dev.excess_at[2]);
   CHECK_NEAR(dev.tolerance, T, 1e-12, "default tolerance: half a voxel");
   CHECK_NEAR(dev.excess_volume, layer, 1e-5 * layer, "layer volume");
   CHECK_NEAR(dev.excess_height, 0.32, 1e-4, "largest excess of a flat layer");
   CHECK(dev.excess_clamped == 0, "not clamped");
-  CHECK(dev.excess_at[2] > -0.28 && dev.excess_at[2] < 0.06, "in the layer: z %.3f", dev.excess_at[2]);
+  CHECK(dev.excess_at[2] > -0.28 && dev.excess_at[2] < 0.06, "in the layer: z %.3f",
+        dev.excess_at[2]);
   swarf_stock_free(d);
   swarf_stock_free(s);
 }
@@ -124,7 +129,8 @@ static void test_gouge(swarf_stock *s, const swarf_stock *d) {
   CHECK(swarf_stock_gouge(s, d, &cuts[0], T, &depth, at, &err) == SWARF_OK, "%s", err.message);
   printf("gouge query before the cut: %.5f at %.2f %.2f %.2f\n", depth, at[0], at[1], at[2]);
   CHECK_NEAR(depth, 0.3, 1e-4, "the ball's gouge depth on a voxel column");
-  CHECK(fabs(at[0] - 5) < 0.15 && fabs(at[1] - 5) < 0.15 && at[2] < -1.45 && at[2] > -1.76, "where");
+  CHECK(fabs(at[0] - 5) < 0.15 && fabs(at[1] - 5) < 0.15 && at[2] < -1.45 && at[2] > -1.76,
+        "where");
   CHECK(swarf_stock_gouge(s, d, &cuts[2], T, &depth, at, &err) == SWARF_OK, "%s", err.message);
   printf("off the voxel column (y 3.05), 0.1 deep: %.5f\n", depth);
   CHECK_NEAR(depth, 0.1, 0.005, "off-column gouge depth");
@@ -132,14 +138,18 @@ static void test_gouge(swarf_stock *s, const swarf_stock *d) {
   swarf_stock *plain = copy(s);
   swarf_stock_cut_effect e[3];
   double before = swarf_stock_volume(s);
-  CHECK(swarf_stock_remove_batch_measured(s, cuts, 3, d, T, e, &err) == SWARF_OK, "%s", err.message);
+  CHECK(swarf_stock_remove_batch_measured(s, cuts, 3, d, T, e, &err) == SWARF_OK, "%s",
+        err.message);
   CHECK(swarf_stock_remove_batch(plain, cuts, 3, NULL) == SWARF_OK, "call failed");
   CHECK(stock_differences(s, plain) == 0, "measured grid = plain grid bit for bit");
   double after = swarf_stock_volume(s), sum = e[0].removed + e[1].removed + e[2].removed;
-  printf("measured: removed %.6f %.6f %.6f (sum %.9f, change %.9f), gouges %.5f %.5f %.5f\n", e[0].removed,
-         e[1].removed, e[2].removed, sum, before - after, e[0].gouge_depth, e[1].gouge_depth, e[2].gouge_depth);
-  CHECK(fabs(sum - (before - after)) <= 1e-9 * before, "per-cut volumes add up: %.12g vs %.12g", sum, before - after);
-  CHECK(e[1].removed == 0 && e[1].gouge_depth == 0, "the repeated cut removes nothing: %g", e[1].removed);
+  printf("measured: removed %.6f %.6f %.6f (sum %.9f, change %.9f), gouges %.5f %.5f %.5f\n",
+         e[0].removed, e[1].removed, e[2].removed, sum, before - after, e[0].gouge_depth,
+         e[1].gouge_depth, e[2].gouge_depth);
+  CHECK(fabs(sum - (before - after)) <= 1e-9 * before, "per-cut volumes add up: %.12g vs %.12g",
+        sum, before - after);
+  CHECK(e[1].removed == 0 && e[1].gouge_depth == 0, "the repeated cut removes nothing: %g",
+        e[1].removed);
   CHECK_NEAR(e[0].gouge_depth, 0.3, 1e-4, "batch gouge depth = the query's");
   CHECK_NEAR(e[2].gouge_depth, 0.1, 0.005, "batch gouge depth (off column)");
   CHECK(swarf_stock_gouge(s, d, &cuts[0], T, &depth, at, &err) == SWARF_OK && depth == 0,
@@ -149,10 +159,12 @@ static void test_gouge(swarf_stock *s, const swarf_stock *d) {
   CHECK(swarf_stock_compare(s, d, initial, T, &dev, &err) == SWARF_OK, "%s", err.message);
   const double h = 0.3 - T, cap = M_PI * h * h * (3 * 1.5 - h) / 3, h2 = 0.1 - T,
                cap2 = M_PI * h2 * h2 * (3 * 1.5 - h2) / 3;
-  printf("after: gouge %.4f mm^3 (caps %.4f), deepest %.5f at %.2f %.2f %.2f, missing %.4f\n", dev.gouge_volume,
-         cap + cap2, dev.gouge_depth, dev.gouge_at[0], dev.gouge_at[1], dev.gouge_at[2], dev.missing_volume);
+  printf("after: gouge %.4f mm^3 (caps %.4f), deepest %.5f at %.2f %.2f %.2f, missing %.4f\n",
+         dev.gouge_volume, cap + cap2, dev.gouge_depth, dev.gouge_at[0], dev.gouge_at[1],
+         dev.gouge_at[2], dev.missing_volume);
   CHECK_NEAR(dev.gouge_depth, 0.3, 1e-4, "deepest gouge");
-  CHECK(fabs(dev.gouge_at[0] - 5) < 0.15 && fabs(dev.gouge_at[1] - 5) < 0.15, "deepest gouge's place");
+  CHECK(fabs(dev.gouge_at[0] - 5) < 0.15 && fabs(dev.gouge_at[1] - 5) < 0.15,
+        "deepest gouge's place");
   CHECK(fabs(dev.gouge_volume - (cap + cap2)) < 0.05 * (cap + cap2), "gouge volume %.4f vs %.4f",
         dev.gouge_volume, cap + cap2);
   CHECK(dev.missing_volume < 1e-9, "nothing missing");
@@ -176,7 +188,8 @@ static void test_deep_gouge(void) {
   double depth, at[3];
   CHECK(swarf_stock_gouge(s, d, &cut, T, &depth, at, &err) == SWARF_OK, "%s", err.message);
   CHECK_NEAR(depth, 1.0, 1e-4, "deep gouge, the query");
-  CHECK(swarf_stock_remove_batch_measured(s, &cut, 1, d, T, &e, &err) == SWARF_OK, "%s", err.message);
+  CHECK(swarf_stock_remove_batch_measured(s, &cut, 1, d, T, &e, &err) == SWARF_OK, "%s",
+        err.message);
   CHECK_NEAR(e.gouge_depth, 1.0, 1e-4, "deep gouge, the measured batch");
   CHECK(swarf_stock_compare(s, d, initial, T, &dev, &err) == SWARF_OK, "%s", err.message);
   printf("deep gouge: query %.5f, batch %.5f, comparison %.5f (clamped %d)\n", depth, e.gouge_depth,
@@ -196,7 +209,8 @@ static void test_cleared_blocks(void) {
   swarf_stock_cut_effect e[2];
   swarf_error err;
   double before = swarf_stock_volume(s);
-  CHECK(swarf_stock_remove_batch_measured(s, cuts, 2, NULL, T, e, &err) == SWARF_OK, "%s", err.message);
+  CHECK(swarf_stock_remove_batch_measured(s, cuts, 2, NULL, T, e, &err) == SWARF_OK, "%s",
+        err.message);
   CHECK(swarf_stock_remove_batch(plain, cuts, 2, NULL) == SWARF_OK, "call failed");
   CHECK(stock_differences(s, plain) == 0, "measured = plain with cleared blocks");
   double change = before - swarf_stock_volume(s);
@@ -301,7 +315,8 @@ static void test_missing_and_elsewhere(void) {
   swarf_error err;
   CHECK(swarf_stock_compare(s, d, initial, T, &dev, &err) == SWARF_OK, "%s", err.message);
   const double missing = (12 - T - 9.95) * (9.9 - 2 * T) * (3.5 - 2 * T);
-  printf("wider design: missing %.4f (analytic %.4f), gouge %.4f\n", dev.missing_volume, missing, dev.gouge_volume);
+  printf("wider design: missing %.4f (analytic %.4f), gouge %.4f\n", dev.missing_volume, missing,
+         dev.gouge_volume);
   CHECK(fabs(dev.missing_volume - missing) < 0.002 * missing, "missing volume");
   CHECK(dev.gouge_volume < 1e-9, "no gouge with the initial stock");
   CHECK(swarf_stock_compare(s, d, NULL, T, &dev, &err) == SWARF_OK, "%s", err.message);

@@ -44,11 +44,13 @@ static size_t damage(const unsigned char *data, size_t len, unsigned char *out, 
   int mode = i % 4;
   if (mode == 0 || mode == 3) {
     int flips = 1 + (int)(next_rand() % 8);
-    for (int k = 0; k < flips; k++) out[next_rand() % len] ^= (unsigned char)(1 + next_rand() % 255);
+    for (int k = 0; k < flips; k++)
+      out[next_rand() % len] ^= (unsigned char)(1 + next_rand() % 255);
   }
   if (mode == 1) {
     int flips = 1 + (int)(next_rand() % 4);
-    for (int k = 0; k < flips; k++) out[next_rand() % (len < 256 ? len : 256)] ^= (unsigned char)(1 + next_rand() % 255);
+    for (int k = 0; k < flips; k++)
+      out[next_rand() % (len < 256 ? len : 256)] ^= (unsigned char)(1 + next_rand() % 255);
   }
   if (mode == 2 || mode == 3) n = next_rand() % len;
   return n;

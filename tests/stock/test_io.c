@@ -126,7 +126,8 @@ static void bad_files(const char *good) {
   refuse("stock_io_header_only.vdb", "header only");
   unsigned char noise[4096];
   srand(99);
-  for (size_t i = 0; i < sizeof noise; i++) noise[i] = (unsigned char)rand();
+  for (size_t i = 0; i < sizeof noise; i++)
+    noise[i] = (unsigned char)rand();
   write_bytes("stock_io_random.vdb", noise, sizeof noise);
   refuse("stock_io_random.vdb", "random bytes");
   write_bytes("stock_io_empty.vdb", "", 0);

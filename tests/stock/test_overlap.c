@@ -36,7 +36,8 @@ int main(void) {
     const double pen = -0.5 + 0.05 * i; /* penetration r - zc, mm */
     capsule_shape ball = {{5.0, 5.0, 1.0 - pen}, {5.0, 5.0, 1.0 - pen}, 1.0};
     int hit = overlaps(s, &ball, depth, where);
-    if (pen < depth) CHECK(hit == 0, "ball %+.2f mm into the top face: not deeper than %.2f", pen, depth);
+    if (pen < depth)
+      CHECK(hit == 0, "ball %+.2f mm into the top face: not deeper than %.2f", pen, depth);
     if (pen > depth + 0.5 * h * 1.7320508) {
       CHECK(hit == 1, "ball %+.2f mm into the top face: found", pen);
       CHECK(where[2] < -depth && where[2] > -pen, "voxel found at depth %.3f", -where[2]);
@@ -45,10 +46,12 @@ int main(void) {
   /* a rapid along the whole stock 0.3 mm into its side face y = 10 */
   capsule_shape side = {{-5.0, 11.2, -2.0}, {25.0, 11.2, -2.0}, 1.5};
   CHECK(overlaps(s, &side, depth, where) == 1, "a long move into the side face is found");
-  CHECK(where[1] > 10.0 - 0.3 && where[1] < 10.0 - depth, "found inside the face band: y %.3f", where[1]);
+  CHECK(where[1] > 10.0 - 0.3 && where[1] < 10.0 - depth, "found inside the face band: y %.3f",
+        where[1]);
   capsule_shape above = {{-5.0, 5.0, 3.0}, {25.0, 5.0, 3.0}, 1.5};
   CHECK(overlaps(s, &above, depth, where) == 0, "a move 1.5 mm above the top is not");
-  CHECK(swarf_stock_volume(s) == vol0 && swarf_stock_active_voxels(s) == act0, "the query changes nothing");
+  CHECK(swarf_stock_volume(s) == vol0 && swarf_stock_active_voxels(s) == act0,
+        "the query changes nothing");
   /* cut a pocket, then the same ball inside the pocket touches nothing */
   capsule_shape pocket = {{15.0, 5.0, 0.0}, {15.0, 5.0, 0.0}, 3.0};
   swarf_stock_cut pc = capsule_cut(&pocket);

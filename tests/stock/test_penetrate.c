@@ -24,7 +24,8 @@ static double box_cb(const void *ctx, double x, double y, double z) {
 static int penetrates(const swarf_stock *s, const box_shape *b, double depth, double where[3]) {
   swarf_error err;
   int hit = -1;
-  swarf_stock_cut cut = {{b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b, NULL};
+  swarf_stock_cut cut = {
+      {b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b, NULL};
   CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, depth, &hit, where, &err) == SWARF_OK, "query: %s",
         err.message);
   return hit;
@@ -42,8 +43,8 @@ int main(void) {
   for (int i = 1; i <= 23; i++) {
     const double pen = 0.0137 * i; /* mm, up to ~0.32 (inside the band, 0.3 mm) and beyond */
     box_shape holder = {{4.0, 3.0, -pen}, {9.0, 7.0, 20.0}};
-    CHECK(penetrates(s, &holder, pen - 2e-4, where) == 1, "%.4f mm deep: found at depth %.4f",
-          pen, pen - 2e-4);
+    CHECK(penetrates(s, &holder, pen - 2e-4, where) == 1, "%.4f mm deep: found at depth %.4f", pen,
+          pen - 2e-4);
     CHECK(where[2] < 0.3 && where[2] > -pen - 0.3, "the voxel found lies near the overlap (z %.3f)",
           where[2]);
     CHECK(penetrates(s, &holder, pen + 2e-4, where) == 0, "%.4f mm deep: not found at depth %.4f",
@@ -72,9 +73,11 @@ int main(void) {
         "a body inside a cleared pocket is not found");
   CHECK(swarf_stock_penetrates(s, &nc, NULL, 0, 0.0, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
         "the same body without the clear volume is");
-  CHECK(swarf_stock_penetrates(s, &wc, &clear, 1, 0.49, &hit2, where, NULL) == SWARF_OK && hit2 == 1,
+  CHECK(swarf_stock_penetrates(s, &wc, &clear, 1, 0.49, &hit2, where, NULL) == SWARF_OK &&
+            hit2 == 1,
         "0.5 mm wider than the cleared pocket: found at 0.49");
-  CHECK(swarf_stock_penetrates(s, &wc, &clear, 1, 0.51, &hit2, where, NULL) == SWARF_OK && hit2 == 0,
+  CHECK(swarf_stock_penetrates(s, &wc, &clear, 1, 0.51, &hit2, where, NULL) == SWARF_OK &&
+            hit2 == 0,
         "0.5 mm wider than the cleared pocket: not found at 0.51");
   /* a pocket 2 mm deep cut away first: the same body 1 mm into its floor only */
   capsule_shape pocket = {{10.0, 5.0, 0.0}, {16.0, 5.0, 0.0}, 2.0};
@@ -90,7 +93,8 @@ int main(void) {
         "NULL stock refused");
   CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, -1.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "negative depth refused: %s", err.message);
-  CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, 0.0, &hit, NULL, NULL) == SWARF_OK, "err may be NULL");
+  CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, 0.0, &hit, NULL, NULL) == SWARF_OK,
+        "err may be NULL");
   swarf_stock_free(s);
   return check_done();
 }

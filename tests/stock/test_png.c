@@ -87,8 +87,8 @@ static void render_case(const swarf_stock *s, const char *path, unsigned w, unsi
   if (decode_png(path, &gw, &gh, &rgb) != 0) return;
   CHECK(gw == w && gh == h, "%s: IHDR size %ux%u", path, gw, gh);
   const unsigned char *centre = rgb + 3 * ((size_t)(h / 2) * w + w / 2), *corner = rgb;
-  CHECK(memcmp(centre, corner, 3) != 0, "%s: centre (%d,%d,%d) differs from the background corner", path,
-        centre[0], centre[1], centre[2]);
+  CHECK(memcmp(centre, corner, 3) != 0, "%s: centre (%d,%d,%d) differs from the background corner",
+        path, centre[0], centre[1], centre[2]);
   long colours = count_colours(rgb, (size_t)w * h);
   printf("%s: %ld distinct colours\n", path, colours);
   CHECK(colours > 50, "%s: shaded picture, %ld colours", path, colours);

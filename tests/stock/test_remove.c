@@ -5,8 +5,8 @@
  * exact distances, rounded once to float), and is active iff that value,
  * rounded to float, is inside the band. Tolerances: voxel values 0.01 voxel
  * (observed ~1e-7); removed volume (difference of swarf_stock_volume before
- * and after) 0.5 % of the analytic ball / cap volume (observed < 0.1 %); results of different orders and
- * batchings must be bit-identical (max, float rounding and clamping commute).
+ * and after) 0.5 % of the analytic ball / cap volume (observed < 0.1 %); results of different
+ * orders and batchings must be bit-identical (max, float rounding and clamping commute).
  */
 #include <stdio.h>
 
@@ -26,7 +26,8 @@ static int nremoved;
 
 static double truth(const double p[3]) {
   double v = box_sdf(&box, p);
-  for (int i = 0; i < nremoved; i++) v = fmax(v, -capsule_dist(&removed[i], p[0], p[1], p[2]));
+  for (int i = 0; i < nremoved; i++)
+    v = fmax(v, -capsule_dist(&removed[i], p[0], p[1], p[2]));
   return fmin(fmax(v, -BAND), BAND);
 }
 
@@ -125,13 +126,16 @@ static void deep_cavity(void) {
   CHECK(swarf_stock_sample(s, c[0], c[1], c[2]) == (float)BAND, "cavity centre is outside (+band)");
   CHECK_NEAR(swarf_stock_sample(s, c[0] + r + 0.15, c[1], c[2]), -0.15, 0.01 * VOXEL,
              "material just beyond the cavity wall");
-  CHECK(swarf_stock_sample(s, c[0], c[1], c[2] + r + 0.5) == -(float)BAND, "material between cavity and top");
+  CHECK(swarf_stock_sample(s, c[0], c[1], c[2] + r + 0.5) == -(float)BAND,
+        "material between cavity and top");
   check_whole_band(s, "cavity");
   check_valid(s, "cavity");
   swarf_stock_free(s);
 }
 
-static double urand(double a, double b) { return a + (b - a) * (rand() / (double)RAND_MAX); }
+static double urand(double a, double b) {
+  return a + (b - a) * (rand() / (double)RAND_MAX);
+}
 
 /* 1000 random small capsules near the surface, one at a time. */
 static void random_removals(void) {
@@ -140,9 +144,11 @@ static void random_removals(void) {
   srand(12345);
   for (int i = 0; i < MAX_SHAPES; i++) {
     capsule_shape c;
-    for (int k = 0; k < 3; k++) c.a[k] = urand(box.lo[k] - 0.5, box.hi[k] + 0.5);
+    for (int k = 0; k < 3; k++)
+      c.a[k] = urand(box.lo[k] - 0.5, box.hi[k] + 0.5);
     if (i % 2) c.a[2] = urand(-1.5, 0.5); /* half of them at the top face */
-    for (int k = 0; k < 3; k++) c.b[k] = c.a[k] + urand(-1.0, 1.0);
+    for (int k = 0; k < 3; k++)
+      c.b[k] = c.a[k] + urand(-1.0, 1.0);
     c.r = urand(0.05, 0.8);
     if (remove_capsule(s, c) != 0) break;
   }
@@ -177,7 +183,8 @@ static void batch_equals_single(void) {
   for (int i = 0; i < N; i++) {
     int row = i / 30, col = i % 30;
     double x0 = 1.0 + 0.25 * (row % 2 ? 30 - col : col), x1 = x0 + (row % 2 ? -0.25 : 0.25);
-    capsule_shape c = {{x0, 1.0 + 0.6 * row, 0.3}, {x1, 1.0 + 0.6 * row + (col == 29 ? 0.6 : 0.0), 0.3}, 0.8};
+    capsule_shape c = {
+        {x0, 1.0 + 0.6 * row, 0.3}, {x1, 1.0 + 0.6 * row + (col == 29 ? 0.6 : 0.0), 0.3}, 0.8};
     path[i] = c;
     cuts[i] = capsule_cut(&path[i]);
   }
@@ -196,7 +203,8 @@ static void batch_equals_single(void) {
   CHECK(stock_differences(one, batch) == 0, "batch == one at a time (bit-identical)");
   CHECK(stock_differences(batch, one) == 0, "one at a time == batch (bit-identical)");
   nremoved = 0;
-  for (int i = 0; i < N; i++) removed[nremoved++] = path[i];
+  for (int i = 0; i < N; i++)
+    removed[nremoved++] = path[i];
   check_whole_band(batch, "zig-zag in batches");
   check_valid(batch, "zig-zag in batches");
   swarf_stock_free(one);
@@ -251,7 +259,9 @@ static void ticks_within_a_pass(void) {
   swarf_stock_free(stopped);
 }
 
-static double nan_sdf(const void *ctx, double x, double y, double z) { return NAN; }
+static double nan_sdf(const void *ctx, double x, double y, double z) {
+  return NAN;
+}
 
 static void bad_arguments(void) {
   swarf_error err = {0};
@@ -295,7 +305,8 @@ static void remove_everything(void) {
   capsule_bounds(&c, lo, hi);
   CHECK(swarf_stock_remove(s, lo, hi, capsule_sdf_cb, &c, &err) == 0, "remove all: %s",
         err.message);
-  CHECK(swarf_stock_active_voxels(s) == 0, "no active voxels left (%llu)", swarf_stock_active_voxels(s));
+  CHECK(swarf_stock_active_voxels(s) == 0, "no active voxels left (%llu)",
+        swarf_stock_active_voxels(s));
   CHECK(swarf_stock_volume(s) == 0.0, "no volume left (%g)", swarf_stock_volume(s));
   CHECK(swarf_stock_sample(s, 5, 4, -2.5) == (float)BAND, "all outside");
   swarf_stock_bounds(s, lo, hi);

@@ -51,7 +51,9 @@ typedef struct {
   float a[3], b[3];
 } edge;
 
-static int edge_cmp(const void *x, const void *y) { return memcmp(x, y, sizeof(edge)); }
+static int edge_cmp(const void *x, const void *y) {
+  return memcmp(x, y, sizeof(edge));
+}
 
 static void check_closed(const tri *t, uint32_t n, const char *what) {
   edge *e = malloc(3 * (size_t)n * sizeof *e), key;
@@ -70,7 +72,8 @@ static void check_closed(const tri *t, uint32_t n, const char *what) {
     memcpy(key.b, e[i].a, 12);
     if (!bsearch(&key, e, 3 * (size_t)n, sizeof *e, edge_cmp)) unmatched++;
   }
-  printf("%s: %u triangles, %ld edges without a reversed twin, %ld repeated\n", what, n, unmatched, repeated);
+  printf("%s: %u triangles, %ld edges without a reversed twin, %ld repeated\n", what, n, unmatched,
+         repeated);
   CHECK(unmatched == 0, "%s: closed (every edge has a reversed twin): %ld open", what, unmatched);
   CHECK(repeated == 0, "%s: every directed edge once (oriented, manifold): %ld", what, repeated);
   free(e);
@@ -80,7 +83,8 @@ static double signed_volume(const tri *t, uint32_t n) {
   double v = 0.0;
   for (uint32_t i = 0; i < n; i++) {
     const float *a = t[i].v[0], *b = t[i].v[1], *c = t[i].v[2];
-    v += a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) - a[1] * ((double)b[0] * c[2] - (double)b[2] * c[0]) +
+    v += a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) -
+         a[1] * ((double)b[0] * c[2] - (double)b[2] * c[0]) +
          a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0]);
   }
   return v / 6.0;
@@ -103,8 +107,10 @@ static void check_normals(const swarf_stock *s, const tri *t, uint32_t n, const 
     if (len == 0.0) continue;
     double dot = (m[0] * t[i].n[0] + m[1] * t[i].n[1] + m[2] * t[i].n[2]) / len;
     if (dot < 0.999) bad_stored++;
-    double out = swarf_stock_sample(s, c[0] + h * m[0] / len, c[1] + h * m[1] / len, c[2] + h * m[2] / len);
-    double in = swarf_stock_sample(s, c[0] - h * m[0] / len, c[1] - h * m[1] / len, c[2] - h * m[2] / len);
+    double out =
+        swarf_stock_sample(s, c[0] + h * m[0] / len, c[1] + h * m[1] / len, c[2] + h * m[2] / len);
+    double in =
+        swarf_stock_sample(s, c[0] - h * m[0] / len, c[1] - h * m[1] / len, c[2] - h * m[2] / len);
     if (!(out > in)) inward++;
   }
   CHECK(bad_stored == 0, "%s: %ld stored normals disagree with the vertex order", what, bad_stored);

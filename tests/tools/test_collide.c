@@ -97,7 +97,7 @@ static double run(const char *name, const char *program, const char *const *tool
       CHECK(isnan(a->depth), "%s: alarm %d: depth not measured", name, i + 1);
     else
       CHECK(fabs(a->depth - want[i].depth) <= tol, "%s: alarm %d: %.4f mm deep, expected %.4f",
-          name, i + 1, a->depth, want[i].depth);
+            name, i + 1, a->depth, want[i].depth);
   }
   long coll = rep.alarm_count[SWARF_ALARM_SHANK] + rep.alarm_count[SWARF_ALARM_HOLDER] +
               rep.alarm_count[SWARF_ALARM_FIXTURE];
@@ -117,12 +117,14 @@ int main(void) {
    * 2 mm deep. The shank (as wide as the flutes) follows them into their
    * hole: no shank alarm. The holder never cut the ring it entered, so the
    * retract (line 4) starts inside it: 2 mm again. */
-  const expect e1[] = {{SWARF_ALARM_HOLDER, 3, 2.0, 0, 2, 0}, {SWARF_ALARM_HOLDER, 4, 2.0, 0, 2, 0}};
+  const expect e1[] = {{SWARF_ALARM_HOLDER, 3, 2.0, 0, 2, 0},
+                       {SWARF_ALARM_HOLDER, 4, 2.0, 0, 2, 0}};
   run("holder-plunge.ngc", "G0 X20 Y20 Z5\nG1 Z-20 F300\nG1 Z-27\nG0 Z30\nM2\n", t1, h1, NULL, e1,
       2);
 
   /* The same with depths measured for the first collision of each kind only. */
-  const expect e1n[] = {{SWARF_ALARM_HOLDER, 3, 2.0, 0, 2, 0}, {SWARF_ALARM_HOLDER, 4, NAN, 0, 2, 0}};
+  const expect e1n[] = {{SWARF_ALARM_HOLDER, 3, 2.0, 0, 2, 0},
+                        {SWARF_ALARM_HOLDER, 4, NAN, 0, 2, 0}};
   depth_limit = 1;
   run("holder-plunge-1.ngc", "G0 X20 Y20 Z5\nG1 Z-20 F300\nG1 Z-27\nG0 Z30\nM2\n", t1, h1, NULL,
       e1n, 2);
@@ -161,8 +163,8 @@ int main(void) {
                        "G0 X10 Y10 Z5\nG1 Z-9.5 F300\nG1 X50\nG1 Y30\nG1 X10 Z-9\nG0 Z5\n"
                        "G0 X30 Y20\nG1 Z-9.9\nG0 Z30\nM2\n",
                        bare, NULL, NULL, none, 0);
-  CHECK(fabs(with - without) < 1e-9, "shank and holder never cut: removed %.6f vs %.6f mm^3",
-        with, without);
+  CHECK(fabs(with - without) < 1e-9, "shank and holder never cut: removed %.6f vs %.6f mm^3", with,
+        without);
 
   /* 5. Fixtures: a clamp on the top face at x 50..60 (fixture 1), a vice
    * jaw beside the stock at y -10..-4 (fixture 2) and a tall clamp at x 0..8,

@@ -82,7 +82,7 @@ static double body_sdf(const piece *k, const double q[3]) {
   enum { N = 240 };
   double rho = hypot(q[0], q[1]), z = q[2], best = -1e300, ba = 0;
   /* the slack at the unit normal (s, c) = (sin t, cos t) of the meridian plane */
-#define SLACK_SC(s, c) (rho * (s) + z * (c) - support(k, (double[3]){(s), 0, (c)}))
+#define SLACK_SC(s, c) (rho * (s) + z * (c)-support(k, (double[3]){(s), 0, (c)}))
 #define SLACK(t) SLACK_SC(sin(t), cos(t))
   static double st[N + 1], ct[N + 1]; /* sin and cos of the scan's angles, taken once */
   static int tabled;

@@ -24,9 +24,10 @@
 #include "check.h"
 #include "swarf_sim.h"
 
-static const char *cases[] = {"cam-nisley",          "ccomp-mill-g90g91g92", "ccomp-mill-line-arc-entry",
-                              "ccomp-mill-zchanges", "g10-l1-l10",           "g10-l11",
-                              "g10-with-g92",        "machine-coord-params", "rotation-abs-pts"};
+static const char *cases[] = {
+    "cam-nisley",          "ccomp-mill-g90g91g92", "ccomp-mill-line-arc-entry",
+    "ccomp-mill-zchanges", "g10-l1-l10",           "g10-l11",
+    "g10-with-g92",        "machine-coord-params", "rotation-abs-pts"};
 
 static const swarf_sim_tool *tool(const swarf_sim_config *cfg, int number) {
   for (int i = 0; i < cfg->ntools; i++)
@@ -146,7 +147,8 @@ static void bad_tables(void) {
    * T0 (LinuxCNC's empty spindle: rs274 reads the line) */
   char path[] = "/tmp/swarf_tbl_XXXXXX";
   FILE *f = fdopen(mkstemp(path), "w");
-  fputs(";T9 is a comment\nT0 P0 Z0 D0 ;empty spindle\n t7\tp3 d0.25 z-1.5 i95 j155 q2 ;a ; b\nT8 P4 D3",
+  fputs(";T9 is a comment\nT0 P0 Z0 D0 ;empty spindle\n t7\tp3 d0.25 z-1.5 i95 j155 q2 ;a ; b\nT8 "
+        "P4 D3",
         f);
   fclose(f);
   swarf_sim_config cfg;
@@ -191,9 +193,8 @@ static void good_library(const char *here) {
             t1->holder[1].height == 10,
         "T1: holder 20x40 then a cone 20-32 x 10");
   CHECK(t2->cutter.shape == SWARF_CUTTER_BALL && t2->cutter.diameter == 3.175 &&
-            t2->cutter.length == 12.7 && t2->stickout == 20 && t2->shank == 0 &&
-            t2->length == 50 && t2->nholder == 1 && t2->holder[0].d0 == 16 &&
-            t2->holder[0].height == 30,
+            t2->cutter.length == 12.7 && t2->stickout == 20 && t2->shank == 0 && t2->length == 50 &&
+            t2->nholder == 1 && t2->holder[0].d0 == 16 && t2->holder[0].height == 30,
         "T2: ball, flutes in the spec, the table's length kept, holder from a string");
   CHECK(t3->cutter.shape == SWARF_CUTTER_BULL && t3->cutter.corner_radius == 1 &&
             t3->stickout == 0 && t3->nholder == 0 && t3->length == 0,
@@ -231,7 +232,8 @@ static void bad_libraries(void) {
               "   \"stickout\": -3}\n]}\n",
               4, "\"stickout\" must be > 0");
   bad_library("{\"tools\": [\n  {\"number\": 1, \"cutter\": \"flat,D6\"},\n"
-              "  {\"number\": 2, \"cutter\": \"flat,D6\",\n   \"holder\": [{\"diameter\": 20, \"height\": 40}]}\n]}\n",
+              "  {\"number\": 2, \"cutter\": \"flat,D6\",\n   \"holder\": [{\"diameter\": 20, "
+              "\"height\": 40}]}\n]}\n",
               3, "holder but no stick-out");
   bad_library("{\"tools\": [\n  {\"number\": 4,\n   \"cutter\": \"vbit,D6\"}\n]}\n", 3,
               "\"cutter\"");
@@ -268,8 +270,7 @@ static double plunge_volume(const char *g43) {
   snprintf(program, sizeof program, "T1 M6\n%s\nG0 X10 Y10 Z5\nG1 Z-3 F100\nG1 Z5\nM2\n", g43);
   swarf_stock *out = NULL;
   swarf_sim_report rep;
-  CHECK(swarf_sim_run_text(&cfg, "g43.ngc", program, strlen(program), &out, &rep, &err) ==
-            SWARF_OK,
+  CHECK(swarf_sim_run_text(&cfg, "g43.ngc", program, strlen(program), &out, &rep, &err) == SWARF_OK,
         "%s: %s", g43, err.message);
   swarf_stock_free(out);
   return rep.volume_before - rep.volume_after;

@@ -1,7 +1,7 @@
 /* cli_stock.c -- stocks from files, their placement, outputs by format and
  * `swarf compare` (cli_stock.h). */
-#include "cli.h"
 #include "cli_stock.h"
+#include "cli.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -35,7 +35,8 @@ static int fail(const char *flag, const char *what) {
 int swarf_cli_stock_option(swarf_cli_stock *c, const char *flag, const char *val, int *i) {
   swarf_error err;
   if (!strcmp(flag, "--voxel")) c->voxel_given = 1;
-  if (strcmp(flag, "--stock") && strcmp(flag, "--stock-transform") && strcmp(flag, "--view")) return -1;
+  if (strcmp(flag, "--stock") && strcmp(flag, "--stock-transform") && strcmp(flag, "--view"))
+    return -1;
   if (val == NULL) return fail(flag, "needs a value");
   if (!strcmp(flag, "--stock")) {
     if (strncmp(val, "stl:", 4) && strncmp(val, "vdb:", 4)) return -1; /* box:, cylinder: */
@@ -45,7 +46,8 @@ int swarf_cli_stock_option(swarf_cli_stock *c, const char *flag, const char *val
   } else if (!strcmp(flag, "--view")) {
     if (swarf_stock_view_parse(val, &c->view, &err) != SWARF_OK) return fail(flag, err.message);
   } else {
-    if (swarf_stock_placement_parse(val, &c->place, &err) != SWARF_OK) return fail(flag, err.message);
+    if (swarf_stock_placement_parse(val, &c->place, &err) != SWARF_OK)
+      return fail(flag, err.message);
     c->place_set = 1;
   }
   (*i)++;
@@ -73,8 +75,8 @@ static int stock_error(const swarf_error *e) {
 static swarf_status shape_stock(const swarf_sim_config *cfg, swarf_stock **out, swarf_error *err) {
   const swarf_sim_stock_spec *sp = &cfg->stock;
   if (sp->kind == SWARF_SIM_STOCK_CYLINDER)
-    return swarf_stock_new_cylinder(sp->axis, sp->radius, sp->lo[sp->axis], sp->hi[sp->axis], cfg->voxel,
-                                    cfg->half_width, out, err);
+    return swarf_stock_new_cylinder(sp->axis, sp->radius, sp->lo[sp->axis], sp->hi[sp->axis],
+                                    cfg->voxel, cfg->half_width, out, err);
   return swarf_stock_new_box(sp->lo, sp->hi, cfg->voxel, cfg->half_width, out, err);
 }
 
@@ -86,7 +88,8 @@ int swarf_cli_stock_make(const swarf_cli_stock *c, swarf_sim_config *cfg, swarf_
   swarf_error_init(&err);
   if (c->file == NULL && !c->place_set) return 0;
   if (c->file != NULL && c->is_vdb)
-    st = swarf_stock_read_vdb(c->file, p, c->voxel_given ? cfg->voxel : 0.0, cfg->half_width, out, &err);
+    st = swarf_stock_read_vdb(c->file, p, c->voxel_given ? cfg->voxel : 0.0, cfg->half_width, out,
+                              &err);
   else if (c->file != NULL)
     st = swarf_stock_read_stl(c->file, p, cfg->voxel, cfg->half_width, out, &err);
   else {
@@ -132,15 +135,17 @@ swarf_status swarf_cli_run(const swarf_sim_config *cfg, const char *program, swa
   if (st == SWARF_OK) st = swarf_sim_finish(sim);
   *rep = *swarf_sim_get_report(sim);
   if (st == SWARF_OK && balance >= 2) print_balance(sim, balance);
-  if (st == SWARF_OK) *out = swarf_sim_take_stock(sim);
-  else if (err != NULL) *err = *swarf_sim_error(sim);
+  if (st == SWARF_OK)
+    *out = swarf_sim_take_stock(sim);
+  else if (err != NULL)
+    *err = *swarf_sim_error(sim);
   swarf_sim_free(sim);
   return st;
 }
 
-int swarf_cli_write_views(const char *cmd, const swarf_stock *s, const char *mesh, const char *image,
-                          const swarf_stock *design, double tolerance, swarf_stock_view view,
-                          size_t *ntri) {
+int swarf_cli_write_views(const char *cmd, const swarf_stock *s, const char *mesh,
+                          const char *image, const swarf_stock *design, double tolerance,
+                          swarf_stock_view view, size_t *ntri) {
   swarf_stock_output o;
   swarf_error err;
   swarf_status st = SWARF_OK;
@@ -213,8 +218,10 @@ static int compare_args(compare_options *o, int argc, char **argv) {
     } else if (!strcmp(f, "--fail-on")) {
       if (strcmp(v, "gouge")) return fail(f, "the one condition is \"gouge\"");
       o->fail_on_gouge = 1;
-    } else if (!strcmp(f, "--image")) o->image = v;
-    else if (!strcmp(f, "--mesh")) o->mesh = v;
+    } else if (!strcmp(f, "--image"))
+      o->image = v;
+    else if (!strcmp(f, "--mesh"))
+      o->mesh = v;
     else if (!strcmp(f, "--view")) {
       if (swarf_stock_view_parse(v, &o->view, &err) != SWARF_OK) return fail(f, err.message);
     } else {
@@ -231,8 +238,10 @@ static int compare_args(compare_options *o, int argc, char **argv) {
 }
 
 static void print_point(const char *key, const double p[3]) {
-  if (isfinite(p[0])) printf("%s=%.4f,%.4f,%.4f\n", key, p[0], p[1], p[2]);
-  else printf("%s=none\n", key);
+  if (isfinite(p[0]))
+    printf("%s=%.4f,%.4f,%.4f\n", key, p[0], p[1], p[2]);
+  else
+    printf("%s=none\n", key);
 }
 
 static void print_deviation(const compare_options *o, const swarf_stock_deviation *d) {
@@ -269,7 +278,8 @@ int swarf_cli_compare(int argc, char **argv) {
     swarf_stock_free(a);
     return read_error("B", &err);
   }
-  if (swarf_stock_compare(a, b, NULL, o.tolerance, &d, &err) != SWARF_OK) rc = read_error("B", &err);
+  if (swarf_stock_compare(a, b, NULL, o.tolerance, &d, &err) != SWARF_OK)
+    rc = read_error("B", &err);
   if (rc == 0) {
     rc = swarf_cli_write_views("compare", a, o.mesh, o.image, b, d.tolerance, o.view, NULL);
     if (rc == 0) print_deviation(&o, &d);

@@ -47,15 +47,14 @@ int swarf_cli_stock_make(const swarf_cli_stock *c, swarf_sim_config *cfg, swarf_
  * balance >= 2 (and cfg->tally) it prints after the run how evenly 2 to
  * `balance` processes would have shared the removal (swarf_sim_balance). */
 swarf_status swarf_cli_run(const swarf_sim_config *cfg, const char *program, swarf_stock *stock,
-                           int balance, swarf_stock **out, swarf_sim_report *rep,
-                           swarf_error *err);
+                           int balance, swarf_stock **out, swarf_sim_report *rep, swarf_error *err);
 
 /* The mesh (format by extension) and picture (may be NULL) of `s`, coloured
  * by `design` (may be NULL) with `tolerance` (<= 0: half a voxel). *ntri gets
  * the mesh's triangles. Messages start with `cmd`. */
-int swarf_cli_write_views(const char *cmd, const swarf_stock *s, const char *mesh, const char *image,
-                          const swarf_stock *design, double tolerance, swarf_stock_view view,
-                          size_t *ntri);
+int swarf_cli_write_views(const char *cmd, const swarf_stock *s, const char *mesh,
+                          const char *image, const swarf_stock *design, double tolerance,
+                          swarf_stock_view view, size_t *ntri);
 
 /* `swarf compare A.vdb B.vdb|B.stl ...` */
 int swarf_cli_compare(int argc, char **argv);

@@ -32,7 +32,8 @@ void swarf_progress_update(void *ctx, double fraction, long moves) {
   if (t - pb->last_draw < 0.1) return;
   pb->last_draw = t;
   filled = (int)(pb->fraction * 40.0);
-  for (int i = 0; i < 40; i++) bar[i] = i < filled ? '#' : '.';
+  for (int i = 0; i < 40; i++)
+    bar[i] = i < filled ? '#' : '.';
   bar[40] = '\0';
   fprintf(stderr, "\r[%s] %3d%%  %ld moves  %.1f s ", bar, (int)(pb->fraction * 100.0), moves,
           t - pb->start);

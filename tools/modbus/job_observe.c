@@ -1,10 +1,9 @@
 /* job_observe.c -- the simulation side of the status service: the
- * observer called from the simulation's progress callback after every move. It fills its own snapshot and
- * publishes it without waiting (job.h), refreshes the removed volume now
- * and then (a pass over the grid, so at most every 0.5 s and never more than
- * ~2 % of the run), and obeys pause and abort commands. Pausing is the one
- * place where the simulation waits, and it waits on the command only (a
- * flag polled every 50 ms), never on the network.
+ * observer called from the simulation's progress callback after every move. It fills its own
+ * snapshot and publishes it without waiting (job.h), refreshes the removed volume now and then (a
+ * pass over the grid, so at most every 0.5 s and never more than ~2 % of the run), and obeys pause
+ * and abort commands. Pausing is the one place where the simulation waits, and it waits on the
+ * command only (a flag polled every 50 ms), never on the network.
  */
 #include <math.h>
 #include <string.h>

@@ -67,8 +67,9 @@ void swarf_mb_map_registers(const swarf_job_snapshot *s, double now,
   regs[SWARF_MB_REG_HEARTBEAT] = (uint16_t)(s->heartbeat & 0xFFFF);
   regs[SWARF_MB_REG_FLAGS] = flags(s);
   regs[SWARF_MB_REG_VERSION] = SWARF_MB_MAP_VERSION;
-  regs[SWARF_MB_REG_COLLISIONS] =
-      (uint16_t)(s->collisions > 0xFFFF ? 0xFFFF : s->collisions > 0 ? s->collisions : 0);
+  regs[SWARF_MB_REG_COLLISIONS] = (uint16_t)(s->collisions > 0xFFFF ? 0xFFFF
+                                             : s->collisions > 0    ? s->collisions
+                                                                    : 0);
   for (int i = 0; i < SWARF_JOB_NAME_LEN; i += 2) {
     unsigned char hi = (unsigned char)s->program[i], lo = (unsigned char)s->program[i + 1];
     regs[SWARF_MB_NAME_REG + i / 2] = (uint16_t)(hi << 8 | (hi ? lo : 0));

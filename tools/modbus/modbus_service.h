@@ -2,8 +2,8 @@
  * command line sees it: its options, and start/finish around the run.
  *
  * Role: while the simulation runs, it publishes a status snapshot (job.h)
- * from the simulation's progress callback (swarf_modbus_observe); TCP and RTU servers and push clients, each in its own thread,
- * serve that snapshot. The simulation never waits on the network.
+ * from the simulation's progress callback (swarf_modbus_observe); TCP and RTU servers and push
+ * clients, each in its own thread, serve that snapshot. The simulation never waits on the network.
  *
  * Ownership: the options are plain values owned by the caller; the service
  * returned by swarf_modbus_start is owned by the caller until

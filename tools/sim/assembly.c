@@ -151,7 +151,8 @@ swarf_status swarf_sim_parse_holder(const char *spec, swarf_sim_tool *out, swarf
       "at the bottom to D2 at the top, stacked upward from the holder face)";
   const char *s;
   int number, n = 0;
-  if (out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_parse_holder: out is NULL");
+  if (out == NULL)
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_parse_holder: out is NULL");
   if (read_tool_number(spec, &number, &s) != 0)
     return spec_error(err, "--holder", "cannot read the tool in \"%s\"", spec ? spec : "", usage);
   for (;;) {

@@ -26,8 +26,7 @@ swarf_status swarf_sim_split_assembly(const char *spec, char *cutter_spec, size_
 
 /* Checks the assembly fields of t (S, N, holder): finite, positive; a
  * holder needs a stick-out. `what` names the source in messages. */
-swarf_status swarf_sim_check_assembly(const swarf_sim_tool *t, const char *what,
-                                      swarf_error *err);
+swarf_status swarf_sim_check_assembly(const swarf_sim_tool *t, const char *what, swarf_error *err);
 
 /* A non-cutting body of a tool: a cylinder or cone frustum about the tool
  * axis from z0 to z1 above the tip (tool frame), diameters d0 at z0 and d1
@@ -50,8 +49,8 @@ typedef struct {
   long last_line[2]; /* SHANK, HOLDER: the line last reported (once per line) */
   long fixture_line[SWARF_SIM_MAX_FIXTURES][3]; /* per fixture and part (cutter, shank, holder) */
   swarf_stock *fixture[SWARF_SIM_MAX_FIXTURES]; /* each fixture as a level set */
-  swarf_stock_cut *clear;        /* scratch: the sweeps clearing material for a part */
-  long checked;                  /* part checks that reached a grid's box */
+  swarf_stock_cut *clear;           /* scratch: the sweeps clearing material for a part */
+  long checked;                     /* part checks that reached a grid's box */
   long measured[SWARF_ALARM_KINDS]; /* depths measured, per swarf_alarm_kind */
 } swarf_sim_collide;
 

@@ -216,8 +216,8 @@ int swarf_sim_batch_check_empty(swarf_sim *s, const swarf_motion *m) {
   }
   if (swarf_sim_part_hit(s, &hit, where) != 0) return 1;
   if (hit) {
-    swarf_alarm a = {SWARF_ALARM_NO_TOOL, m->line, m->column, 0, NAN,
-                     {where[0], where[1], where[2]}, 0, 0};
+    swarf_alarm a = {
+        SWARF_ALARM_NO_TOOL, m->line, m->column, 0, NAN, {where[0], where[1], where[2]}, 0, 0};
     swarf_sim_raise(s, &a);
   }
   return 0;

@@ -24,8 +24,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "swarf_file.h"
 #include "assembly.h"
+#include "swarf_file.h"
 
 #define LIBRARY_FILE_MAX ((long long)1 << 26) /* 64 MiB of JSON */
 
@@ -53,7 +53,8 @@ static void skip_string(json_cursor *c, char *copy, size_t n) {
 }
 
 static void skip_scalar(json_cursor *c) {
-  while (c->s < c->end && strchr(",]} \t\r\n", *c->s) == NULL) c->s++;
+  while (c->s < c->end && strchr(",]} \t\r\n", *c->s) == NULL)
+    c->s++;
 }
 
 /* The line of key `key` of element `elem` of the top-level "tools" array
@@ -108,17 +109,17 @@ typedef struct {
   swarf_error *err;
 } library_src;
 
-static swarf_status lib_error(const library_src *src, int elem, const char *key,
-                              const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-static swarf_status lib_error(const library_src *src, int elem, const char *key,
-                              const char *fmt, ...) {
+static swarf_status lib_error(const library_src *src, int elem, const char *key, const char *fmt,
+                              ...) __attribute__((format(printf, 4, 5)));
+static swarf_status lib_error(const library_src *src, int elem, const char *key, const char *fmt,
+                              ...) {
   char what[400];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(what, sizeof what, fmt, ap);
   va_end(ap);
-  swarf_error_at(src->err, src->path, elem >= 0 ? json_place(src->text, src->len, elem, key) : 1,
-                 0, key != NULL ? key : "");
+  swarf_error_at(src->err, src->path, elem >= 0 ? json_place(src->text, src->len, elem, key) : 1, 0,
+                 key != NULL ? key : "");
   return swarf_error_set(src->err, SWARF_ERR_TOOL, "%s", what);
 }
 
@@ -158,8 +159,9 @@ static swarf_status get_piece(const library_src *src, json_t *p, int elem,
     }
   }
   if (!(h->d0 > 0) || !(h->d1 > 0) || !(h->height > 0) || !isfinite(h->d0 + h->d1 + h->height))
-    return lib_error(src, elem, "holder",
-                     "a holder piece is {\"diameter\": D or [BOTTOM, TOP], \"height\": H}, all > 0 mm");
+    return lib_error(
+        src, elem, "holder",
+        "a holder piece is {\"diameter\": D or [BOTTOM, TOP], \"height\": H}, all > 0 mm");
   return SWARF_OK;
 }
 
@@ -211,7 +213,7 @@ static swarf_status get_cutter(const library_src *src, json_t *tool, int elem, i
   return SWARF_OK;
 }
 
-static const char *const known_keys[] = {"number", "cutter", "flutes", "stickout", "shank",
+static const char *const known_keys[] = {"number", "cutter", "flutes",  "stickout", "shank",
                                          "holder", "length", "comment", NULL};
 
 static swarf_status check_keys(const library_src *src, json_t *tool, int elem) {
@@ -219,7 +221,8 @@ static swarf_status check_keys(const library_src *src, json_t *tool, int elem) {
   json_t *v;
   json_object_foreach(tool, key, v) {
     int known = 0;
-    for (int i = 0; known_keys[i] != NULL; i++) known |= strcmp(key, known_keys[i]) == 0;
+    for (int i = 0; known_keys[i] != NULL; i++)
+      known |= strcmp(key, known_keys[i]) == 0;
     if (!known)
       return lib_error(src, elem, key,
                        "unknown key \"%s\" (a tool has number, cutter, flutes, stickout, shank, "
@@ -237,7 +240,8 @@ static swarf_status read_tool(const library_src *src, json_t *tool, int elem,
   double stickout, shank, length;
   swarf_status s;
   memset(&t, 0, sizeof t);
-  if (!json_is_object(tool)) return lib_error(src, elem, NULL, "each entry of \"tools\" is an object");
+  if (!json_is_object(tool))
+    return lib_error(src, elem, NULL, "each entry of \"tools\" is an object");
   if ((s = check_keys(src, tool, elem)) != SWARF_OK) return s;
   if (num == NULL || !json_is_integer(num) || json_integer_value(num) < 1 ||
       json_integer_value(num) > SWARF_SIM_MAX_TOOL_NUMBER)
@@ -246,7 +250,8 @@ static swarf_status read_tool(const library_src *src, json_t *tool, int elem,
   int number = (int)json_integer_value(num);
   if ((s = get_cutter(src, tool, elem, number, &t)) != SWARF_OK) return s;
   if (t.stickout > 0 || t.shank > 0)
-    return lib_error(src, elem, "cutter", "give the stick-out and shank as \"stickout\" and \"shank\"");
+    return lib_error(src, elem, "cutter",
+                     "give the stick-out and shank as \"stickout\" and \"shank\"");
   if ((s = get_length(src, tool, elem, "stickout", &stickout)) != SWARF_OK ||
       (s = get_length(src, tool, elem, "shank", &shank)) != SWARF_OK ||
       (s = get_length(src, tool, elem, "length", &length)) != SWARF_OK ||

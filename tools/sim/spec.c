@@ -205,8 +205,8 @@ swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_e
   if (out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "swarf_sim_parse_tool: out is NULL");
   char cutter_spec[512];
   double stickout, shank;
-  swarf_status st = swarf_sim_split_assembly(spec, cutter_spec, sizeof cutter_spec, &stickout,
-                                             &shank, err);
+  swarf_status st =
+      swarf_sim_split_assembly(spec, cutter_spec, sizeof cutter_spec, &stickout, &shank, err);
   if (st != SWARF_OK) return st;
   memset(out, 0, sizeof *out);
   out->stickout = stickout;
@@ -231,8 +231,7 @@ swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_e
   sp.shape = families[fam].shape;
   if ((sp.shape == SWARF_CUTTER_QSS ? parse_qss(s, &sp, bad, sizeof bad)
                                     : parse_fields(s, fam, &sp, bad, sizeof bad)) != 0)
-    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, given,
-                           TOOL_USAGE);
+    return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"; %s", bad, given, TOOL_USAGE);
   swarf_error_init(&sub);
   if (swarf_cutter_make(&out->cutter, &sp, &sub) != SWARF_OK)
     return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: %s in \"%s\"", sub.message, given);
@@ -240,6 +239,5 @@ swarf_status swarf_sim_parse_tool(const char *spec, swarf_sim_tool *out, swarf_e
   out->length = 0.0;
   return SWARF_OK;
 usage_err:
-  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", given,
-                         TOOL_USAGE);
+  return swarf_error_set(err, SWARF_ERR_TOOL, "--tool: cannot read \"%s\"; %s", given, TOOL_USAGE);
 }

@@ -91,7 +91,11 @@ static swarf_status table_word(const table_place *at, const char *w, double mm_p
       return bad(at, w, "\"%s\": a length offset beyond 10 m (a typo or a unit slip?)", w);
     e->length = v * mm_per_unit;
     break;
-  case 'X': case 'Y': case 'A': case 'B': case 'C':
+  case 'X':
+  case 'Y':
+  case 'A':
+  case 'B':
+  case 'C':
     if (v != 0) return bad(at, w, "\"%s\": only Z offsets are simulated (X Y A B C must be 0)", w);
     break;
   default: /* U V W I J Q: other machines' fields */

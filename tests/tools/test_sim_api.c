@@ -159,7 +159,7 @@ static void test_streaming(void) {
   heard h;
   memset(&h, 0, sizeof h);
   base_config(&cfg);
-  cfg.cb = (swarf_sim_callbacks){on_progress, on_alarm, on_line, &h, NULL};
+  cfg.cb = (swarf_sim_callbacks){on_progress, on_alarm, on_line, &h, NULL, NULL};
   CHECK(swarf_sim_run_text(&cfg, "p.ngc", program, strlen(program), &one, &rep, &err) == SWARF_OK,
         "%s", err.message);
   CHECK(h.nalarms == 3 && h.alarm_line[0] == 5 && h.alarm_line[1] == 8 && h.alarm_line[2] == 9,
@@ -317,7 +317,7 @@ static void test_errors(void) {
         "unknown tool at line 2 (%s, line %ld)", swarf_status_name(err.status), err.line);
   memset(&h, 0, sizeof h);
   h.stop_after = 3;
-  cfg.cb = (swarf_sim_callbacks){on_progress, NULL, NULL, &h, NULL};
+  cfg.cb = (swarf_sim_callbacks){on_progress, NULL, NULL, &h, NULL, NULL};
   CHECK(swarf_sim_new(&cfg, "p.ngc", &sim, NULL) == SWARF_OK, "new");
   CHECK(swarf_sim_feed(sim, program, strlen(program)) == SWARF_ERR_ABORTED, "progress stops it");
   CHECK(swarf_sim_get_report(sim)->moves == 3, "after 3 moves");

@@ -16,6 +16,7 @@
 #include "cli.h"
 #include "cli_mpi.h"
 #include "cli_stock.h"
+#include "html.h"
 #include "modbus_service.h"
 #include "stock_output.h"
 #include "swarf_sim.h"
@@ -114,7 +115,7 @@ static const char help[] =
 #define MAX_SPECS 128
 
 typedef struct {
-  const char *program, *out, *mesh, *image;
+  const char *program, *out, *mesh, *image, *html;
   int quiet, fail_on_collision, fail_on_no_tool;
   int balance; /* --balance N */
   swarf_sim_config cfg;
@@ -142,6 +143,7 @@ typedef struct {
   swarf_modbus_service *modbus;
   swarf_verify *verify;
   alarm_list alarms;
+  swarf_html *html; /* --html: the moves (rank 0) */
 } sim_clients;
 
 static int usage_error(const char *what) {
@@ -182,6 +184,7 @@ static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   if (!strcmp(flag, "--out")) return o->out = val, 0;
   if (!strcmp(flag, "--mesh")) return o->mesh = val, 0;
   if (!strcmp(flag, "--image")) return o->image = val, 0;
+  if (!strcmp(flag, "--html")) return o->html = val, 0;
   if (!strcmp(flag, "--voxel")) {
     if (read_double(flag, val, 1e-3, &o->cfg.voxel)) return 2;
     return 0;
@@ -297,7 +300,9 @@ static int check_outputs(const sim_options *o) {
   const swarf_cli_path outs[] = {{"--out", o->out},
                                  {"--mesh", o->mesh},
                                  {"--image", o->image},
-                                 {"--report", o->verify.report_path}};
+                                 {"--report", o->verify.report_path},
+                                 {"--html", o->html}};
+  const int nouts = sizeof outs / sizeof outs[0];
   const swarf_cli_path ins[] = {{"PROGRAM", o->program},
                                 {"--stock", o->stock.file},
                                 {"--design", o->verify.design_path},
@@ -320,10 +325,10 @@ static int check_outputs(const sim_options *o) {
   for (int i = 0; i < o->cfg.nfixtures; i++)
     if (o->cfg.fixtures[i].stl != NULL)
       fixtures[nfix++] = (swarf_cli_path){"--fixture", o->cfg.fixtures[i].stl};
-  if (swarf_cli_outputs_distinct("simulate", outs, 4, ins, 6) ||
-      swarf_cli_outputs_distinct("simulate", outs, 4, fixtures, nfix))
+  if (swarf_cli_outputs_distinct("simulate", outs, nouts, ins, 6) ||
+      swarf_cli_outputs_distinct("simulate", outs, nouts, fixtures, nfix))
     return 2;
-  return swarf_cli_outputs_outside("simulate", outs, 4, "--subroutine-path",
+  return swarf_cli_outputs_outside("simulate", outs, nouts, "--subroutine-path",
                                    o->verify.subroutine_path, ".ngc");
 }
 
@@ -354,6 +359,8 @@ static int parse_args(sim_options *o, int argc, char **argv) {
                        "T1=ball,D3.175");
   if (!o->out) return usage_error("--out FILE.vdb is required");
   if (swarf_cli_mesh_name("--mesh", o->mesh)) return 2;
+  if (o->html != NULL && !swarf_html_available())
+    return usage_error("--html: this swarf was built without three.js (libjs-three)");
   return check_outputs(o);
 }
 
@@ -370,10 +377,39 @@ static int check_size(const swarf_sim_config *cfg) {
 
 /* The .vdb, mesh, picture and report: all or none (held unnamed,
  * published together once all are written; stock_output.h). */
-static int write_outputs(sim_options *o, const swarf_stock *stock, const swarf_sim_report *rep,
-                         size_t *ntri) {
+/* The --html page in memory, before the outputs are written (its mesh is a
+ * temporary file): 0, or the exit status after a message. */
+static int render_page(sim_options *o, swarf_html *html, const swarf_stock *stock,
+                       const swarf_sim_report *rep, char **page, size_t *len) {
   swarf_error err;
-  int rc;
+  char msg[1024], *report;
+  swarf_html_page pg = {o->program,
+                        stock,
+                        o->verify.design,
+                        o->cfg.tolerance > 0 ? o->cfg.tolerance : 0.5 * swarf_stock_voxel(stock),
+                        &o->cfg,
+                        rep,
+                        NULL};
+  swarf_error_init(&err);
+  if (o->html == NULL) return 0;
+  if ((report = swarf_verify_report_text(&o->verify, o->program, &o->cfg, rep, &err)) != NULL) {
+    pg.report_json = report;
+    swarf_html_render(html, &pg, page, len, &err);
+    free(report);
+  }
+  if (*page != NULL) return 0;
+  swarf_error_format(&err, msg, sizeof msg);
+  fprintf(stderr, "swarf simulate: --html: %s\n", msg);
+  return (int)swarf_status_classify(err.status);
+}
+
+static int write_outputs(sim_options *o, swarf_html *html, const swarf_stock *stock,
+                         const swarf_sim_report *rep, size_t *ntri) {
+  swarf_error err;
+  char *page = NULL;
+  size_t len = 0;
+  int rc = render_page(o, html, stock, rep, &page, &len);
+  if (rc != 0) return rc;
   swarf_error_init(&err);
   swarf_stock_outputs_begin();
   if (swarf_stock_write_vdb(stock, o->out, &err) != SWARF_OK) {
@@ -386,6 +422,13 @@ static int write_outputs(sim_options *o, const swarf_stock *stock, const swarf_s
   rc = swarf_cli_write_views("simulate", stock, o->mesh, o->image, o->verify.design,
                              o->verify.tolerance, o->stock.view, ntri);
   if (rc == 0) rc = swarf_verify_write_report(&o->verify, o->program, &o->cfg, rep);
+  if (rc == 0 && page != NULL && swarf_stock_output_write(o->html, page, len, &err) != SWARF_OK) {
+    char msg[1024];
+    swarf_error_format(&err, msg, sizeof msg);
+    fprintf(stderr, "swarf simulate: --html: %s\n", msg);
+    rc = (int)swarf_status_classify(err.status);
+  }
+  free(page);
   if (rc != 0) {
     swarf_stock_outputs_abort();
     return rc;
@@ -477,6 +520,7 @@ static void print_summary(const sim_options *o, const swarf_stock *stock, const 
   printf("  wrote %s", o->out);
   if (o->mesh) printf(", %s (%zu triangles)", o->mesh, ntri);
   if (o->image) printf(", %s", o->image);
+  if (o->html) printf(", %s", o->html);
   printf("\n");
 }
 
@@ -501,6 +545,10 @@ static void on_alarm(void *user, const swarf_alarm *a) {
     l->cap = cap;
   }
   l->a[l->n++] = *a;
+}
+
+static void on_move(void *user, const swarf_move *m) {
+  swarf_html_add_move(((sim_clients *)user)->html, m);
 }
 
 static void on_line(void *user, const swarf_line_result *l) {
@@ -580,7 +628,8 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial);
   if ((rc = swarf_cli_mpi_agree(mpi, rc))) return swarf_stock_free(initial), rc;
   o.verify.frame = initial;
-  o.verify.views = o.mesh != NULL || o.image != NULL;
+  o.verify.views = o.mesh != NULL || o.image != NULL || o.html != NULL;
+  o.verify.lines_wanted = o.html != NULL;
   rc = swarf_verify_prepare(&o.verify, &o.cfg);
   if ((rc = swarf_cli_mpi_agree(mpi, rc)))
     return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
@@ -591,7 +640,14 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   if (rank != 0) o.quiet = 1;
   if (parts) o.cfg.comm = &mpi->comm;
   swarf_progress_init(&pb);
-  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}};
+  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}, NULL};
+  if (o.html != NULL && rank == 0 && (clients.html = swarf_html_new()) == NULL) {
+    fputs("swarf simulate: out of memory\n", stderr);
+    swarf_modbus_finish(mb, 1, NULL);
+    swarf_verify_free(&o.verify);
+    return 1;
+  }
+  if (clients.html != NULL) o.cfg.cb.move = on_move;
   o.cfg.cb.progress = on_progress;
   o.cfg.cb.alarm = on_alarm;
   o.cfg.cb.note = on_note;
@@ -601,6 +657,7 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   if (swarf_cli_run(&o.cfg, o.program, initial, o.balance, &stock, &rep, &err) != SWARF_OK) {
     swarf_progress_finish(&pb);
     rc = run_failed(mpi, &err, mb);
+    swarf_html_free(clients.html);
     swarf_modbus_finish(mb, rc, &rep);
     swarf_verify_free(&o.verify);
     free(clients.alarms.a);
@@ -616,7 +673,8 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   print_alarms(&o, &clients.alarms, &rep);
   free(clients.alarms.a);
   swarf_verify_warn(&o.verify, o.program, &rep);
-  rc = write_outputs(&o, stock, &rep, &ntri);
+  rc = write_outputs(&o, clients.html, stock, &rep, &ntri);
+  swarf_html_free(clients.html);
   if (rc == 0 && !o.quiet) {
     print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
     swarf_verify_summary(&o.verify, &rep);

@@ -25,7 +25,13 @@ const char swarf_cli_stock_help[] =
     "  --mesh FILE      the surface by extension: .stl (binary), .obj, .ply (with\n"
     "                   --design: coloured by deviation, a \"deviation\" property)\n"
     "  --view NAME      the --image's view: iso (default), top, front, back, left,\n"
-    "                   right, bottom\n";
+    "                   right, bottom\n"
+    "  --html FILE.html one page that opens in a browser with no network: the part\n"
+    "                   to turn (coloured by deviation with --design), the toolpath\n"
+    "                   with a slider through its lines and the tool, a click on\n"
+    "                   the part names the line that last cut there, the alarms\n"
+    "                   linked to their lines, removal rate and feed per line\n"
+    "                   (measures each line's volume, as --report does)\n";
 
 static int fail(const char *flag, const char *what) {
   fprintf(stderr, "swarf: %s: %s\n", flag, what);

@@ -394,19 +394,38 @@ static swarf_status write_atomic(const json_t *doc, const char *path, swarf_erro
   return SWARF_OK;
 }
 
-swarf_status swarf_report_write(swarf_report *r, const swarf_sim_report *final,
-                                const swarf_report_inputs *in, const char *path, swarf_error *err) {
-  json_t *doc;
-  swarf_status s;
-  if (r->oom) return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");
-  doc = json_pack("{si so so so so so}", "swarf_report", 1, "summary", summary_json(r, final),
-                  "lines", lines_json(r), "tools", tools_json(r), "alarms", alarms_json(r),
-                  "inputs", inputs_json(in));
+/* The document, or NULL (out of memory: err says so). */
+static json_t *document(swarf_report *r, const swarf_sim_report *final,
+                        const swarf_report_inputs *in, swarf_error *err) {
+  json_t *doc = NULL;
+  if (!r->oom)
+    doc = json_pack("{si so so so so so}", "swarf_report", 1, "summary", summary_json(r, final),
+                    "lines", lines_json(r), "tools", tools_json(r), "alarms", alarms_json(r),
+                    "inputs", inputs_json(in));
   if (doc == NULL || r->oom) {
     json_decref(doc);
-    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");
+    swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");
+    return NULL;
   }
+  return doc;
+}
+
+swarf_status swarf_report_write(swarf_report *r, const swarf_sim_report *final,
+                                const swarf_report_inputs *in, const char *path, swarf_error *err) {
+  json_t *doc = document(r, final, in, err);
+  swarf_status s;
+  if (doc == NULL) return SWARF_ERR_MEMORY;
   s = write_atomic(doc, path, err);
   json_decref(doc);
   return s;
+}
+
+char *swarf_report_text(swarf_report *r, const swarf_sim_report *final,
+                        const swarf_report_inputs *in, swarf_error *err) {
+  json_t *doc = document(r, final, in, err);
+  char *text = doc != NULL ? json_dumps(doc, JSON_COMPACT | JSON_REAL_PRECISION(10)) : NULL;
+  if (doc != NULL && text == NULL)
+    swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory in the report");
+  json_decref(doc);
+  return text;
 }

@@ -74,6 +74,11 @@ long swarf_report_peak_mrr(swarf_report *r, double *mm3_per_min, int *tool);
 swarf_status swarf_report_write(swarf_report *r, const swarf_sim_report *final,
                                 const swarf_report_inputs *in, const char *path, swarf_error *err);
 
+/* The same document as compact JSON text (the caller frees it), or NULL
+ * when out of memory (err says so). */
+char *swarf_report_text(swarf_report *r, const swarf_sim_report *final,
+                        const swarf_report_inputs *in, swarf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -188,7 +188,7 @@ int swarf_verify_prepare(swarf_verify *v, swarf_sim_config *cfg) {
   memcpy(cfg->start, v->start, sizeof cfg->start);
   cfg->design = v->design;
   cfg->tolerance = v->tolerance;
-  cfg->line_volumes = v->report_path != NULL;
+  cfg->line_volumes = v->report_path != NULL || v->lines_wanted;
   v->report = swarf_report_new();
   if (v->report == NULL) return fputs("swarf simulate: out of memory\n", stderr), 1;
   return 0;
@@ -268,8 +268,8 @@ void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r) {
   if (peak > 0) printf("  peak removal rate %.1f mm^3/min at line %ld (T%d)\n", rate, peak, tool);
 }
 
-int swarf_verify_write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
-                              const swarf_sim_report *r) {
+static swarf_report_inputs report_inputs(const swarf_verify *v, const char *program,
+                                         const swarf_sim_config *cfg) {
   swarf_report_inputs in = {program,
                             v->stock_spec,
                             v->machine_spec,
@@ -282,6 +282,18 @@ int swarf_verify_write_report(swarf_verify *v, const char *program, const swarf_
                             v->tolerance,
                             v->g54_set ? v->g54 : NULL,
                             v->start_set ? v->start : NULL};
+  return in;
+}
+
+char *swarf_verify_report_text(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
+                               const swarf_sim_report *r, swarf_error *err) {
+  const swarf_report_inputs in = report_inputs(v, program, cfg);
+  return swarf_report_text(v->report, r, &in, err);
+}
+
+int swarf_verify_write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
+                              const swarf_sim_report *r) {
+  const swarf_report_inputs in = report_inputs(v, program, cfg);
   swarf_error err;
   char msg[1024];
   if (v->report_path == NULL) return 0;

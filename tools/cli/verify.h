@@ -29,6 +29,7 @@ typedef struct {
   int start_set, g54_set;
   double start[3], g54[3];
   const char *dialect, *subroutine_path; /* --dialect, --subroutine-path */
+  int lines_wanted;                      /* per-line volumes without --report (--html) */
   int block_delete;                      /* --block-delete */
   long work_limit;                       /* --work-limit (0: the default) */
   long notes;                            /* the program's notes (the first ones are kept) */
@@ -78,6 +79,11 @@ void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r);
  * all): 0, or 1 when it cannot be written (the message is printed). */
 int swarf_verify_write_report(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
                               const swarf_sim_report *r);
+
+/* The report's document as compact JSON (the caller frees it), or NULL
+ * when out of memory (err says so): for the --html page. */
+char *swarf_verify_report_text(swarf_verify *v, const char *program, const swarf_sim_config *cfg,
+                               const swarf_sim_report *r, swarf_error *err);
 
 /* The exit status after the outputs: 0, or 4 (--fail-on gouge and a gouge
  * was found). */

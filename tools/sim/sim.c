@@ -194,6 +194,7 @@ static int on_move(const swarf_move *machine_mv, void *user) {
   if (machine_mv->kind == SWARF_MOVE_TOOL_CHANGE) return on_tool_change(s, machine_mv);
   if (machine_mv->kind == SWARF_MOVE_DWELL) return 0;
   swarf_sim_to_workpiece(s, tip_move(s, machine_mv, &tip), &w);
+  if (s->cfg.cb.move != NULL) s->cfg.cb.move(s->cfg.cb.user, &w);
   swarf_sim_check_units(s, mv);
   swarf_error e;
   mc = machine_for_tool(s);

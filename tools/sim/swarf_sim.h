@@ -164,6 +164,10 @@ typedef struct {
    * code, a grbl `$` line, a probe move that found nothing): gcode.h's
    * notes, with the program line and column. NULL: none. */
   void (*note)(void *user, long line, int column, const char *text);
+  /* Each canonical move as the simulation cuts it: in the workpiece frame,
+   * at the tip of the tool in the spindle (arcs with their centre and
+   * normal there), before it is cut. NULL: none. */
+  void (*move)(void *user, const swarf_move *m);
 } swarf_sim_callbacks;
 
 /* Several processes on one stock (MPI ranks: the CLI's cli_mpi.c; any

@@ -201,6 +201,27 @@ SWARF_API swarf_status swarf_stock_clear_sheets(swarf_stock *s, long long *clear
 /* Bounding box of the active voxels, mm. */
 SWARF_API void swarf_stock_bounds(const swarf_stock *s, double lo[3], double hi[3]);
 
+/* The stock as a dense array (dense.cc). The index box of the active voxels
+ * (lo, dims; dims 0 for an empty stock) and the world point of index 0
+ * (origin, mm): voxel centre (i, j, k) lies at origin + voxel (i, j, k). */
+SWARF_API void swarf_stock_dense_box(const swarf_stock *s, int lo[3], int dims[3],
+                                     double origin[3]);
+/* The values (mm, < 0 inside, +-the band's half-width beyond it) at the
+ * voxel centres of the index box [lo, lo + dims), into out (dims[0] dims[1]
+ * dims[2] floats, the last index fastest: C order, as NumPy's (x, y, z)).
+ * At most 2^31 values (SWARF_ERR_LIMIT). */
+SWARF_API swarf_status swarf_stock_to_dense(const swarf_stock *s, const int lo[3],
+                                            const int dims[3], float *out, swarf_error *err);
+/* A stock from such an array of signed distances (mm, < 0 inside), value
+ * (i, j, k) at origin + voxel (i, j, k): the voxels within the band
+ * (|value| < half_width voxel) are its narrow band, and the signs beyond are
+ * filled from them, so the array must hold the whole surface with air
+ * around it. A value that is not finite is SWARF_ERR_ARG (naming its index);
+ * voxel 0.001 to 1000 mm, half_width 3 to 64. */
+SWARF_API swarf_status swarf_stock_from_dense(const double origin[3], double voxel,
+                                              const int dims[3], const float *values,
+                                              int half_width, swarf_stock **out, swarf_error *err);
+
 /* Interpolated value of the level set at a world point (mm). */
 SWARF_API double swarf_stock_sample(const swarf_stock *s, double x, double y, double z);
 /* Value stored at the voxel nearest to a world point, and its centre. */

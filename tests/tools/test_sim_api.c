@@ -334,7 +334,36 @@ static void test_errors(void) {
         "a bad tool spec names its flag");
 }
 
+/* Every alarm through swarf_sim_alarm_count/_at, past the report's 16: 24
+ * rapids down into the stock, each at its own line (2, 4, ..., 48); and the
+ * report's removed volume is before - after. */
+static void test_all_alarms(void) {
+  char text[2048];
+  size_t at = 0;
+  swarf_sim_config cfg;
+  swarf_sim *sim = NULL;
+  base_config(&cfg);
+  for (int i = 0; i < 24; i++)
+    at += (size_t)snprintf(text + at, sizeof text - at, "G0 X%d Y15 Z5\nG0 Z-1\n", 2 + i);
+  CHECK(swarf_sim_new(&cfg, "rapids.ngc", &sim, NULL) == SWARF_OK, "new");
+  CHECK(swarf_sim_feed(sim, text, at) == SWARF_OK && swarf_sim_finish(sim) == SWARF_OK, "run");
+  const swarf_sim_report *r = swarf_sim_get_report(sim);
+  long n = swarf_sim_alarm_count(sim), in_order = 1;
+  for (long i = 0; i < n; i++)
+    in_order &= swarf_sim_alarm_at(sim, i)->line == 2 * (i + 1) &&
+                swarf_sim_alarm_at(sim, i)->kind == SWARF_ALARM_RAPID;
+  CHECK(n == 24 && r->alarms == 24 && in_order, "all 24 alarms kept, in order (%ld, %ld)", n,
+        r->alarms);
+  CHECK(swarf_sim_alarm_at(sim, 24) == NULL && swarf_sim_alarm_at(sim, -1) == NULL &&
+            swarf_sim_alarm_at(NULL, 0) == NULL && swarf_sim_alarm_count(NULL) == 0,
+        "outside the alarms: NULL");
+  CHECK(r->removed > 0 && r->removed == r->volume_before - r->volume_after,
+        "report.removed %g = %g - %g", r->removed, r->volume_before, r->volume_after);
+  swarf_sim_free(sim);
+}
+
 int main(void) {
+  test_all_alarms();
   test_streaming();
   test_add_motion();
   test_progress_within_a_move();

@@ -145,9 +145,20 @@ int swarf_sim_batch_flush(swarf_sim *s) {
   return swarf_sim_lines_flush(s, 0);
 }
 
+/* Kept for swarf_sim_alarm_at; out of memory keeps the count only. */
+static void keep_alarm(swarf_sim *s, const swarf_alarm *a) {
+  if (s->nalarms == s->alarms_cap && s->nalarms < SWARF_SIM_KEPT_ALARMS) {
+    const long cap = s->alarms_cap ? 2 * s->alarms_cap : 64;
+    swarf_alarm *p = realloc(s->alarms, sizeof *p * (size_t)cap);
+    if (p != NULL) s->alarms = p, s->alarms_cap = cap;
+  }
+  if (s->nalarms < s->alarms_cap) s->alarms[s->nalarms++] = *a;
+}
+
 void swarf_sim_raise(swarf_sim *s, const swarf_alarm *a) {
   swarf_sim_report *r = &s->rep;
   if (r->alarms < SWARF_SIM_MAX_ALARMS) r->alarm[r->alarms] = *a;
+  keep_alarm(s, a);
   r->alarms++;
   if ((unsigned)a->kind < sizeof r->alarm_count / sizeof r->alarm_count[0])
     r->alarm_count[a->kind]++;

@@ -283,6 +283,7 @@ static swarf_status sim_init(swarf_sim *s, swarf_error *err) {
   }
   s->rep.volume_before = swarf_stock_volume(s->stock);
   s->rep.volume_after = NAN;
+  s->rep.removed = NAN;
   s->fraction = -1.0;
   return SWARF_OK;
 }
@@ -488,6 +489,7 @@ swarf_status swarf_sim_finish(swarf_sim *s) {
   s->rep.seconds = now_seconds() - s->t0;
   if (st != SWARF_OK) return st;
   if (whole) s->rep.volume_after = swarf_stock_volume(s->stock);
+  s->rep.removed = s->rep.volume_before - s->rep.volume_after;
   s->state = SIM_FINISHED;
   return SWARF_OK;
 }
@@ -522,7 +524,16 @@ void swarf_sim_free(swarf_sim *s) {
   swarf_stock_free(s->stock);
   swarf_stock_free(s->initial);
   swarf_sim_part_clear(s);
+  free(s->alarms);
   free(s);
+}
+
+long swarf_sim_alarm_count(const swarf_sim *s) {
+  return s != NULL ? s->nalarms : 0;
+}
+
+const swarf_alarm *swarf_sim_alarm_at(const swarf_sim *s, long i) {
+  return s != NULL && i >= 0 && i < s->nalarms ? &s->alarms[i] : NULL;
 }
 
 /* ---- One-shot conveniences ------------------------------------------------ */

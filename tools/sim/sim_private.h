@@ -30,6 +30,8 @@ struct swarf_sim {
   swarf_sim_state state;
   swarf_error err;
   swarf_sim_report rep;
+  swarf_alarm *alarms; /* every alarm, up to SWARF_SIM_KEPT_ALARMS */
+  long nalarms, alarms_cap;
   double t0;       /* monotonic seconds at new */
   double fraction; /* of the file read; < 0 unknown */
   /* batch: motions, their sweeps and cuts, removed in one pass */

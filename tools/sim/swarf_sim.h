@@ -363,8 +363,17 @@ struct swarf_sim_report {
   int has_deviation;               /* 1: deviation holds the comparison with cfg.design */
   swarf_stock_deviation deviation; /* after finish (stock.h) */
   double design_s;                 /* CPU time (all threads) of that comparison, s */
+  double removed;                  /* volume_before - volume_after, mm^3 (NaN before finish) */
 };
 SWARF_API const swarf_sim_report *swarf_sim_get_report(const swarf_sim *sim);
+
+/* Every alarm of the run so far, in the order raised (report.alarm keeps the
+ * first SWARF_SIM_MAX_ALARMS): the count, and alarm i (0 <= i < count;
+ * NULL outside, or for a NULL handle), owned by the handle. The handle keeps
+ * up to SWARF_SIM_KEPT_ALARMS; report.alarms counts every one. */
+#define SWARF_SIM_KEPT_ALARMS 1000000L
+SWARF_API long swarf_sim_alarm_count(const swarf_sim *sim);
+SWARF_API const swarf_alarm *swarf_sim_alarm_at(const swarf_sim *sim, long i);
 
 /* The stock: borrowed (valid until the next call on the handle) or taken
  * (the caller owns it and frees it with swarf_stock_free; the handle then has

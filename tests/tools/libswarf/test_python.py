@@ -345,6 +345,31 @@ def test_abort():
         check("from the callback" in str(e), "the callback's own exception: %r" % e)
 
 
+def test_numpy():
+    """Stock.to_numpy against pyopenvdb's copy of the same grid from the .vdb
+    (an independent reader); from_numpy of that array gives the same stock."""
+    r = swarf.simulate(text=SLOT, stock="box:0,0,-5,20,10,0", tools=["T1=flat,D4"], voxel=0.25)
+    p = path("numpy.vdb")
+    r.write_vdb(p)
+    a, origin, voxel = r.stock.to_numpy()
+    g = vdb.read(p, "stock")
+    ijk = g.transform.worldToIndexCellCentered(origin)
+    b = np.zeros(a.shape, dtype=np.float32)
+    g.copyToArray(b, ijk=ijk)
+    check(a.shape == tuple(g.evalActiveVoxelDim()) and np.array_equal(a, b),
+          "to_numpy %s = pyopenvdb's copy from %s" % (a.shape, ijk))
+    check(abs(voxel - 0.25) < 1e-12 and a.min() < 0 < a.max(), "voxel and signs")
+    s = swarf.Stock.from_numpy(a, origin, voxel)
+    a2, origin2, _ = s.to_numpy()
+    near(s.volume, r.stock.volume, 1e-9, "from_numpy: the same volume")
+    check(np.array_equal(a2, a) and np.allclose(origin2, origin), "from_numpy then to_numpy: the same array")
+    try:
+        swarf.Stock.from_numpy(np.full((4, 4, 4), np.nan), (0, 0, 0), 0.25)
+        check(False, "from_numpy refuses NaN")
+    except swarf.InputError as e:
+        check("not finite" in str(e), "from_numpy refuses NaN: %s" % e)
+
+
 def test_arguments():
     """wrong types and ranges raise, never crash or wrap."""
     try:
@@ -386,7 +411,7 @@ def main():
     for t in (test_version, test_slot, test_trench_lines, test_against_cli,
               test_rotary_against_cli, test_outputs,
               test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort,
-              test_dialect, test_arguments):
+              test_dialect, test_numpy, test_arguments):
         print("--", t.__name__)
         try:
             t()

@@ -227,6 +227,16 @@ static void functions(void) {
      const swarf_stock *, double *, double *);
   FN(swarf_stock_sample, "\"c_double\"", "\"c_void_p\", \"c_double\", \"c_double\", \"c_double\"",
      double, const swarf_stock *, double, double, double);
+  FN(swarf_stock_dense_box, "None", "\"c_void_p\", \"c_int * 3\", \"c_int * 3\", \"c_double * 3\"",
+     void, const swarf_stock *, int *, int *, double *);
+  FN(swarf_stock_to_dense, "\"c_int\"",
+     "\"c_void_p\", \"c_int * 3\", \"c_int * 3\", \"c_void_p\", \"" P_ERR "\"", swarf_status,
+     const swarf_stock *, const int *, const int *, float *, swarf_error *);
+  FN(swarf_stock_from_dense, "\"c_int\"",
+     "\"c_double * 3\", \"c_double\", \"c_int * 3\", \"c_void_p\", \"c_int\", "
+     "\"POINTER(c_void_p)\", \"" P_ERR "\"",
+     swarf_status, const double *, double, const int *, const float *, int, swarf_stock **,
+     swarf_error *);
   FN(swarf_stock_check, "\"c_int\"", "\"c_void_p\", \"" P_ERR "\"", swarf_status,
      const swarf_stock *, swarf_error *);
   FN(swarf_stock_write_vdb, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"" P_ERR "\"", swarf_status,

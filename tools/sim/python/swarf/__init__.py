@@ -216,6 +216,42 @@ class Stock:
             _raise(err)
         return cls(_handle=h.value)
 
+    @classmethod
+    def from_numpy(cls, values, origin, voxel, band=3) -> "Stock":
+        """A stock from a NumPy array of signed distances (mm, < 0 inside)
+        on voxel centres: values[i, j, k] at origin + voxel * (i, j, k). The
+        array must hold the whole surface with air around it (the signs
+        beyond the band are filled from it); band: half-width in voxels."""
+        import numpy as np
+        a = np.ascontiguousarray(values, dtype=np.float32)
+        if a.ndim != 3 or 0 in a.shape:
+            raise ValueError("from_numpy: a 3-D array with no empty axis, not shape %r"
+                             % (a.shape,))
+        o = (types["c_double"] * 3)(*_point(origin, "origin"))
+        dims = (types["c_int"] * 3)(*a.shape)
+        err, h = S["swarf_error"](), c_void_p()
+        if lib.swarf_stock_from_dense(o, _number(voxel, "voxel", 0.0, math.inf), dims,
+                                      a.ctypes.data, _whole(band, "band", 3, 64), byref(h),
+                                      byref(err)) != 0:
+            _raise(err)
+        return cls(_handle=h.value)
+
+    def to_numpy(self):
+        """(values, origin, voxel): the signed distances (mm, float32, < 0
+        inside, +-the band beyond it) on the voxel centres of the box of the
+        active voxels, values[i, j, k] at origin + voxel * (i, j, k)."""
+        import numpy as np
+        lo, dims, o = (types["c_int"] * 3)(), (types["c_int"] * 3)(), (types["c_double"] * 3)()
+        lib.swarf_stock_dense_box(self._handle(), lo, dims, o)
+        shape = tuple(max(d, 0) for d in dims)
+        a = np.empty(shape, dtype=np.float32)
+        voxel = self.voxel
+        if a.size:
+            err = S["swarf_error"]()
+            if lib.swarf_stock_to_dense(self._handle(), lo, dims, a.ctypes.data, byref(err)) != 0:
+                _raise(err)
+        return a, tuple(o[k] + voxel * lo[k] for k in range(3)), voxel
+
     def _handle(self):
         if self._h is None or not self._h.value:
             raise ValueError("swarf.Stock: closed (or given to a Simulation)")

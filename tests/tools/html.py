@@ -23,11 +23,12 @@ import base64
 import os
 import re
 import shutil
-import struct
 import subprocess
 import sys
 import tempfile
-import zlib
+
+import verifykit as vk
+from verifykit import check
 
 swarf = sys.argv[1]
 if len(sys.argv) > 2:  # the size on bear at 0.2 mm
@@ -57,69 +58,6 @@ if chromium is None:
 FLAGS = ["--headless", "--no-sandbox", "--use-gl=swiftshader", "--enable-unsafe-swiftshader",
          "--disable-gpu-sandbox", "--allow-file-access-from-files", "--no-first-run",
          "--disable-background-networking", "--virtual-time-budget=15000"]
-failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
-
-
-def box_stl(path, lo, hi):
-    """A closed box as binary STL, facing out."""
-    x0, y0, z0 = lo
-    x1, y1, z1 = hi
-    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
-         (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
-    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
-    tris = [t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))]
-    with open(path, "wb") as f:
-        f.write(b"\0" * 80 + struct.pack("<I", len(tris)))
-        for t in tris:
-            f.write(struct.pack("<3f", 0, 0, 0))
-            for i in t:
-                f.write(struct.pack("<3f", *v[i]))
-            f.write(b"\0\0")
-
-
-def png_pixels(path):
-    """(width, height, rows of RGB tuples) of an 8-bit RGB/RGBA PNG."""
-    data = open(path, "rb").read()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n"
-    at, idat, w = 8, b"", 0
-    while at < len(data):
-        n, kind = struct.unpack(">I4s", data[at:at + 8])
-        body = data[at + 8:at + 8 + n]
-        if kind == b"IHDR":
-            w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
-            assert depth == 8 and ctype in (2, 6)
-            bpp = 3 if ctype == 2 else 4
-        elif kind == b"IDAT":
-            idat += body
-        at += 12 + n
-    raw, rows, prev = zlib.decompress(idat), [], bytearray(w * bpp)
-    stride = w * bpp
-    for y in range(h):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
-            if f == 1:
-                line[i] = (line[i] + a) & 255
-            elif f == 2:
-                line[i] = (line[i] + b) & 255
-            elif f == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append([tuple(line[x * bpp:x * bpp + 3]) for x in range(w)])
-        prev = line
-    return w, h, rows
-
-
 d = tempfile.mkdtemp()
 try:
     prog = os.path.join(d, "slot.ngc")
@@ -127,7 +65,7 @@ try:
         f.write("G21 G90\nG0 X-5 Y10 Z5\nG1 Z-2 F300\nG1 X35\nG0 Z5\nG0 X15 Y3\nG0 Z-1\n"
                 "G0 Z5\nG2 X15 Y17 I0 J7 F400\nM2\n")
     design = os.path.join(d, "design.stl")
-    box_stl(design, (0, 0, -5), (30, 20, -2))
+    vk.write_stl(design, vk.box_triangles((0, 0, -5), (30, 20, -2)))
     page = os.path.join(d, "page.html")
     p = subprocess.run([swarf, "simulate", prog, "--stock", "box:0,0,-5,30,20,0", "--tool",
                         "T1=flat,D6,L10", "--voxel", "0.25", "--design", design, "--out",
@@ -169,7 +107,7 @@ try:
     if not os.path.exists(shot):
         check(False, "a screenshot")
     else:
-        w, h, rows = png_pixels(shot)
+        w, h, rows = vk.read_png(shot)
         view = [px for row in rows for px in row[:w - 340]]  # the 3D view, left of the panel
         part = sum(1 for r, g, b in view if abs(r - 244) + abs(g - 244) + abs(b - 242) > 30)
         red = sum(1 for r, g, b in view if r > 170 and g < 110 and b < 110)
@@ -177,5 +115,4 @@ try:
         check(red > 0.01 * len(view), "the excess colour shows: %d red pixels" % red)
 finally:
     shutil.rmtree(d, ignore_errors=True)
-print("%d failed" % len(failures))
-sys.exit(1 if failures else 0)
+sys.exit(vk.done())

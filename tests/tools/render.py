@@ -24,10 +24,8 @@ and checked against the part's known geometry.
 """
 import math
 import os
-import struct
 import subprocess
 import sys
-import zlib
 
 import stock_check
 import verifykit as vk
@@ -37,49 +35,6 @@ d = vk.workdir()
 W, H = 400, 300
 
 
-def read_png(path):
-    """(width, height, rows of (r, g, b) tuples) of an 8-bit RGB or RGBA PNG."""
-    with open(path, "rb") as f:
-        data = f.read()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
-    at, idat, w = 8, b"", None
-    while at < len(data):
-        n, kind = struct.unpack(">I4s", data[at:at + 8])
-        body = data[at + 8:at + 8 + n]
-        if zlib.crc32(kind + body) != struct.unpack(">I", data[at + 8 + n:at + 12 + n])[0]:
-            raise ValueError("bad CRC in " + kind.decode())
-        if kind == b"IHDR":
-            w, h, depth, ctype, _, _, interlace = struct.unpack(">IIBBBBB", body)
-            assert depth == 8 and ctype in (2, 6) and interlace == 0, (depth, ctype, interlace)
-            bpp = 3 if ctype == 2 else 4
-        elif kind == b"IDAT":
-            idat += body
-        at += 12 + n
-    raw = zlib.decompress(idat)
-    stride = w * bpp
-    rows, prev = [], bytearray(stride)
-    for y in range(h):
-        f = raw[y * (stride + 1)]
-        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b = prev[i]
-            c = prev[i - bpp] if i >= bpp else 0
-            if f == 1:
-                line[i] = (line[i] + a) & 255
-            elif f == 2:
-                line[i] = (line[i] + b) & 255
-            elif f == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append([tuple(line[x * bpp:x * bpp + 3]) for x in range(w)])
-        prev = line
-    return w, h, rows
-
-
 def render(grid, name, extra=()):
     out = os.path.join(d, name + ".png")
     if os.path.exists(out):
@@ -87,7 +42,7 @@ def render(grid, name, extra=()):
     p = subprocess.run([swarf, "render", grid, "--image", out, "--size", "%dx%d" % (W, H)] + list(extra),
                        capture_output=True, text=True, timeout=300)
     vk.check(p.returncode == 0 and os.path.exists(out), "render %s: exit %d %s" % (name, p.returncode, p.stderr.strip()))
-    return read_png(out) if os.path.exists(out) else (0, 0, [])
+    return vk.read_png(out) if os.path.exists(out) else (0, 0, [])
 
 
 def silhouette(img):

@@ -96,14 +96,11 @@ static swarf_status mesh_bytes(const swarf_html_page *pg, char **out, size_t *le
   const double surface = (double)swarf_stock_active_voxels(s) / (2.0 * swarf_stock_half_width(s));
   swarf_stock_output o;
   swarf_status st = SWARF_OK;
-  char path[] = "/tmp/swarf-html-XXXXXX.ply";
-  const char *tmp = getenv("TMPDIR");
+  const char *dir = getenv("TMPDIR");
   char buf[4096];
   int fd;
-  if (tmp != NULL && strlen(tmp) + 24 < sizeof buf)
-    snprintf(buf, sizeof buf, "%s/swarf-html-XXXXXX.ply", tmp);
-  else
-    snprintf(buf, sizeof buf, "%s", path);
+  if (dir == NULL || dir[0] == '\0' || strlen(dir) > 4000) dir = "/tmp";
+  snprintf(buf, sizeof buf, "%s/swarf-html-%s.ply", dir, "XXXXXX"); /* mkstemps' template */
   if (10.0 * surface > MESH_TRIANGLES) {
     const double v = swarf_stock_voxel(s) * sqrt(10.0 * surface / MESH_TRIANGLES);
     if ((st = swarf_stock_resample(s, v, 3, &coarse, err)) != SWARF_OK) return st;
@@ -111,8 +108,7 @@ static swarf_status mesh_bytes(const swarf_html_page *pg, char **out, size_t *le
   }
   if ((fd = mkstemps(buf, 4)) < 0) {
     swarf_stock_free(coarse);
-    return swarf_error_set(err, SWARF_ERR_IO, "--html: no temporary file for the mesh in %s",
-                           tmp ? tmp : "/tmp");
+    return swarf_error_set(err, SWARF_ERR_IO, "--html: no temporary file for the mesh in %s", dir);
   }
   close(fd);
   memset(&o, 0, sizeof o);

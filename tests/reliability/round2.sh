@@ -2,10 +2,12 @@
 # round2.sh SWARF [CASE...] -- the hardening reproducers (round
 # 2), one function a case, each made of its own inputs in a scratch folder.
 # Prints one line a case, FIXED or PRESENT, and a count. With CASEs it runs
-# those and fails when any is PRESENT (ctest runs the fixed ones so); with
-# none it runs all and only reports (the list of what is left).
+# those and fails when any is PRESENT (ctest runs the fixed ones so, leaving
+# out c_api_null and modbus_spin, which run as tools_sim_api and
+# tools_modbus_spin); with none it runs all and only reports.
 set -u
 swarf=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 shift
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -222,12 +224,22 @@ case_mpi_different_inputs() { # ranks given different programs: rank 0 spun in a
   local rc=$?
   [ $rc -ne 0 ] && [ $rc -ne 124 ] && [ ! -e mixed.vdb ] && grep -q "rank 1 of 2 was given a different program" err
 }
+case_c_api_null() { # swarf_sim_parse_stock(spec, NULL, &err) segfaulted (the C API's checks)
+  local t; t="$(dirname "$swarf")/../tests/tools/test_sim_api"
+  [ -x "$t" ] || { echo "  (c_api_null: $t not built, not run)"; return 0; }
+  "$t" > /dev/null 2>&1 # tools_sim_api: NULL outputs and ranges refused with the argument's name
+}
+case_modbus_spin() { # TCP spun out of descriptors, RTU after its line was lost (tools_modbus_spin)
+  local t="$here/../tools/modbus_spin.py"
+  command -v socat > /dev/null || { echo "  (modbus_spin: no socat, not run)"; return 0; }
+  timeout 300 /usr/bin/python3 "$t" "$swarf" > /dev/null 2>&1
+}
 
 all=(compare_image_input compare_mesh_input mesh_over_fixture out_over_subroutine
   sweep_user_file long_output_name vdb_nan table_z_huge grbl_m56 out_fifo latin1_report
   peck_tiny_q peck_huge_l threads_as_limit sub_fifo sub_dev_zero tiny_tool_values
   loop_helix_turns loop_pecks vdb_stock_named stl_stock_tiny_voxel design_band py_library_size
-  py_close_in_callback py_stock_int py_batch_band mpi_different_inputs)
+  py_close_in_callback py_stock_int py_batch_band mpi_different_inputs c_api_null modbus_spin)
 [ $# -gt 0 ] && all=("$@")
 fixed=0 present=0
 for c in "${all[@]}"; do

@@ -15,6 +15,7 @@ Truth:
     size and triangle count agree, the PNG has the asked size;
   - alarms, progress, abort, errors with their places, streaming = one shot.
 """
+import json
 import math
 import os
 import struct
@@ -30,6 +31,9 @@ except ImportError as e:
 PREFIX, WORK = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(PREFIX, "lib", "python3", "dist-packages"))
 import swarf  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import verifykit as vk  # noqa: E402  (tests/tools: STL designs)
 
 failures = []
 
@@ -345,6 +349,37 @@ def test_abort():
         check("from the callback" in str(e), "the callback's own exception: %r" % e)
 
 
+def test_design():
+    """design= and tolerance= against `swarf simulate --design --report` on the
+    same job: the same gouge alarms and the same comparison with the design."""
+    design, prog, rep = path("design.stl"), write_program("design.ngc", SLOT), path("d.json")
+    vk.write_stl(design, vk.box_triangles((0, 0, -5), (20, 10, -0.5)))  # the slot gouges 0.5 mm
+    subprocess.run([os.path.join(PREFIX, "bin", "swarf"), "simulate", prog, "--stock",
+                    "box:0,0,-5,20,10,0", "--tool", "T1=flat,D4", "--voxel", "0.25", "--design",
+                    design, "--tolerance", "0.05", "--report", rep, "--out", path("d.vdb"),
+                    "--quiet"], check=True, capture_output=True)
+    with open(rep) as f:
+        cli = json.load(f)
+    r = swarf.simulate(prog, stock="box:0,0,-5,20,10,0", tools="T1=flat,D4", voxel=0.25,
+                       design=design, tolerance=0.05)
+    d, c = r.report.deviation, cli["summary"]["design"]
+    check(d is not None and abs(d.gouge_depth - 0.5) < 0.13, "a gouge of 0.5 mm: %s"
+          % (d and d.gouge_depth))
+    for got, want, what in ((d.gouge_volume, c["gouge_mm3"], "gouge volume"),
+                            (d.excess_volume, c["excess_mm3"], "excess volume"),
+                            (d.gouge_depth, c["gouge_depth_mm"], "gouge depth"),
+                            (d.excess_height, c["excess_mm"], "excess height")):
+        near(got, want, 1e-9, "design: %s as the CLI's" % what)
+    gouges = sorted({a.line for a in r.alarms if a.kind == "gouge"})
+    check(gouges == sorted({a["line"] for a in cli["alarms"] if a["kind"] == "gouge"}) and gouges,
+          "the same gouge lines as the CLI: %s" % gouges)
+    try:
+        swarf.simulate(text=SLOT, stock="box:0,0,-5,20,10,0", tools="T1=flat,D4", tolerance=0.1)
+        check(False, "tolerance without a design is refused")
+    except swarf.InputError as e:
+        check("design" in str(e), "tolerance without a design: %s" % e)
+
+
 def test_numpy():
     """Stock.to_numpy against pyopenvdb's copy of the same grid from the .vdb
     (an independent reader); from_numpy of that array gives the same stock."""
@@ -411,7 +446,7 @@ def main():
     for t in (test_version, test_slot, test_trench_lines, test_against_cli,
               test_rotary_against_cli, test_outputs,
               test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort,
-              test_dialect, test_numpy, test_arguments):
+              test_dialect, test_design, test_numpy, test_arguments):
         print("--", t.__name__)
         try:
             t()

@@ -79,6 +79,18 @@ static void structs(void) {
   FIELD(swarf_alarm, at, "c_double * 3");
   FIELD(swarf_alarm, index, "c_int");
   end();
+  STRUCT(swarf_stock_deviation);
+  FIELD(swarf_stock_deviation, tolerance, "c_double");
+  FIELD(swarf_stock_deviation, reach, "c_double");
+  FIELD(swarf_stock_deviation, stock_volume, "c_double");
+  FIELD(swarf_stock_deviation, design_volume, "c_double");
+  FIELD(swarf_stock_deviation, gouge_volume, "c_double");
+  FIELD(swarf_stock_deviation, gouge_depth, "c_double");
+  FIELD(swarf_stock_deviation, gouge_at, "c_double * 3");
+  FIELD(swarf_stock_deviation, excess_volume, "c_double");
+  FIELD(swarf_stock_deviation, excess_height, "c_double");
+  FIELD(swarf_stock_deviation, excess_at, "c_double * 3");
+  end();
   STRUCT(swarf_sim_report);
   FIELD(swarf_sim_report, lines, "c_long");
   FIELD(swarf_sim_report, moves, "c_long");
@@ -96,6 +108,8 @@ static void structs(void) {
   FIELD(swarf_sim_report, start, "c_double * 3");
   FIELD(swarf_sim_report, units_line, "c_long");
   FIELD(swarf_sim_report, units_missing_line, "c_long");
+  FIELD(swarf_sim_report, has_deviation, "c_int");
+  FIELD(swarf_sim_report, deviation, "swarf_stock_deviation");
   end();
   STRUCT(swarf_sim_progress);
   FIELD(swarf_sim_progress, fraction, "c_double");
@@ -138,6 +152,8 @@ static void structs(void) {
   FIELD(swarf_sim_config, subroutine_path, "c_char_p");
   FIELD(swarf_sim_config, fragment, "c_int");
   FIELD(swarf_sim_config, work_limit, "c_long");
+  FIELD(swarf_sim_config, design, "c_void_p");
+  FIELD(swarf_sim_config, tolerance, "c_double");
   end();
   fprintf(out, "]\n\n");
 }
@@ -237,6 +253,11 @@ static void functions(void) {
      "\"POINTER(c_void_p)\", \"" P_ERR "\"",
      swarf_status, const double *, double, const int *, const float *, int, swarf_stock **,
      swarf_error *);
+  FN(swarf_stock_design_band, "\"c_int\"", "\"c_void_p\", \"c_double\", \"c_double\", \"c_int\"",
+     int, const swarf_stock *, double, double, int);
+  FN(swarf_stock_read_design_band, "\"c_int\"",
+     "\"c_char_p\", \"c_double\", \"c_int\", \"POINTER(c_void_p)\", \"" P_ERR "\"", swarf_status,
+     const char *, double, int, swarf_stock **, swarf_error *);
   FN(swarf_stock_check, "\"c_int\"", "\"c_void_p\", \"" P_ERR "\"", swarf_status,
      const swarf_stock *, swarf_error *);
   FN(swarf_stock_write_vdb, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"" P_ERR "\"", swarf_status,

@@ -149,6 +149,26 @@ class LineResult:
 
 
 @dataclass
+class Deviation:
+    """The result against the design (mm, mm^3): material left outside it
+    (excess) and cut away inside it (gouge), beyond the tolerance; the
+    largest of each and where (None when there is none)."""
+    tolerance: float
+    gouge_volume: float
+    gouge_depth: float
+    gouge_at: Optional[Tuple[float, float, float]]
+    excess_volume: float
+    excess_height: float
+    excess_at: Optional[Tuple[float, float, float]]
+
+    @classmethod
+    def _from(cls, d):
+        at = lambda p: None if math.isnan(p[0]) else tuple(p)
+        return cls(d.tolerance, d.gouge_volume, d.gouge_depth, at(d.gouge_at), d.excess_volume,
+                   d.excess_height, at(d.excess_at))
+
+
+@dataclass
 class Report:
     """Counts of a run (final after finish). Volumes in mm^3 (volume_after is
     NaN before the end), path in mm, times in s; alarm_count by kind."""
@@ -168,6 +188,7 @@ class Report:
     start: Tuple[float, float, float] = (0.0, 0.0, 0.0)  # where the tool tip started, mm
     units_line: int = 0          # the program's first G20/G21 (0: none)
     units_missing_line: int = 0  # the first move run before any G20/G21 (0: none)
+    deviation: Optional[Deviation] = None  # against the design, after finish (design=)
 
     @property
     def removed(self) -> float:
@@ -179,7 +200,8 @@ class Report:
         counts = {name: r.alarm_count[k] for k, name in _ALARM_KINDS.items()}
         return cls(r.lines, r.moves, r.cutting_moves, r.rapids, r.arcs, r.tool_changes, r.path_mm,
                    r.machining_s, r.volume_before, r.volume_after, r.seconds, r.alarms, counts,
-                   tuple(r.start), r.units_line, r.units_missing_line)
+                   tuple(r.start), r.units_line, r.units_missing_line,
+                   Deviation._from(r.deviation) if r.has_deviation else None)
 
 
 @dataclass
@@ -471,13 +493,17 @@ class Simulation:
     --dialect and --block-delete: dialect ("linuxcnc", the default, "fanuc",
     "haas" or "grbl"), block_delete (True: `/` blocks are skipped),
     subroutine_path (where `o<name> call` finds <name>.ngc: directories
-    joined by ':'), fragment (True: the text is not a whole program and need
+    joined by ':'), design (a closed STL or .vdb path, or a Stock: each move
+    cutting into it beyond tolerance mm is a gouge alarm, and the result's
+    report.deviation compares the part with it; a Stock given stays the
+    caller's and must stay open), fragment (True: the text is not a whole program and need
     not end; False, the default: a LinuxCNC program must end with M2, M30 or
     a closing %, as rs274 requires). name is the program's name in messages."""
 
     def __init__(self, stock, tools=(), *, voxel=None, machine=None, band=None, batch=None,
                  line_volumes=False, start=None, g54=None, units=None, offsets=None,
                  dialect=None, block_delete=False, subroutine_path=None, fragment=False,
+                 design=None, tolerance=None,
                  name="program", progress=None, alarm=None, line=None):
         self._h = c_void_p()
         self._exc = None
@@ -500,6 +526,7 @@ class Simulation:
         if subroutine_path is not None:
             subpath = _path(subroutine_path)  # borrowed by new (it copies it)
             cfg.subroutine_path = subpath
+        self._design = self._read_design(cfg, stock, design, tolerance)
         # The C callbacks; kept alive as long as the handle.
         self._cbs = (types["PROGRESS_FN"](self._on_progress), types["ALARM_FN"](self._on_alarm),
                      types["LINE_FN"](self._on_line))
@@ -580,6 +607,28 @@ class Simulation:
         if rc != _OK:
             _raise(lib.swarf_sim_error(self._handle()).contents)
 
+    @staticmethod
+    def _read_design(cfg, stock, design, tolerance):
+        """The design as a Stock (a path read at the run's voxel, with the band
+        the comparison needs, as `swarf simulate --design`), put into cfg."""
+        if tolerance is not None:
+            if design is None:
+                _raise_msg("SWARF_ERR_ARG", "tolerance: the design's; give design= too",
+                           "tolerance")
+            cfg.tolerance = _number(tolerance, "tolerance", 0.0, 100.0)
+        if design is None:
+            return None
+        if not isinstance(design, Stock):
+            voxel = stock.voxel if isinstance(stock, Stock) else cfg.voxel
+            band = lib.swarf_stock_design_band(None, voxel, cfg.tolerance, 0)
+            err, h = S["swarf_error"](), c_void_p()
+            if lib.swarf_stock_read_design_band(_path(design), voxel, band, byref(h),
+                                                byref(err)) != 0:
+                _raise(err)
+            design = Stock(_handle=h.value)
+        cfg.design = design._handle().value
+        return design
+
     def feed(self, text):
         """Program text (str or bytes, any split); complete lines run at once."""
         if isinstance(text, str):
@@ -629,6 +678,7 @@ class Simulation:
 def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=None, band=None,
              batch=None, line_volumes=False, start=None, g54=None, units=None, offsets=None,
              dialect=None, block_delete=False, subroutine_path=None, fragment=False,
+             design=None, tolerance=None,
              name=None, progress=None, alarm=None, line=None) -> Result:
     """Runs a program: the G-code file at `program`, or the string `text`.
     Options as Simulation (and `swarf simulate`). Returns the Result; raises
@@ -641,6 +691,7 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
                     line_volumes=line_volumes, start=start, g54=g54, units=units,
                     offsets=offsets, dialect=dialect, block_delete=block_delete,
                     subroutine_path=subroutine_path, fragment=fragment,
+                    design=design, tolerance=tolerance,
                     name=name, progress=progress, alarm=alarm,
                     line=line) as sim:
         if text is not None:

@@ -57,6 +57,7 @@
 #include <utility>
 
 #include "stock_private.h"
+#include "swarf_reference.h"
 
 #include "remove_pass.h"
 
@@ -160,14 +161,8 @@ using namespace removal;
 
 void remove_cuts(swarf_stock &s, const swarf_stock_cut *cuts, size_t ncuts, const Measure *measure,
                  const swarf_stock_support_fn *support) {
-  static const bool plain = [] {
-    const char *e = std::getenv("SWARF_REMOVE_PLAIN");
-    return e != nullptr && e[0] == '1';
-  }();
-  static const bool flat = [] {
-    const char *e = std::getenv("SWARF_REMOVE_FLAT");
-    return e != nullptr && e[0] == '1';
-  }();
+  const bool plain = swarf_reference_on(SWARF_REFERENCE_REMOVE_PLAIN);
+  const bool flat = swarf_reference_on(SWARF_REFERENCE_REMOVE_FLAT);
   Pass p{s, cuts, s.voxel, s.background, 0.0, {}, {}, {}, measure, flat, plain, support};
   init_pass(p);
   RemoveScratch &w = s.scratch;

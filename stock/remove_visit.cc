@@ -132,8 +132,8 @@ struct CutAt {
 /// An octant's cuts deepest first (a NaN sdf first), sorted lazily: the
 /// cubes walk the order from its start and most stop after a few cuts, so
 /// the order is drawn from a heap only as far as some cube reads it
-/// (issue 12: with 1024 moves a batch, a full sort of every octant's cuts
-/// took 12 % of bear.nc at 0.2 mm).
+/// (with 1024 moves a batch, a full sort of every octant's cuts took 12 % of
+/// bear.nc at 0.2 mm).
 class OctOrder {
 public:
   using Key = std::pair<double, uint32_t>; ///< sort key (NaN: -inf), index in the octant's cuts

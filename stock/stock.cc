@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "stock_private.h"
+#include "swarf_reference.h"
 
 namespace swarf {
 
@@ -189,11 +190,7 @@ swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, in
     s->region_lo = openvdb::Coord(rl[0], rl[1], rl[2]);
     s->region_hi = openvdb::Coord(rh[0], rh[1], rh[2]);
   }
-  static const bool by_removal = [] { // SWARF_SHAPE_REMOVE=1: the reference (tests)
-    const char *e = std::getenv("SWARF_SHAPE_REMOVE");
-    return e != nullptr && e[0] == '1';
-  }();
-  if (by_removal) {
+  if (swarf_reference_on(SWARF_REFERENCE_SHAPE_REMOVE)) { // the reference (tests)
     swarf_stock_cut cut{};
     for (int k = 0; k < 3; k++)
       cut.lo[k] = a[k] * voxel, cut.hi[k] = b[k] * voxel;

@@ -10,7 +10,7 @@
 /// (the grid's data compression and background) is copied to each buffer's
 /// stream. At 0.1 mm on bear.nc that loop was the largest serial part of a
 /// run (about 0.25 s of 3.5, two-thread goal).
-/// SWARF_VDB_SERIAL_WRITE=1 in the environment writes with OpenVDB's loop
+/// SWARF_VDB_SERIAL_WRITE=1 in the environment (swarf_reference.h) writes with OpenVDB's loop
 /// (tests compare the two files byte for byte).
 /// Owns nothing beyond the copy: the tree is shared with the stock.
 #include <openvdb/io/io.h>
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "stock_private.h"
+#include "swarf_reference.h"
 
 namespace swarf {
 namespace {
@@ -58,8 +59,7 @@ public:
       : openvdb::FloatGrid(g, openvdb::ShallowCopy{}), arena_(std::move(arena)) {}
 
   void writeBuffers(std::ostream &os) const override {
-    const char *serial = std::getenv("SWARF_VDB_SERIAL_WRITE");
-    if (hasMultiPassIO() || (serial != nullptr && serial[0] == '1')) {
+    if (hasMultiPassIO() || swarf_reference_on(SWARF_REFERENCE_VDB_SERIAL_WRITE)) {
       openvdb::FloatGrid::writeBuffers(os);
       return;
     }

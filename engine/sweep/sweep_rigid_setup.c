@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "engine_private.h"
+#include "swarf_reference.h"
 
 #define PROBE 64
 #define MAXN 512
@@ -27,19 +28,6 @@ static double norm3(const double a[3]) {
 static double dist3(const double a[3], const double b[3]) {
   const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
   return norm3(d);
-}
-
-/* SWARF_SWEEP_GENERAL=1 in the environment (read once): every cutter takes the
- * general search (sweep_rigid.c), for the tests that compare the paths. */
-static int general_only(void) {
-  static atomic_int cached = -1;
-  int v = atomic_load_explicit(&cached, memory_order_relaxed);
-  if (v < 0) {
-    const char *e = getenv("SWARF_SWEEP_GENERAL");
-    v = e != NULL && e[0] == '1';
-    atomic_store_explicit(&cached, v, memory_order_relaxed);
-  }
-  return v;
 }
 
 /* u = v + omega x (0, 0, R), the speed of the ball's centre in the cutter's
@@ -59,7 +47,8 @@ static void ball_init(swarf_sweep *s, const double (*u)[3], const double (*cp)[3
   swarf_sweep_rigid *x = &swarf_sweep_data_of(s)->u.rigid;
   double R = 0.5 * c->diameter, vmax = 0.0, vmin = INFINITY, dmax = 0.0, kmax = 0.0, general;
   x->ball = 0;
-  if (!c->fast || c->shape != SWARF_CUTTER_BALL || !(c->length >= c->diameter) || general_only())
+  if (!c->fast || c->shape != SWARF_CUTTER_BALL || !(c->length >= c->diameter) ||
+      swarf_reference_on(SWARF_REFERENCE_SWEEP_GENERAL))
     return;
   for (int i = 0; i <= nprobe; i++) {
     double sp = norm3(cp[i]);

@@ -22,6 +22,7 @@
 
 #include "check.h"
 #include "engine_private.h" /* the sweep's typed data */
+#include "swarf_reference.h"
 #include "testkit.h"
 
 #define VOXEL 0.1
@@ -233,6 +234,8 @@ static void test_range(void) {
 int main(void) {
   /* the general search for every cutter (a ball's own path: test_sweep_ball) */
   setenv("SWARF_SWEEP_GENERAL", "1", 1);
+  if (!swarf_reference_built())
+    printf("note: built without the reference paths: ball end mills take their own path\n");
   test_rotary_only();
   test_helix_4th();
   test_five_axis();

@@ -13,6 +13,10 @@
 # characteristic circles, engine/sweep/sweep_rigid_ball.c, against the general search).
 set -u
 swarf=$1 real=$2 voxel=$3 env=$4 what=$5
+if [ "${SWARF_REFERENCE_BUILT:-0}" != 1 ]; then
+  echo "SKIPPED: this build has no reference paths; configure with -DSWARF_REFERENCE_PATHS=ON (tools/run test does)"
+  exit 77
+fi
 [ -d "$real" ] || {
   echo "SKIPPED: the conformance corpus is not here ($real): it lives in ../shared beside a checkout"
   exit 77

@@ -11,6 +11,10 @@
 #   line_blocks.sh SWARF REAL_DIR
 set -u
 swarf=$1 real=$2
+if [ "${SWARF_REFERENCE_BUILT:-0}" != 1 ]; then
+  echo "SKIPPED: this build has no reference paths; configure with -DSWARF_REFERENCE_PATHS=ON (tools/run test does)"
+  exit 77
+fi
 [ -d "$real" ] || {
   echo "SKIPPED: the conformance corpus is not here ($real): it lives in ../shared beside a checkout"
   exit 77

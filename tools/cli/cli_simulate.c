@@ -101,6 +101,8 @@ static const char help[] =
     "                   instead of sweeping it exactly (what stamping simulators do)\n"
     "  --balance N      after the run, how evenly 2 to N processes would share the\n"
     "                   removal (busiest rank's voxels over the mean; one process)\n"
+    "  --batch N        moves removed from the stock per pass (default 1024): fewer\n"
+    "                   keep less memory on long 5-axis moves, the grid is the same\n"
     "\n"
     "Several processes (tools/doc/mpi.md): under mpirun or srun every rank plays the\n"
     "whole program on its slab of the stock; rank 0 prints and writes the same\n"

@@ -342,7 +342,7 @@ extern "C" swarf_status swarf_stock_new_cylinder(int axis, double radius, double
   });
 }
 
-extern "C" swarf_status swarf_stock_new_box_part(const double lo[3], const double hi[3],
+extern "C" swarf_status swarf_stock_new_box_slab(const double lo[3], const double hi[3],
                                                  double voxel, int half_width, const int rlo[3],
                                                  const int rhi[3], swarf_stock **out,
                                                  swarf_error *err) {
@@ -355,7 +355,7 @@ extern "C" swarf_status swarf_stock_new_box_part(const double lo[3], const doubl
   });
 }
 
-extern "C" swarf_status swarf_stock_new_cylinder_part(int axis, double radius, double start,
+extern "C" swarf_status swarf_stock_new_cylinder_slab(int axis, double radius, double start,
                                                       double end, double voxel, int half_width,
                                                       const int rlo[3], const int rhi[3],
                                                       swarf_stock **out, swarf_error *err) {

@@ -49,22 +49,22 @@ SWARF_API swarf_status swarf_stock_new_cylinder(int axis, double radius, double 
                                                 double voxel, int half_width, swarf_stock **out,
                                                 swarf_error *err);
 
-/* The box or cylinder stock above built only in its part of the index space
- * (stock.h's "Parts of the stock"), for a process that keeps to that part:
+/* The box or cylinder stock above built only in its slab of the index space
+ * (stock.h's "Slabs of the stock"), for a process that keeps to that slab:
  * the blocks whose origin lies in the index box [rlo, rhi] (rounded as
  * swarf_stock_set_region does, which is set on the new stock) hold the
  * values, active states and leaves of the whole build; the others hold the
- * outside background, as after swarf_stock_part_crop; the index box
+ * outside background, as after swarf_stock_slab_crop; the index box
  * (swarf_stock_index_box) and the index mapping are the whole stock's. A
  * region with no block origin (rlo > rhi on an axis) builds nothing: a
  * shell with the whole stock's index box, voxel and band. Memory: about the
- * part's share of the whole build's. Errors as the whole builds'; rlo or rhi
+ * slab's share of the whole build's. Errors as the whole builds'; rlo or rhi
  * NULL is SWARF_ERR_ARG. */
-SWARF_API swarf_status swarf_stock_new_box_part(const double lo[3], const double hi[3],
+SWARF_API swarf_status swarf_stock_new_box_slab(const double lo[3], const double hi[3],
                                                 double voxel, int half_width, const int rlo[3],
                                                 const int rhi[3], swarf_stock **out,
                                                 swarf_error *err);
-SWARF_API swarf_status swarf_stock_new_cylinder_part(int axis, double radius, double start,
+SWARF_API swarf_status swarf_stock_new_cylinder_slab(int axis, double radius, double start,
                                                      double end, double voxel, int half_width,
                                                      const int rlo[3], const int rhi[3],
                                                      swarf_stock **out, swarf_error *err);
@@ -152,7 +152,7 @@ SWARF_API swarf_status swarf_stock_overlaps(const swarf_stock *s, const swarf_st
  * used) is a volume cut away but not removed from the grid yet: the
  * material is then the stock minus it, its depth min(-v, clear sdf).
  * Read-only; *hit gets 1 or 0, where (may be NULL) the first such voxel
- * centre found. For the non-cutting parts of a tool (tools/sim/collide.c). */
+ * centre found. For the non-cutting parts of a tool (tools/sim/assembly/collide.c). */
 SWARF_API swarf_status swarf_stock_penetrates(const swarf_stock *s, const swarf_stock_cut *cut,
                                               const swarf_stock_cut *clear, size_t nclear,
                                               double depth, int *hit, double where[3],
@@ -253,11 +253,11 @@ SWARF_API swarf_status swarf_stock_write_stl(const swarf_stock *s, const char *p
 SWARF_API swarf_status swarf_stock_write_png(const swarf_stock *s, const char *path, int width,
                                              int height, swarf_error *err);
 
-/* ==== Parts of the stock (several processes on one stock) ===================
+/* ==== Slabs of the stock (several processes on one stock) ===================
  * Removal is pointwise and works per leaf-aligned block of 8^3 voxels, so
  * copies of one stock, each removing the same volumes in its own region of
  * the index space, hold between them the grid one stock would: load the
- * other copies' parts into one of them and it is that grid, voxel for voxel
+ * other copies' slabs into one of them and it is that grid, voxel for voxel
  * (same values, active states and tree nodes). Index space: voxel ijk has
  * its centre at origin + voxel * ijk (mm). */
 
@@ -285,22 +285,22 @@ SWARF_API void swarf_stock_set_tally(swarf_stock *s, const int lo[3], const int 
                                      unsigned long long *counts);
 
 /* Free the leaves outside the region (they become outside tiles): a copy
- * that keeps to its region then holds its part only. The values outside
- * the region are meaningless afterwards, until parts are loaded there (a
- * part holds every leaf of its region, so the stock gathering the parts
+ * that keeps to its region then holds its slab only. The values outside
+ * the region are meaningless afterwards, until slabs are loaded there (a
+ * slab holds every leaf of its region, so the stock gathering the slabs
  * may be cropped too). Without a region: nothing. */
-SWARF_API swarf_status swarf_stock_part_crop(swarf_stock *s, swarf_error *err);
+SWARF_API swarf_status swarf_stock_slab_crop(swarf_stock *s, swarf_error *err);
 
-/* The part of the stock in its region (the whole stock without one): its
+/* The slab of the stock in its region (the whole stock without one): its
  * blocks below the tree's level-1 nodes, which are the only ones removal
  * changes, into a new buffer *buf (free() it) of *len bytes, for a stock of
  * the same voxel and band on a machine of the same byte order. */
-SWARF_API swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, size_t *len,
+SWARF_API swarf_status swarf_stock_slab_save(const swarf_stock *s, void **buf, size_t *len,
                                              swarf_error *err);
-/* Put a saved part into s: its blocks replace s's (SWARF_ERR_ARG for another
+/* Put a saved slab into s: its blocks replace s's (SWARF_ERR_ARG for another
  * voxel or band, SWARF_ERR_FORMAT for a damaged buffer; s may then hold some
  * of its blocks). */
-SWARF_API swarf_status swarf_stock_part_load(swarf_stock *s, const void *buf, size_t len,
+SWARF_API swarf_status swarf_stock_slab_load(swarf_stock *s, const void *buf, size_t len,
                                              swarf_error *err);
 
 /* ==== Stock from files, placement for a setup ====================

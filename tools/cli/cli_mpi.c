@@ -82,7 +82,7 @@ static int recv_all(void *buf, size_t n, int from) {
 }
 
 /* Sizes first (a gather), then each rank's bytes in turn: rank 0 holds one
- * other rank's part at a time. */
+ * other rank's slab at a time. */
 static int mpi_gather(void *user, const void *send, size_t n,
                       int (*take)(void *ctx, int rank, const void *buf, size_t n), void *ctx) {
   swarf_cli_mpi *m = user;

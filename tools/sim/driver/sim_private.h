@@ -59,10 +59,10 @@ struct swarf_sim {
   swarf_stock *initial;  /* the stock before the run, for the design comparison */
   swarf_sim_frame frame; /* the workpiece frame (setup.c) */
   int units_checked;     /* the first move was checked for a units word */
-  /* parts (part.c): the index box's blocks, nb[k] a side from blo; columns
+  /* slabs (mpi/slab.c): the index box's blocks, nb[k] a side from blo; columns
    * across ax[0], ax[1] */
-  int planned;    /* the parts are planned (several processes or a tally) */
-  int part_build; /* the stock is a shell built from cfg.stock: its part is built at the plan */
+  int planned;    /* the slabs are planned (several processes or a tally) */
+  int slab_build; /* the stock is a shell built from cfg.stock: its slab is built at the plan */
   int blo[3], nb[3], ax[2];
   int index_lo[3], index_hi[3]; /* the stock's index box */
   double *work;                 /* estimated work per column (the survey's) */
@@ -71,24 +71,24 @@ struct swarf_sim {
   int abort_pending;            /* a progress callback asked to stop (several processes) */
 };
 
-/* part.c. Return 0, or 1 after swarf_sim_fail. */
-int swarf_sim_parts(const swarf_sim *s);                 /* 1 with several processes */
-int swarf_sim_part_plan(swarf_sim *s, const char *path); /* path NULL: even slabs */
-/* The stock's part [lo, hi] (index box) built from cfg.stock in place of the
- * shell (sim.c; part_build); 0 or 1 on failure (s's error set). */
-int swarf_sim_part_stock(swarf_sim *s, const int lo[3], const int hi[3]);
-void swarf_sim_part_clear(swarf_sim *s);
+/* slab.c. Return 0, or 1 after swarf_sim_fail. */
+int swarf_sim_slabs(const swarf_sim *s);                 /* 1 with several processes */
+int swarf_sim_slab_plan(swarf_sim *s, const char *path); /* path NULL: even slabs */
+/* The stock's slab [lo, hi] (index box) built from cfg.stock in place of the
+ * shell (sim.c; slab_build); 0 or 1 on failure (s's error set). */
+int swarf_sim_slab_stock(swarf_sim *s, const int lo[3], const int hi[3]);
+void swarf_sim_slab_clear(swarf_sim *s);
 /* A survey handle's cut: its estimated work added to the surveyor's slabs. */
-void swarf_sim_part_survey(swarf_sim *s, const swarf_stock_cut *c);
+void swarf_sim_slab_survey(swarf_sim *s, const swarf_stock_cut *c);
 /* A query's hit on this process's slab made global: the first in the
  * stock's scan order among all processes'. */
-int swarf_sim_part_hit(swarf_sim *s, int *hit, double where[3]);
+int swarf_sim_slab_hit(swarf_sim *s, int *hit, double where[3]);
 /* The batch's measured effects summed (volumes) and maxed (gouges). */
-int swarf_sim_part_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n);
+int swarf_sim_slab_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n);
 /* At each batch: a stop asked on any process stops all. */
-int swarf_sim_part_sync(swarf_sim *s);
+int swarf_sim_slab_sync(swarf_sim *s);
 /* At finish: the slabs gathered into rank 0's stock. */
-int swarf_sim_part_merge(swarf_sim *s);
+int swarf_sim_slab_merge(swarf_sim *s);
 
 /* Record the first failure (status, place, message) and return its status. */
 swarf_status swarf_sim_fail(swarf_sim *s, swarf_status st, long line, int column, const char *fmt,

@@ -119,12 +119,12 @@ static int on_tick(void *user, double done) {
 }
 
 /* Several processes: the stock is this one's slab only (not shown), and a
- * stop is obeyed at the next batch, on all of them (part.c). */
+ * stop is obeyed at the next batch, on all of them (slab.c). */
 static int tell_pass(swarf_sim *s, long line, int tool, double pass) {
-  const int parts = swarf_sim_parts(s);
-  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, parts ? NULL : s->stock, pass};
+  const int slabs = swarf_sim_slabs(s);
+  swarf_sim_progress p = {s->fraction, line, tool, &s->rep, slabs ? NULL : s->stock, pass};
   if (s->cfg.cb.progress == NULL || s->cfg.cb.progress(s->cfg.cb.user, &p) == 0) return 0;
-  if (parts) return s->abort_pending = 1, 0;
+  if (slabs) return s->abort_pending = 1, 0;
   swarf_sim_fail(s, SWARF_ERR_ABORTED, line, 0, "aborted by the caller");
   return 1;
 }
@@ -207,8 +207,8 @@ static int on_move(const swarf_move *machine_mv, void *user) {
   return take_motion(s, &m);
 }
 
-/* The stock of cfg's spec: whole (rlo NULL), or only its part [rlo, rhi]
- * (stock.h's swarf_stock_new_box_part). */
+/* The stock of cfg's spec: whole (rlo NULL), or only its slab [rlo, rhi]
+ * (stock.h's swarf_stock_new_box_slab). */
 static swarf_stock *build_stock(const swarf_sim_config *cfg, const int *rlo, const int *rhi,
                                 swarf_error *err) {
   const swarf_sim_stock_spec *k = &cfg->stock;
@@ -219,11 +219,11 @@ static swarf_stock *build_stock(const swarf_sim_config *cfg, const int *rlo, con
     rc = rlo == NULL
              ? swarf_stock_new_cylinder(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis],
                                         cfg->voxel, cfg->half_width, &st, &e)
-             : swarf_stock_new_cylinder_part(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis],
+             : swarf_stock_new_cylinder_slab(k->axis, k->radius, k->lo[k->axis], k->hi[k->axis],
                                              cfg->voxel, cfg->half_width, rlo, rhi, &st, &e);
   else
     rc = rlo == NULL ? swarf_stock_new_box(k->lo, k->hi, cfg->voxel, cfg->half_width, &st, &e)
-                     : swarf_stock_new_box_part(k->lo, k->hi, cfg->voxel, cfg->half_width, rlo, rhi,
+                     : swarf_stock_new_box_slab(k->lo, k->hi, cfg->voxel, cfg->half_width, rlo, rhi,
                                                 &st, &e);
   if (rc != SWARF_OK) swarf_error_set(err, SWARF_ERR_ARG, "--stock: %s", e.message);
   return st;
@@ -301,7 +301,7 @@ static swarf_status stock_settings(swarf_sim *s, const swarf_sim_config *cfg, sw
   return SWARF_OK;
 }
 
-int swarf_sim_part_stock(swarf_sim *s, const int lo[3], const int hi[3]) {
+int swarf_sim_slab_stock(swarf_sim *s, const int lo[3], const int hi[3]) {
   swarf_error e;
   swarf_stock *st;
   swarf_error_init(&e);
@@ -313,7 +313,7 @@ int swarf_sim_part_stock(swarf_sim *s, const int lo[3], const int hi[3]) {
   }
   swarf_stock_free(s->stock);
   s->stock = st;
-  s->part_build = 0;
+  s->slab_build = 0;
   return 0;
 }
 
@@ -375,15 +375,15 @@ swarf_status swarf_sim_new(const swarf_sim_config *cfg, const char *name, swarf_
   if (cfg == NULL || out == NULL) return swarf_error_set(err, SWARF_ERR_ARG, "no config or output");
   if ((st = swarf_sim_config_check(cfg, 1, err)) != SWARF_OK) return st;
   /* Under MPI, the processes other than rank 0 (which gathers the whole
-   * stock) build only their part, once it is planned: a shell until then.
+   * stock) build only their slab, once it is planned: a shell until then.
    * Not with a design, which compares against a copy of the whole stock. */
-  const int part =
+  const int slab =
       cfg->comm != NULL && cfg->comm->size > 1 && cfg->comm->rank != 0 && cfg->design == NULL;
   static const int none_lo[3] = {8, 8, 8}, none_hi[3] = {0, 0, 0};
-  if ((stock = build_stock(cfg, part ? none_lo : NULL, part ? none_hi : NULL, err)) == NULL)
+  if ((stock = build_stock(cfg, slab ? none_lo : NULL, slab ? none_hi : NULL, err)) == NULL)
     return SWARF_ERR_ARG;
   st = sim_new(cfg, name, stock, &cfg->stock, out, err);
-  if (st == SWARF_OK) (*out)->part_build = part;
+  if (st == SWARF_OK) (*out)->slab_build = slab;
   return st;
 }
 
@@ -414,7 +414,7 @@ swarf_status swarf_sim_feed(swarf_sim *s, const char *text, size_t len) {
   swarf_status st = check_open(s);
   if (st != SWARF_OK) return st;
   if (text == NULL && len > 0) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no text");
-  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
+  if (swarf_sim_slab_plan(s, NULL) != 0) return s->err.status;
   return parser_outcome(s, swarf_gcode_parser_feed(s->parser, text, len));
 }
 
@@ -427,7 +427,7 @@ swarf_status swarf_sim_feed_file(swarf_sim *s, const char *path) {
   size_t n;
   if (st != SWARF_OK) return st;
   if (path == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no program path");
-  if (swarf_sim_part_plan(s, path) != 0) return s->err.status;
+  if (swarf_sim_slab_plan(s, path) != 0) return s->err.status;
   if ((f = fopen(path, "rb")) == NULL)
     return swarf_sim_fail(s, SWARF_ERR_OPEN, 0, 0, "cannot open the program: %s", strerror(errno));
   double total = fstat(fileno(f), &sb) == 0 && sb.st_size > 0 ? (double)sb.st_size : 0.0, done = 0;
@@ -452,7 +452,7 @@ swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
   swarf_motion copy;
   if (st != SWARF_OK) return st;
   if (m == NULL) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "no motion");
-  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
+  if (swarf_sim_slab_plan(s, NULL) != 0) return s->err.status;
   copy = *m;
   if (m->tool != 0 && (s->tool == NULL || s->tool->number != m->tool)) {
     const swarf_sim_tool *t = find_tool(s, m->tool);
@@ -476,14 +476,14 @@ static swarf_status clear_sheets(swarf_sim *s) {
 swarf_status swarf_sim_finish(swarf_sim *s) {
   swarf_status st = check_open(s);
   if (st != SWARF_OK) return st;
-  if (swarf_sim_part_plan(s, NULL) != 0) return s->err.status;
+  if (swarf_sim_slab_plan(s, NULL) != 0) return s->err.status;
   st = parser_outcome(s, swarf_gcode_parser_finish(s->parser));
   s->rep.lines = swarf_gcode_parser_lines(s->parser);
   s->rep.units_line = swarf_gcode_parser_units_line(s->parser);
   if (st == SWARF_OK && swarf_sim_batch_flush(s) != 0) st = s->err.status;
   if (st == SWARF_OK && swarf_sim_lines_flush(s, 1) != 0) st = s->err.status;
-  if (st == SWARF_OK && swarf_sim_part_merge(s) != 0) st = s->err.status;
-  const int whole = !swarf_sim_parts(s) || s->cfg.comm->rank == 0; /* the whole stock here */
+  if (st == SWARF_OK && swarf_sim_slab_merge(s) != 0) st = s->err.status;
+  const int whole = !swarf_sim_slabs(s) || s->cfg.comm->rank == 0; /* the whole stock here */
   if (st == SWARF_OK && whole) st = clear_sheets(s);
   if (st == SWARF_OK && whole) st = swarf_sim_design_compare(s);
   s->rep.seconds = now_seconds() - s->t0;
@@ -523,7 +523,7 @@ void swarf_sim_free(swarf_sim *s) {
   swarf_sim_batch_clear(s);
   swarf_stock_free(s->stock);
   swarf_stock_free(s->initial);
-  swarf_sim_part_clear(s);
+  swarf_sim_slab_clear(s);
   free(s->alarms);
   free(s);
 }

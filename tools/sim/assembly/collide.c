@@ -139,8 +139,8 @@ static int penetrates_at(const part_check *pc, double lift, double where[3]) {
     swarf_sim_fail(pc->s, err.status, pc->m->line, pc->m->column, "%s", err.message);
     return -1;
   }
-  /* the material is split among processes (part.c); fixtures are whole */
-  if (pc->grid == pc->s->stock && swarf_sim_part_hit(pc->s, &hit, where) != 0) return -1;
+  /* the material is split among processes (slab.c); fixtures are whole */
+  if (pc->grid == pc->s->stock && swarf_sim_slab_hit(pc->s, &hit, where) != 0) return -1;
   return hit;
 }
 

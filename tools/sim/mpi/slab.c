@@ -1,4 +1,4 @@
-/* part.c -- the simulation on several processes (swarf_sim_comm in
+/* slab.c -- the simulation on several processes (swarf_sim_comm in
  * swarf_sim.h): slabs planned from the work a survey of the program
  * estimates, queries and measured effects combined across processes, the
  * slabs gathered into rank 0's stock at finish.
@@ -14,16 +14,16 @@
  * message.
  *
  * A process other than rank 0 whose stock is a box or cylinder spec builds
- * it at the plan, in its part only (sim.c, swarf_sim_part_stock): until then
+ * it at the plan, in its slab only (sim.c, swarf_sim_slab_stock): until then
  * a shell with the whole stock's index box, which is all the plan reads.
  * Stocks read from files (and rank 0's, which gathers the whole) are built
- * whole, then cropped to the part.
+ * whole, then cropped to the slab.
  *
  * Exactness: removal is per block, so the slabs' blocks are the one-process
  * run's; a query's first hit is the minimum of the processes' first hits in
  * the stock's scan order (blocks x, y, z, then voxels x, y, z: remove.cc's
  * loops), a gouge the deepest with ties to the first in that order, a cut's
- * volume the sum of the parts' (exact: stock.h's removed_voxels).
+ * volume the sum of the slabs' (exact: stock.h's removed_voxels).
  */
 #include <limits.h>
 #include <math.h>
@@ -32,11 +32,11 @@
 
 #include "sim_private.h"
 
-int swarf_sim_parts(const swarf_sim *s) {
+int swarf_sim_slabs(const swarf_sim *s) {
   return s->cfg.comm != NULL && s->cfg.comm->size > 1;
 }
 
-void swarf_sim_part_clear(swarf_sim *s) {
+void swarf_sim_slab_clear(swarf_sim *s) {
   free(s->work);
   free(s->tally);
   s->work = NULL;
@@ -71,7 +71,7 @@ static int plan_columns(swarf_sim *s) {
   return 0;
 }
 
-void swarf_sim_part_survey(swarf_sim *s, const swarf_stock_cut *c) {
+void swarf_sim_slab_survey(swarf_sim *s, const swarf_stock_cut *c) {
   swarf_sim *p = s->surveyor;
   const double pad = swarf_stock_half_width(p->stock) + 2.0;
   int a[3], b[3], n = 1, third = 3 - p->ax[0] - p->ax[1];
@@ -134,11 +134,11 @@ static int survey(swarf_sim *s, const char *path) {
 /* A rectangle of columns [lo, hi) on ax[0], ax[1]; empty when lo == hi. */
 typedef struct {
   int lo[2], hi[2];
-} part_box;
+} slab_box;
 
 /* Work of the columns of slice `c` across axis d of box b (plus a floor a
  * column, so that columns nobody cuts still spread). */
-static double slice_work(const swarf_sim *s, const part_box *b, int d, int c, double floor_w) {
+static double slice_work(const swarf_sim *s, const slab_box *b, int d, int c, double floor_w) {
   double w = 0;
   for (int o = b->lo[1 - d]; o < b->hi[1 - d]; o++) {
     const int i = d == 0 ? c : o, j = d == 0 ? o : c;
@@ -149,7 +149,7 @@ static double slice_work(const swarf_sim *s, const part_box *b, int d, int c, do
 
 /* Recursive bisection: ranks [r0, r1) share box b, split across its longer
  * side where the work divides as the ranks do. */
-static void bisect(const swarf_sim *s, part_box b, int r0, int r1, double floor_w, part_box *out) {
+static void bisect(const swarf_sim *s, slab_box b, int r0, int r1, double floor_w, slab_box *out) {
   const int n = r1 - r0, na = n / 2;
   int d = b.hi[0] - b.lo[0] >= b.hi[1] - b.lo[1] ? 0 : 1;
   if (n == 1) {
@@ -159,7 +159,7 @@ static void bisect(const swarf_sim *s, part_box b, int r0, int r1, double floor_
   if (b.hi[d] - b.lo[d] < 2) { /* one column: the first rank takes it */
     out[r0] = b;
     for (int r = r0 + 1; r < r1; r++)
-      out[r] = (part_box){{0, 0}, {0, 0}};
+      out[r] = (slab_box){{0, 0}, {0, 0}};
     return;
   }
   double total = 0, sum = 0, best = -1;
@@ -172,7 +172,7 @@ static void bisect(const swarf_sim *s, part_box b, int r0, int r1, double floor_
     const double miss = sum > target ? sum - target : target - sum;
     if (best < 0 || miss < best) best = miss, cut = c + 1;
   }
-  part_box a = b, z = b;
+  slab_box a = b, z = b;
   a.hi[d] = cut;
   z.lo[d] = cut;
   bisect(s, a, r0, r0 + na, floor_w, out);
@@ -180,8 +180,8 @@ static void bisect(const swarf_sim *s, part_box b, int r0, int r1, double floor_
 }
 
 /* Each rank's rectangle for `nranks` ranks; NULL when out of memory. */
-static part_box *plan(const swarf_sim *s, int nranks) {
-  part_box *out = malloc(sizeof *out * (size_t)nranks), all = {{0, 0}, {0, 0}};
+static slab_box *plan(const swarf_sim *s, int nranks) {
+  slab_box *out = malloc(sizeof *out * (size_t)nranks), all = {{0, 0}, {0, 0}};
   const size_t ncol = (size_t)s->nb[s->ax[0]] * (size_t)s->nb[s->ax[1]];
   double total = 0;
   if (out == NULL) return NULL;
@@ -193,7 +193,7 @@ static part_box *plan(const swarf_sim *s, int nranks) {
   return out;
 }
 
-static int set_region(swarf_sim *s, const part_box *b) {
+static int set_region(swarf_sim *s, const slab_box *b) {
   int lo[3], hi[3];
   swarf_error e;
   for (int k = 0; k < 3; k++)
@@ -207,23 +207,23 @@ static int set_region(swarf_sim *s, const part_box *b) {
     if (b->lo[d] > 0) lo[k] = s->blo[k] + 8 * b->lo[d];
     if (b->hi[d] < s->nb[k]) hi[k] = s->blo[k] + 8 * b->hi[d] - 1;
   }
-  if (s->part_build) return swarf_sim_part_stock(s, lo, hi); /* built in its part only */
+  if (s->slab_build) return swarf_sim_slab_stock(s, lo, hi); /* built in its slab only */
   if (swarf_stock_set_region(s->stock, lo, hi, &e) != SWARF_OK ||
-      swarf_stock_part_crop(s->stock, &e) != SWARF_OK) { /* memory: this part only */
+      swarf_stock_slab_crop(s->stock, &e) != SWARF_OK) { /* memory: this slab only */
     swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "%s", e.message);
     return 1;
   }
   return 0;
 }
 
-int swarf_sim_part_plan(swarf_sim *s, const char *path) {
+int swarf_sim_slab_plan(swarf_sim *s, const char *path) {
   int rc = 0;
   if (s->planned || s->surveyor != NULL) return 0;
   s->planned = 1;
-  if (!swarf_sim_parts(s) && !s->cfg.tally) return 0;
+  if (!swarf_sim_slabs(s) && !s->cfg.tally) return 0;
   if (plan_columns(s) != 0 || (path != NULL && survey(s, path) != 0)) return 1;
-  if (swarf_sim_parts(s)) {
-    part_box *b = plan(s, s->cfg.comm->size);
+  if (swarf_sim_slabs(s)) {
+    slab_box *b = plan(s, s->cfg.comm->size);
     if (b == NULL) return swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
     rc = set_region(s, &b[s->cfg.comm->rank]); /* may build the stock: the tally after */
     free(b);
@@ -236,7 +236,7 @@ swarf_status swarf_sim_balance(const swarf_sim *s, int nranks, double *max_over_
                                double *visited) {
   if (s == NULL || nranks < 1 || max_over_mean == NULL) return SWARF_ERR_ARG;
   if (s->tally == NULL || s->work == NULL) return SWARF_ERR_STATE;
-  part_box *b = plan(s, nranks);
+  slab_box *b = plan(s, nranks);
   double most = 0, total = 0;
   if (b == NULL) return SWARF_ERR_MEMORY;
   for (int r = 0; r < nranks; r++) {
@@ -283,13 +283,13 @@ static int key_less(const int a[6], const int b[6]) {
 typedef struct {
   int hit, key[6];
   double where[3];
-} part_hit;
+} slab_hit;
 
-int swarf_sim_part_hit(swarf_sim *s, int *hit, double where[3]) {
+int swarf_sim_slab_hit(swarf_sim *s, int *hit, double where[3]) {
   const swarf_sim_comm *c = s->cfg.comm;
-  part_hit mine, *all;
+  slab_hit mine, *all;
   int best = -1;
-  if (!swarf_sim_parts(s)) return 0;
+  if (!swarf_sim_slabs(s)) return 0;
   memset(&mine, 0, sizeof mine);
   mine.hit = *hit;
   if (*hit) {
@@ -310,13 +310,13 @@ int swarf_sim_part_hit(swarf_sim *s, int *hit, double where[3]) {
 typedef struct {
   double voxels, depth, at[3];
   int key[6];
-} part_effect;
+} slab_effect;
 
-int swarf_sim_part_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n) {
+int swarf_sim_slab_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n) {
   const swarf_sim_comm *c = s->cfg.comm;
   const double v3 = s->cfg.voxel * s->cfg.voxel * s->cfg.voxel;
-  part_effect *mine, *all;
-  if (!swarf_sim_parts(s) || n == 0) return 0;
+  slab_effect *mine, *all;
+  if (!swarf_sim_slabs(s) || n == 0) return 0;
   mine = calloc((size_t)n, sizeof *mine);
   all = calloc((size_t)n * (size_t)c->size, sizeof *all);
   if (mine == NULL || all == NULL)
@@ -330,10 +330,10 @@ int swarf_sim_part_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n) {
   if (c->allgather(c->user, mine, sizeof *mine * (size_t)n, all) != 0)
     return free(mine), free(all), comm_failed(s);
   for (int i = 0; i < n; i++) {
-    const part_effect *best = NULL;
+    const slab_effect *best = NULL;
     double voxels = 0;
     for (int r = 0; r < c->size; r++) {
-      const part_effect *f = &all[(size_t)r * (size_t)n + (size_t)i];
+      const slab_effect *f = &all[(size_t)r * (size_t)n + (size_t)i];
       voxels += f->voxels; /* whole multiples of 2^-16: exact */
       if (f->depth > 0 && (best == NULL || f->depth > best->depth ||
                            (f->depth == best->depth && key_less(f->key, best->key))))
@@ -350,10 +350,10 @@ int swarf_sim_part_effects(swarf_sim *s, swarf_stock_cut_effect *e, int n) {
   return 0;
 }
 
-int swarf_sim_part_sync(swarf_sim *s) {
+int swarf_sim_slab_sync(swarf_sim *s) {
   const swarf_sim_comm *c = s->cfg.comm;
   int *all, stop = 0;
-  if (!swarf_sim_parts(s)) return 0;
+  if (!swarf_sim_slabs(s)) return 0;
   if ((all = malloc(sizeof *all * (size_t)c->size)) == NULL)
     return swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory"), 1;
   if (c->allgather(c->user, &s->abort_pending, sizeof s->abort_pending, all) != 0)
@@ -368,29 +368,29 @@ int swarf_sim_part_sync(swarf_sim *s) {
 
 /* ---- The gathering ---------------------------------------------------------- */
 
-static int take_part(void *ctx, int rank, const void *buf, size_t n) {
+static int take_slab(void *ctx, int rank, const void *buf, size_t n) {
   swarf_sim *s = ctx;
   swarf_error e;
   (void)rank;
-  if (swarf_stock_part_load(s->stock, buf, n, &e) == SWARF_OK) return 0;
+  if (swarf_stock_slab_load(s->stock, buf, n, &e) == SWARF_OK) return 0;
   swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "gathering the stock: %s", e.message);
   return 1;
 }
 
-int swarf_sim_part_merge(swarf_sim *s) {
+int swarf_sim_slab_merge(swarf_sim *s) {
   const swarf_sim_comm *c = s->cfg.comm;
   void *buf = NULL;
   size_t n = 0;
   swarf_error e;
   int rc;
-  if (!swarf_sim_parts(s)) return 0;
-  if (c->rank != 0 && swarf_stock_part_save(s->stock, &buf, &n, &e) != SWARF_OK) {
+  if (!swarf_sim_slabs(s)) return 0;
+  if (c->rank != 0 && swarf_stock_slab_save(s->stock, &buf, &n, &e) != SWARF_OK) {
     /* the others wait in the gathering: stop them all (the caller's transport) */
-    swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "saving the stock's part: %s", e.message);
-    c->gather(c->user, NULL, 0, take_part, s);
+    swarf_sim_fail(s, SWARF_ERR_INTERNAL, 0, 0, "saving the stock's slab: %s", e.message);
+    c->gather(c->user, NULL, 0, take_slab, s);
     return 1;
   }
-  rc = c->gather(c->user, buf, n, take_part, s);
+  rc = c->gather(c->user, buf, n, take_slab, s);
   free(buf);
   if (rc != 0 && s->err.status == SWARF_OK) return comm_failed(s);
   if (s->err.status != SWARF_OK) return 1;

@@ -119,7 +119,7 @@ static int flush_measured(swarf_sim *s) {
     swarf_sim_fail(s, err.status, 0, 0, "%s", err.message);
     return 1;
   }
-  if (swarf_sim_part_effects(s, s->effects, s->n) != 0) return 1;
+  if (swarf_sim_slab_effects(s, s->effects, s->n) != 0) return 1;
   for (int i = 0; i < s->n; i++) {
     swarf_sim_lines_removed(s, s->cut_id[i], s->effects[i].removed);
     if (s->effects[i].gouge_depth > 0) raise_gouge(s, i);
@@ -130,7 +130,7 @@ static int flush_measured(swarf_sim *s) {
 int swarf_sim_batch_flush(swarf_sim *s) {
   swarf_error e;
   s->blocks = 0.0;
-  if (swarf_sim_part_sync(s) != 0) return 1;
+  if (swarf_sim_slab_sync(s) != 0) return 1;
   if (s->n > 0 && s->measured) {
     if (flush_measured(s) != 0) return 1;
     s->n = 0;
@@ -181,7 +181,7 @@ static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cu
     swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", e.message);
     return 1;
   }
-  if (swarf_sim_part_hit(s, &hit, where) != 0) return 1;
+  if (swarf_sim_slab_hit(s, &hit, where) != 0) return 1;
   if (hit) {
     swarf_alarm a = {SWARF_ALARM_RAPID,
                      m->line,
@@ -225,7 +225,7 @@ int swarf_sim_batch_check_empty(swarf_sim *s, const swarf_motion *m) {
     swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", e.message);
     return 1;
   }
-  if (swarf_sim_part_hit(s, &hit, where) != 0) return 1;
+  if (swarf_sim_slab_hit(s, &hit, where) != 0) return 1;
   if (hit) {
     swarf_alarm a = {
         SWARF_ALARM_NO_TOOL, m->line, m->column, 0, NAN, {where[0], where[1], where[2]}, 0, 0};
@@ -269,8 +269,8 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
   swarf_sweep_init_voxel(w, &s->tool->cutter, m, s->cfg.voxel);
   swarf_sweep_bounds(w, c->lo, c->hi);
   const int reach = boxes_overlap(c->lo, c->hi, s->pad_lo, s->pad_hi);
-  if (s->surveyor != NULL) { /* a survey (part.c): the work only */
-    if (reach) swarf_sim_part_survey(s, c);
+  if (s->surveyor != NULL) { /* a survey (mpi/slab.c): the work only */
+    if (reach) swarf_sim_slab_survey(s, c);
     return 0;
   }
   if (reach && m->rapid && s->n > 0) /* checked against the stock as it stands: from slot 0 */

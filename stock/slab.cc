@@ -1,12 +1,12 @@
-/// @file part.cc
-/// @brief Parts of a stock's index space (stock.h, "Parts of the stock"): a
+/// @file slab.cc
+/// @brief Slabs of a stock's index space (stock.h, "Slabs of the stock"): a
 /// region that removal and the queries keep to, a tally of the blocks removal
-/// visits, and a part's blocks saved to a memory buffer and put into another
+/// visits, and a slab's blocks saved to a memory buffer and put into another
 /// stock of the same frame. Several processes each removing in their own
-/// region of copies of one stock, then loading the others' parts into one,
+/// region of copies of one stock, then loading the others' slabs into one,
 /// get the grid one process would: removal is pointwise and per block.
 ///
-/// A part is every leaf-aligned 8^3 block whose origin lies in the region
+/// A slab is every leaf-aligned 8^3 block whose origin lies in the region
 /// and which sits below a level-1 node of the tree: a leaf, or a tile of one
 /// block (the only nodes removal creates or changes; blocks under larger
 /// tiles are as the stock was built). Loading a block makes the same
@@ -43,7 +43,7 @@ bool in_region(const swarf_stock &s, const Coord &o) {
 }
 
 /// Bytes written to a buffer, or only counted (p NULL): save() runs twice, so
-/// that the part is written once into a buffer of its exact size.
+/// that the slab is written once into a buffer of its exact size.
 struct Out {
   char *p = nullptr;
   size_t n = 0;
@@ -99,15 +99,15 @@ template <class T> T get(const char *&p) {
 void load(swarf_stock &s, const char *buf, size_t len) {
   using swarf::Error;
   if (len < kHeader || std::memcmp(buf, kMagic, 4) != 0)
-    throw Error(SWARF_ERR_FORMAT, "not a stock part");
+    throw Error(SWARF_ERR_FORMAT, "not a stock slab");
   const char *p = buf + 4, *end = buf + len;
   const double voxel = get<double>(p);
   const float bg = get<float>(p);
   if (voxel != s.voxel || bg != s.background)
-    throw Error(SWARF_ERR_ARG, "the part's voxel or band differs from the stock's");
+    throw Error(SWARF_ERR_ARG, "the slab's voxel or band differs from the stock's");
   Tree &tree = s.grid->tree();
   while (p < end) {
-    if (size_t(end - p) < kOrigin) throw Error(SWARF_ERR_FORMAT, "a stock part is truncated");
+    if (size_t(end - p) < kOrigin) throw Error(SWARF_ERR_FORMAT, "a stock slab is truncated");
     const char kind = *p++;
     int32_t c[3];
     for (int k = 0; k < 3; k++)
@@ -115,7 +115,7 @@ void load(swarf_stock &s, const char *buf, size_t len) {
     const Coord o(c[0], c[1], c[2]);
     for (int k = 0; k < 3; k++)
       if ((c[k] & 7) != 0 || c[k] < -(1 << 30) || c[k] > (1 << 30))
-        throw Error(SWARF_ERR_FORMAT, "a stock part's block is not leaf-aligned");
+        throw Error(SWARF_ERR_FORMAT, "a stock slab's block is not leaf-aligned");
     if (kind == 0 && size_t(end - p) >= kLeaf - kOrigin) {
       Leaf *leaf = tree.touchLeaf(o);
       openvdb::util::NodeMask<3> mask;
@@ -129,7 +129,7 @@ void load(swarf_stock &s, const char *buf, size_t len) {
       const bool on = *p++ != 0;
       tree.addTile(1, o, v, on);
     } else {
-      throw Error(SWARF_ERR_FORMAT, "a stock part holds a bad or truncated record");
+      throw Error(SWARF_ERR_FORMAT, "a stock slab holds a bad or truncated record");
     }
   }
 }
@@ -180,7 +180,7 @@ extern "C" void swarf_stock_set_tally(swarf_stock *s, const int lo[3], const int
   }
 }
 
-extern "C" swarf_status swarf_stock_part_crop(swarf_stock *s, swarf_error *err) {
+extern "C" swarf_status swarf_stock_slab_crop(swarf_stock *s, swarf_error *err) {
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr) throw Error(SWARF_ERR_ARG, "stock is NULL");
     if (!s->has_region) return;
@@ -193,7 +193,7 @@ extern "C" swarf_status swarf_stock_part_crop(swarf_stock *s, swarf_error *err) 
   });
 }
 
-extern "C" swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, size_t *len,
+extern "C" swarf_status swarf_stock_slab_save(const swarf_stock *s, void **buf, size_t *len,
                                               swarf_error *err) {
   if (buf != nullptr) *buf = nullptr;
   if (len != nullptr) *len = 0;
@@ -210,7 +210,7 @@ extern "C" swarf_status swarf_stock_part_save(const swarf_stock *s, void **buf, 
   });
 }
 
-extern "C" swarf_status swarf_stock_part_load(swarf_stock *s, const void *buf, size_t len,
+extern "C" swarf_status swarf_stock_slab_load(swarf_stock *s, const void *buf, size_t len,
                                               swarf_error *err) {
   return swarf::guard(err, nullptr, [&] {
     if (s == nullptr || buf == nullptr) throw Error(SWARF_ERR_ARG, "stock or buf is NULL");

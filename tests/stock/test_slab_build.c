@@ -1,5 +1,5 @@
-/* test_part_build.c -- a box or cylinder stock built in one part of its
- * index space (swarf_stock_new_box_part, swarf_stock_new_cylinder_part)
+/* test_slab_build.c -- a box or cylinder stock built in one part of its
+ * index space (swarf_stock_new_box_slab, swarf_stock_new_cylinder_slab)
  * against the whole build.
  *
  * Truth: the whole build (swarf_stock_new_box / _cylinder), itself checked
@@ -66,17 +66,17 @@ static long differ_in(const swarf_stock *a, const swarf_stock *w, const visit_ct
 typedef swarf_status (*part_fn)(const int rlo[3], const int rhi[3], swarf_stock **out);
 
 static const double box_lo[3] = {-3.03, -1.21, -2.0}, box_hi[3] = {27.17, 18.93, 3.55};
-static swarf_status box_part(const int rlo[3], const int rhi[3], swarf_stock **out) {
+static swarf_status box_slab(const int rlo[3], const int rhi[3], swarf_stock **out) {
   return rlo == NULL ? swarf_stock_new_box(box_lo, box_hi, voxel, hw, out, NULL)
-                     : swarf_stock_new_box_part(box_lo, box_hi, voxel, hw, rlo, rhi, out, NULL);
+                     : swarf_stock_new_box_slab(box_lo, box_hi, voxel, hw, rlo, rhi, out, NULL);
 }
-static swarf_status cyl_part(const int rlo[3], const int rhi[3], swarf_stock **out) {
+static swarf_status cyl_slab(const int rlo[3], const int rhi[3], swarf_stock **out) {
   return rlo == NULL
              ? swarf_stock_new_cylinder(2, 13.3, -1.0, 4.2, voxel, hw, out, NULL)
-             : swarf_stock_new_cylinder_part(2, 13.3, -1.0, 4.2, voxel, hw, rlo, rhi, out, NULL);
+             : swarf_stock_new_cylinder_slab(2, 13.3, -1.0, 4.2, voxel, hw, rlo, rhi, out, NULL);
 }
 
-/* Four parts: x cut at cx, y at cy (block-aligned), as tools/sim/part.c cuts. */
+/* Four parts: x cut at cx, y at cy (block-aligned), as tools/sim/mpi/slab.c cuts. */
 static void region(int r, int cx, int cy, int lo[3], int hi[3]) {
   for (int k = 0; k < 3; k++)
     lo[k] = -(1 << 30), hi[k] = 1 << 30;
@@ -122,13 +122,13 @@ static void check_shape(const char *what, part_fn make, int cx, int cy) {
   int lo[3], hi[3];
   region(0, cx, cy, lo, hi);
   CHECK(swarf_stock_set_region(m, lo, hi, NULL) == SWARF_OK &&
-            swarf_stock_part_crop(m, NULL) == SWARF_OK,
+            swarf_stock_slab_crop(m, NULL) == SWARF_OK,
         "%s: crop", what);
   for (int r = 1; r < 4; r++) {
     void *buf = NULL;
     size_t n = 0;
-    CHECK(p[r] != NULL && swarf_stock_part_save(p[r], &buf, &n, NULL) == SWARF_OK &&
-              swarf_stock_part_load(m, buf, n, NULL) == SWARF_OK,
+    CHECK(p[r] != NULL && swarf_stock_slab_save(p[r], &buf, &n, NULL) == SWARF_OK &&
+              swarf_stock_slab_load(m, buf, n, NULL) == SWARF_OK,
           "%s: part %d gathered", what, r);
     free(buf);
   }
@@ -150,14 +150,14 @@ static void check_shape(const char *what, part_fn make, int cx, int cy) {
 }
 
 int main(void) {
-  check_shape("box", box_part, 72, 40);   /* inside the first level-1 node */
-  check_shape("box", box_part, 136, 128); /* beyond it, on its edge */
-  check_shape("cylinder", cyl_part, -64, 16);
+  check_shape("box", box_slab, 72, 40);   /* inside the first level-1 node */
+  check_shape("box", box_slab, 136, 128); /* beyond it, on its edge */
+  check_shape("cylinder", cyl_slab, -64, 16);
   /* a region without blocks: a shell */
   const int none_lo[3] = {8, 8, 8}, none_hi[3] = {0, 0, 0};
   int a[3], b[3], c[3], d[3];
   swarf_stock *w = NULL, *s = NULL;
-  CHECK(box_part(NULL, NULL, &w) == SWARF_OK && box_part(none_lo, none_hi, &s) == SWARF_OK,
+  CHECK(box_slab(NULL, NULL, &w) == SWARF_OK && box_slab(none_lo, none_hi, &s) == SWARF_OK,
         "shell built");
   if (w != NULL && s != NULL) {
     swarf_stock_index_box(w, a, b);
@@ -168,7 +168,7 @@ int main(void) {
   }
   swarf_stock_free(w);
   swarf_stock_free(s);
-  CHECK(swarf_stock_new_box_part(box_lo, box_hi, voxel, hw, NULL, none_hi, &s, NULL) ==
+  CHECK(swarf_stock_new_box_slab(box_lo, box_hi, voxel, hw, NULL, none_hi, &s, NULL) ==
                 SWARF_ERR_ARG &&
             s == NULL,
         "a NULL region is refused");

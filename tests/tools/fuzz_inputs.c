@@ -2,8 +2,8 @@
  *
  * The first byte picks the reader, the rest is its input:
  *   0 tool table, both readers: `swarf parse --tools` (gcode/tools.c, inches)
- *     and `--tool-table` (tools/sim/tooltable.c), from a memfd (a regular file)
- *   1 tool library JSON (tools/sim/library.c), from a memfd
+ *     and `--tool-table` (tools/sim/readers/tooltable.c), from a memfd (a regular file)
+ *   1 tool library JSON (tools/sim/readers/library.c), from a memfd
  *   2 --tool spec  3 --stock spec  4 --machine spec  5 --holder spec
  *   6 --fixture spec
  *   7 --modbus spec, 8 --modbus-push spec (tools/modbus/modbus_spec.c)
@@ -158,10 +158,13 @@ static void spec(int which, const char *text) {
 /* 7, 8: an endpoint of --modbus (server) or --modbus-push. */
 static void modbus_spec(int push, const char *text) {
   swarf_mb_endpoint e;
-  char msg[700], *end;
+  swarf_error err;
+  char *end;
   long port;
-  if (swarf_mb_endpoint_parse(text, push, &e, msg, sizeof msg) != 0) {
-    if (msg[0] == '\0') fail("--modbus: a refusal without a message", NULL);
+  swarf_error_init(&err);
+  if (swarf_mb_endpoint_parse(text, push, &e, &err) != SWARF_OK) {
+    if (err.message[0] == '\0' || err.status != SWARF_ERR_ARG)
+      fail("--modbus: a refusal without a message or not SWARF_ERR_ARG", NULL);
     return;
   }
   if (e.unit < 1 || e.unit > 247) fail("--modbus: unit out of 1..247", NULL);

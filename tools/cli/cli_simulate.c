@@ -164,6 +164,16 @@ static int read_double(const char *flag, const char *text, double lo, double *ou
   return 0;
 }
 
+/* The Modbus service of the options (none without --modbus flags): 0, or
+ * the exit status after saying what is wrong. */
+static int start_modbus(const sim_options *o, swarf_modbus_service **mb) {
+  swarf_error err;
+  swarf_error_init(&err);
+  if (swarf_modbus_start(&o->modbus, o->program, mb, &err) == SWARF_OK) return 0;
+  fprintf(stderr, "swarf simulate: %s\n", err.message);
+  return (int)swarf_status_classify(err.status);
+}
+
 /* One option at argv[*i]; advances *i past its value. */
 static int parse_option(sim_options *o, int argc, char **argv, int *i) {
   const char *flag = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
@@ -602,52 +612,85 @@ static int run_failed(swarf_cli_mpi *mpi, const swarf_error *e, const swarf_modb
   return report_failure(e, mb);
 }
 
+/* Checks the outputs of rank 0 and prints what the run found: alarms,
+ * outputs, summary, verification, --fail-on. Returns the exit status. */
+static int finish_run(sim_options *o, sim_clients *clients, swarf_stock *stock,
+                      swarf_sim_report *rep, const swarf_progress *pb) {
+  size_t ntri = 0;
+  print_alarms(o, &clients->alarms, rep);
+  swarf_verify_warn(&o->verify, o->program, rep);
+  int rc = write_outputs(o, clients->html, stock, rep, &ntri);
+  if (rc == 0 && !o->quiet) {
+    print_summary(o, stock, rep, swarf_progress_now() - pb->start, ntri);
+    swarf_verify_summary(&o->verify, rep);
+  }
+  if (rc == 0) rc = swarf_verify_finish(&o->verify, rep);
+  if (rc == 0 && o->fail_on_collision && rep->collisions > 0) {
+    fprintf(stderr, "%s: %ld collisions (--fail-on collision): exit status 4\n", o->program,
+            rep->collisions);
+    rc = 4;
+  }
+  if (rc == 0 && o->fail_on_no_tool && rep->alarm_count[SWARF_ALARM_NO_TOOL] > 0) {
+    fprintf(stderr, "%s: %ld feed moves with an empty spindle (--fail-on no-tool): exit status 4\n",
+            o->program, rep->alarm_count[SWARF_ALARM_NO_TOOL]);
+    rc = 4;
+  }
+  return rc;
+}
+
+/* Everything up to the run, on every rank in step: options, inputs, the
+ * initial stock, the design, the Modbus service (rank 0's). Returns the
+ * exit status, or -1 when --help was printed. */
+static int prepare(sim_options *o, int argc, char **argv, swarf_cli_mpi *mpi, swarf_stock **initial,
+                   swarf_modbus_service **mb) {
+  static const char *const names[] = {"program",      "--stock file",   "--design",
+                                      "--tool-table", "--tool-library", "--offsets"};
+  const int slabs = mpi->comm.size > 1;
+  int rc = parse_args(o, argc, argv);
+  if (rc == 1) return -1;
+  if (rc == 0 && o->cfg.threads > 0) /* all of the run's passes, not only the removal's */
+    swarf_stock_limit_threads(o->cfg.threads);
+  if (rc == 0 && o->stock.file == NULL) rc = check_size(&o->cfg);
+  if (rc == 0 && slabs && o->balance) rc = usage_error("--balance: run it on one process");
+  if (rc == 0 && slabs) rc = check_program(o->program);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
+  const char *const files[] = {o->program,    o->stock.file,   o->verify.design_path,
+                               o->tool_table, o->tool_library, o->verify.offsets};
+  if ((rc = swarf_cli_mpi_same_inputs(mpi, argc, argv, names, files, 6))) return rc;
+  rc = swarf_cli_stock_make(&o->stock, &o->cfg, initial);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
+  o->verify.frame = *initial;
+  o->verify.views = o->mesh != NULL || o->image != NULL || o->html != NULL;
+  o->verify.lines_wanted = o->html != NULL;
+  rc = swarf_verify_prepare(&o->verify, &o->cfg);
+  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
+  if (mpi->comm.rank == 0) rc = start_modbus(o, mb); /* rank 0's only */
+  return swarf_cli_mpi_agree(mpi, rc);
+}
+
 static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   sim_options o;
   swarf_sim_report rep;
-  swarf_stock *stock = NULL;
+  swarf_stock *stock = NULL, *initial = NULL;
   swarf_progress pb;
   swarf_modbus_service *mb = NULL;
   swarf_error err;
-  size_t ntri = 0;
-  swarf_stock *initial = NULL;
-  const int parts = mpi->comm.size > 1, rank = mpi->comm.rank;
-  int rc = parse_args(&o, argc, argv);
-  if (rc == 1) return 0;
-  if (rc == 0 && o.cfg.threads > 0) /* all of the run's passes, not only the removal's */
-    swarf_stock_limit_threads(o.cfg.threads);
-  if (rc == 0 && o.stock.file == NULL) rc = check_size(&o.cfg);
-  if (rc == 0 && parts && o.balance) rc = usage_error("--balance: run it on one process");
-  if (rc == 0 && parts) rc = check_program(o.program);
-  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return rc;
-  {
-    static const char *const names[] = {"program",      "--stock file",   "--design",
-                                        "--tool-table", "--tool-library", "--offsets"};
-    const char *const files[] = {o.program,    o.stock.file,   o.verify.design_path,
-                                 o.tool_table, o.tool_library, o.verify.offsets};
-    if ((rc = swarf_cli_mpi_same_inputs(mpi, argc, argv, names, files, 6))) return rc;
-  }
-  rc = swarf_cli_stock_make(&o.stock, &o.cfg, &initial);
-  if ((rc = swarf_cli_mpi_agree(mpi, rc))) return swarf_stock_free(initial), rc;
-  o.verify.frame = initial;
-  o.verify.views = o.mesh != NULL || o.image != NULL || o.html != NULL;
-  o.verify.lines_wanted = o.html != NULL;
-  rc = swarf_verify_prepare(&o.verify, &o.cfg);
-  if ((rc = swarf_cli_mpi_agree(mpi, rc)))
-    return swarf_stock_free(initial), swarf_verify_free(&o.verify), rc;
-  if (rank == 0) rc = swarf_modbus_start(&o.modbus, o.program, &mb); /* rank 0's only */
-  if ((rc = swarf_cli_mpi_agree(mpi, rc)))
-    return swarf_stock_free(initial), swarf_verify_free(&o.verify),
-           swarf_modbus_finish(mb, rc, NULL), rc;
-  if (rank != 0) o.quiet = 1;
-  if (parts) o.cfg.comm = &mpi->comm;
+  const int rank = mpi->comm.rank;
+  int ran = 0;
+  sim_clients clients = {NULL, NULL, &o.verify, {NULL, 0, 0, 0}, NULL};
+  memset(&rep, 0, sizeof rep);
   swarf_progress_init(&pb);
-  sim_clients clients = {o.quiet ? NULL : &pb, mb, &o.verify, {NULL, 0, 0, 0}, NULL};
+  int rc = prepare(&o, argc, argv, mpi, &initial, &mb);
+  if (rc < 0) return 0; /* --help */
+  if (rc != 0) goto done;
+  if (rank != 0) o.quiet = 1;
+  if (mpi->comm.size > 1) o.cfg.comm = &mpi->comm;
+  clients.bar = o.quiet ? NULL : &pb;
+  clients.modbus = mb;
   if (o.html != NULL && rank == 0 && (clients.html = swarf_html_new()) == NULL) {
     fputs("swarf simulate: out of memory\n", stderr);
-    swarf_modbus_finish(mb, 1, NULL);
-    swarf_verify_free(&o.verify);
-    return 1;
+    rc = 1;
+    goto done;
   }
   if (clients.html != NULL) o.cfg.cb.move = on_move;
   o.cfg.cb.progress = on_progress;
@@ -656,43 +699,19 @@ static int simulate(int argc, char **argv, swarf_cli_mpi *mpi) {
   if (o.cfg.line_volumes) o.cfg.cb.line = on_line;
   o.cfg.cb.user = &clients;
   swarf_error_init(&err);
-  if (swarf_cli_run(&o.cfg, o.program, initial, o.balance, &stock, &rep, &err) != SWARF_OK) {
-    swarf_progress_finish(&pb);
-    rc = run_failed(mpi, &err, mb);
-    swarf_html_free(clients.html);
-    swarf_modbus_finish(mb, rc, &rep);
-    swarf_verify_free(&o.verify);
-    free(clients.alarms.a);
-    return rc;
-  }
+  const swarf_status st = swarf_cli_run(&o.cfg, o.program, initial, o.balance, &stock, &rep, &err);
+  initial = NULL; /* the run's */
+  ran = 1;
   swarf_progress_finish(&pb);
-  if (rank != 0) { /* rank 0 prints and writes; this rank's stock is its slab */
-    free(clients.alarms.a);
-    swarf_stock_free(stock);
-    swarf_verify_free(&o.verify);
-    return 0;
-  }
-  print_alarms(&o, &clients.alarms, &rep);
-  free(clients.alarms.a);
-  swarf_verify_warn(&o.verify, o.program, &rep);
-  rc = write_outputs(&o, clients.html, stock, &rep, &ntri);
+  if (st != SWARF_OK)
+    rc = run_failed(mpi, &err, mb);
+  else if (rank == 0) /* rank 0 prints and writes; another rank's stock is its slab */
+    rc = finish_run(&o, &clients, stock, &rep, &pb);
+done:
   swarf_html_free(clients.html);
-  if (rc == 0 && !o.quiet) {
-    print_summary(&o, stock, &rep, swarf_progress_now() - pb.start, ntri);
-    swarf_verify_summary(&o.verify, &rep);
-  }
-  if (rc == 0) rc = swarf_verify_finish(&o.verify, &rep);
-  if (rc == 0 && o.fail_on_collision && rep.collisions > 0) {
-    fprintf(stderr, "%s: %ld collisions (--fail-on collision): exit status 4\n", o.program,
-            rep.collisions);
-    rc = 4;
-  }
-  if (rc == 0 && o.fail_on_no_tool && rep.alarm_count[SWARF_ALARM_NO_TOOL] > 0) {
-    fprintf(stderr, "%s: %ld feed moves with an empty spindle (--fail-on no-tool): exit status 4\n",
-            o.program, rep.alarm_count[SWARF_ALARM_NO_TOOL]);
-    rc = 4;
-  }
-  swarf_modbus_finish(mb, rc == 4 ? 0 : rc, &rep); /* a gouge is the part's, not the run's */
+  free(clients.alarms.a);
+  swarf_modbus_finish(mb, rc == 4 ? 0 : rc, ran ? &rep : NULL); /* a gouge is the part's */
+  swarf_stock_free(initial);
   swarf_stock_free(stock);
   swarf_verify_free(&o.verify);
   return rc;

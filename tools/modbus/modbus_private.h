@@ -70,8 +70,8 @@ typedef struct {
 
 /* Parse an endpoint; `push` accepts address= and interval= (and requires
  * address=). Returns 0, or -1 with what is wrong in msg. */
-int swarf_mb_endpoint_parse(const char *spec, int push, swarf_mb_endpoint *e, char *msg,
-                            size_t msglen);
+swarf_status swarf_mb_endpoint_parse(const char *spec, int push, swarf_mb_endpoint *e,
+                                     swarf_error *err);
 
 /* Answers requests from the snapshot; one per server thread (it owns its
  * libmodbus mapping). */
@@ -95,19 +95,19 @@ int swarf_mb_respond(swarf_mb_responder *r, modbus_t *ctx, const uint8_t *req, i
  * that a busy port or a missing device is reported before the job starts)
  * and starts its thread; _free stops the thread and closes everything. */
 typedef struct swarf_mb_tcp swarf_mb_tcp;
-swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
-                               size_t msglen);
+swarf_status swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_job *status, swarf_mb_tcp **out,
+                              swarf_error *err);
 int swarf_mb_tcp_port(const swarf_mb_tcp *t); /* the port bound (for port 0) */
 void swarf_mb_tcp_free(swarf_mb_tcp *t);
 
 typedef struct swarf_mb_rtu swarf_mb_rtu;
-swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
-                               size_t msglen);
+swarf_status swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_job *status, swarf_mb_rtu **out,
+                              swarf_error *err);
 void swarf_mb_rtu_free(swarf_mb_rtu *t);
 
 typedef struct swarf_mb_push swarf_mb_push;
-swarf_mb_push *swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
-                                 size_t msglen);
+swarf_status swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_job *status, swarf_mb_push **out,
+                               swarf_error *err);
 /* Push once more now (the final state), then stop and free. */
 void swarf_mb_push_free(swarf_mb_push *p);
 

@@ -72,30 +72,36 @@ static void *loop(void *arg) {
   return NULL;
 }
 
-swarf_mb_push *swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
-                                 size_t msglen) {
+swarf_status swarf_mb_push_new(const swarf_mb_endpoint *e, swarf_job *status, swarf_mb_push **out,
+                               swarf_error *err) {
   struct swarf_mb_push *p;
-  if (e == NULL || status == NULL || e->kind != SWARF_MB_TCP) return NULL;
-  if ((p = calloc(1, sizeof *p)) == NULL) return NULL;
+  swarf_status st;
+  if (out == NULL || e == NULL || status == NULL || e->kind != SWARF_MB_TCP)
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_mb_push_new: no TCP endpoint");
+  *out = NULL;
+  if ((p = calloc(1, sizeof *p)) == NULL)
+    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   p->e = *e;
   p->status = status;
   p->ctx = modbus_new_tcp_pi(e->host, e->port);
   if (p->ctx == NULL) {
-    snprintf(msg, msglen, "--modbus-push: %s:%s: %s", e->host, e->port, modbus_strerror(errno));
+    st = swarf_error_set(err, SWARF_ERR_ARG, "--modbus-push: %s:%s: %s", e->host, e->port,
+                         modbus_strerror(errno));
     free(p);
-    return NULL;
+    return st;
   }
   modbus_set_slave(p->ctx, e->unit);
   modbus_set_response_timeout(p->ctx, 0, 500000);
   pthread_mutex_init(&p->lock, NULL);
   pthread_cond_init(&p->wake, NULL);
   if (pthread_create(&p->thread, NULL, loop, p) != 0) {
-    snprintf(msg, msglen, "--modbus-push: cannot start the push thread");
+    st = swarf_error_set(err, SWARF_ERR_INTERNAL, "--modbus-push: cannot start the push thread");
     modbus_free(p->ctx);
     free(p);
-    return NULL;
+    return st;
   }
-  return p;
+  *out = p;
+  return SWARF_OK;
 }
 
 void swarf_mb_push_free(swarf_mb_push *p) {

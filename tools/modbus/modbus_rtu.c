@@ -68,37 +68,43 @@ static void *loop(void *arg) {
   return NULL;
 }
 
-swarf_mb_rtu *swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
-                               size_t msglen) {
+swarf_status swarf_mb_rtu_new(const swarf_mb_endpoint *e, swarf_job *status, swarf_mb_rtu **out,
+                              swarf_error *err) {
   struct swarf_mb_rtu *t;
-  if (e == NULL || status == NULL || e->kind != SWARF_MB_RTU) return NULL;
-  if ((t = calloc(1, sizeof *t)) == NULL) return NULL;
+  swarf_status st = SWARF_ERR_IO;
+  if (out == NULL || e == NULL || status == NULL || e->kind != SWARF_MB_RTU)
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_mb_rtu_new: no RTU endpoint");
+  *out = NULL;
+  if ((t = calloc(1, sizeof *t)) == NULL)
+    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   atomic_init(&t->stop, 0);
   t->ctx = modbus_new_rtu(e->device, e->baud, e->parity, e->data_bits, e->stop_bits);
   if (t->ctx == NULL) {
-    snprintf(msg, msglen, "--modbus: %s: %s", e->device, modbus_strerror(errno));
+    st = swarf_error_set(err, SWARF_ERR_ARG, "--modbus: %s: %s", e->device, modbus_strerror(errno));
     goto err;
   }
   modbus_set_slave(t->ctx, e->unit);
   modbus_set_indication_timeout(t->ctx, 0, 200000);
   modbus_set_response_timeout(t->ctx, 0, 1); /* libmodbus sleeps it on errors */
   if (modbus_connect(t->ctx) != 0) {
-    snprintf(msg, msglen, "--modbus: cannot open %s: %s (is it the right serial device?)",
-             e->device, modbus_strerror(errno));
+    st = swarf_error_set(err, SWARF_ERR_OPEN,
+                         "--modbus: cannot open %s: %s (is it the right serial device?)", e->device,
+                         modbus_strerror(errno));
     goto err;
   }
   if (swarf_mb_responder_init(&t->resp, status, e->unit, 0) ||
       pthread_create(&t->thread, NULL, loop, t)) {
-    snprintf(msg, msglen, "--modbus: cannot start the RTU server");
+    st = swarf_error_set(err, SWARF_ERR_INTERNAL, "--modbus: cannot start the RTU server");
     modbus_close(t->ctx);
     goto err;
   }
-  return t;
+  *out = t;
+  return SWARF_OK;
 err:
   if (t->ctx) modbus_free(t->ctx);
   swarf_mb_responder_clear(&t->resp);
   free(t);
-  return NULL;
+  return st;
 }
 
 void swarf_mb_rtu_free(swarf_mb_rtu *t) {

@@ -50,10 +50,12 @@ static int option_error(const char *flag, const char *what) {
 
 static int add_endpoint(const char **list, int *n, const char *flag, const char *val, int push) {
   swarf_mb_endpoint e;
-  char msg[512];
+  swarf_error err;
   if (*n == SWARF_MODBUS_MAX_ENDPOINTS)
     return option_error(flag, "given too many times (4 at most)");
-  if (swarf_mb_endpoint_parse(val, push, &e, msg, sizeof msg)) return option_error(flag, msg);
+  swarf_error_init(&err);
+  if (swarf_mb_endpoint_parse(val, push, &e, &err) != SWARF_OK)
+    return option_error(flag, err.message);
   list[(*n)++] = val;
   return 0;
 }
@@ -88,20 +90,20 @@ static void announce(const swarf_mb_endpoint *e, const swarf_mb_tcp *tcp, int pu
             e->parity, e->data_bits, e->stop_bits, e->unit);
 }
 
-/* Open the i-th server (push == 0) or push client; 0 or -1 with msg. */
-static int open_endpoint(swarf_modbus_service *svc, const char *spec, int push, int i, char *msg,
-                         size_t msglen) {
+/* Open the i-th server (push == 0) or push client. */
+static swarf_status open_endpoint(swarf_modbus_service *svc, const char *spec, int push, int i,
+                                  swarf_error *err) {
   swarf_mb_endpoint e;
-  if (swarf_mb_endpoint_parse(spec, push, &e, msg, msglen)) return -1;
+  swarf_status st = swarf_mb_endpoint_parse(spec, push, &e, err);
+  if (st != SWARF_OK) return st;
   if (push)
-    svc->push[i] = swarf_mb_push_new(&e, svc->status, msg, msglen);
+    st = swarf_mb_push_new(&e, svc->status, &svc->push[i], err);
   else if (e.kind == SWARF_MB_TCP)
-    svc->tcp[i] = swarf_mb_tcp_new(&e, svc->status, msg, msglen);
+    st = swarf_mb_tcp_new(&e, svc->status, &svc->tcp[i], err);
   else
-    svc->rtu[i] = swarf_mb_rtu_new(&e, svc->status, msg, msglen);
-  if (!svc->push[i] && !svc->tcp[i] && !svc->rtu[i]) return -1;
-  announce(&e, svc->tcp[i], push);
-  return 0;
+    st = swarf_mb_rtu_new(&e, svc->status, &svc->rtu[i], err);
+  if (st == SWARF_OK) announce(&e, svc->tcp[i], push);
+  return st;
 }
 
 static void stop_all(swarf_modbus_service *svc) {
@@ -115,32 +117,36 @@ static void stop_all(swarf_modbus_service *svc) {
   free(svc);
 }
 
-int swarf_modbus_start(const swarf_modbus_options *o, const char *program,
-                       swarf_modbus_service **out) {
+swarf_status swarf_modbus_start(const swarf_modbus_options *o, const char *program,
+                                swarf_modbus_service **out, swarf_error *err) {
   swarf_modbus_service *svc;
-  char msg[600] = "out of memory";
+  swarf_status st = SWARF_OK;
   *out = NULL;
-  if (o == NULL || !o->any_flag) return 0;
+  if (o == NULL || !o->any_flag) return SWARF_OK;
   if (o->nserve + o->npush == 0)
-    return option_error("--modbus-linger/--modbus-commands", "give --modbus or --modbus-push too");
+    return swarf_error_set(err, SWARF_ERR_ARG,
+                           "--modbus-linger/--modbus-commands: give --modbus or --modbus-push too");
   if (o->commands && o->nserve == 0)
-    return option_error("--modbus-commands", "commands are written to a --modbus server");
-  if ((svc = calloc(1, sizeof *svc)) == NULL || (svc->status = swarf_job_new(program)) == NULL)
-    goto err;
+    return swarf_error_set(err, SWARF_ERR_ARG,
+                           "--modbus-commands: commands are written to a --modbus server");
+  if ((svc = calloc(1, sizeof *svc)) == NULL || (svc->status = swarf_job_new(program)) == NULL) {
+    free(svc);
+    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
+  }
   svc->linger = o->linger;
   swarf_job_set_commands(svc->status, o->commands);
-  for (int i = 0; i < o->nserve; i++)
-    if (open_endpoint(svc, o->serve[i], 0, i, msg, sizeof msg)) goto err;
-  for (int i = 0; i < o->npush; i++)
-    if (open_endpoint(svc, o->push[i], 1, i, msg, sizeof msg)) goto err;
+  for (int i = 0; i < o->nserve && st == SWARF_OK; i++)
+    st = open_endpoint(svc, o->serve[i], 0, i, err);
+  for (int i = 0; i < o->npush && st == SWARF_OK; i++)
+    st = open_endpoint(svc, o->push[i], 1, i, err);
+  if (st != SWARF_OK) {
+    stop_all(svc);
+    return st;
+  }
   swarf_job_observer_init(&svc->observer, svc->status);
   svc->count = swarf_job_count_new(program, svc->status);
   *out = svc;
-  return 0;
-err:
-  fprintf(stderr, "swarf simulate: %s\n", msg);
-  if (svc) stop_all(svc);
-  return 2;
+  return SWARF_OK;
 }
 
 int swarf_modbus_observe(swarf_modbus_service *svc, const swarf_sim_progress *p) {

@@ -41,11 +41,12 @@ int swarf_modbus_option(swarf_modbus_options *o, const char *flag, const char *v
 
 typedef struct swarf_modbus_service swarf_modbus_service;
 
-/* Open every endpoint (reporting a busy port or a missing device: returns
- * 2 with a message on stderr) and announce them on stderr. With no --modbus
- * option, *out is NULL and 0 returned. */
-int swarf_modbus_start(const swarf_modbus_options *o, const char *program,
-                       swarf_modbus_service **out);
+/* Open every endpoint and announce them on stderr. A busy port, a missing
+ * device or an option that needs another fills err (its message starts with
+ * the option) and returns its status, nothing left open. With no --modbus
+ * option, *out is NULL and SWARF_OK returned. */
+swarf_status swarf_modbus_start(const swarf_modbus_options *o, const char *program,
+                                swarf_modbus_service **out, swarf_error *err);
 
 /* Call from the simulation's progress callback (swarf_sim_callbacks): it
  * publishes the snapshot without waiting, holds while a pause command is

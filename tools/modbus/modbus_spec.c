@@ -15,9 +15,8 @@
 
 #include "modbus_private.h"
 
-static int bad(char *msg, size_t msglen, const char *spec, const char *what) {
-  snprintf(msg, msglen, "\"%s\": %s", spec, what);
-  return -1;
+static swarf_status bad(swarf_error *err, const char *spec, const char *what) {
+  return swarf_error_set(err, SWARF_ERR_ARG, "\"%s\": %s", spec, what);
 }
 
 static int read_long(const char *text, long lo, long hi, long *out) {
@@ -76,12 +75,12 @@ static int parse_extra(const char *kv, int push, swarf_mb_endpoint *e) {
   return -1;
 }
 
-int swarf_mb_endpoint_parse(const char *spec, int push, swarf_mb_endpoint *e, char *msg,
-                            size_t msglen) {
+swarf_status swarf_mb_endpoint_parse(const char *spec, int push, swarf_mb_endpoint *e,
+                                     swarf_error *err) {
   char copy[600], *fields[12], *save = NULL;
   int n = 0, first_extra;
   if (spec == NULL || e == NULL || strlen(spec) >= sizeof copy)
-    return bad(msg, msglen, spec ? spec : "", "too long");
+    return bad(err, spec ? spec : "", "too long");
   memset(e, 0, sizeof *e);
   e->unit = 1;
   e->address = -1;
@@ -91,26 +90,25 @@ int swarf_mb_endpoint_parse(const char *spec, int push, swarf_mb_endpoint *e, ch
     fields[n++] = f;
   if (n > 0 && !strncmp(fields[0], "tcp:", 4)) {
     e->kind = SWARF_MB_TCP;
-    if (parse_hostport(fields[0] + 4, e)) return bad(msg, msglen, spec, "give tcp:HOST:PORT");
+    if (parse_hostport(fields[0] + 4, e)) return bad(err, spec, "give tcp:HOST:PORT");
     first_extra = 1;
   } else if (n > 0 && !strncmp(fields[0], "rtu:", 4) && !push) {
     e->kind = SWARF_MB_RTU;
     fields[0] += 4;
     if (parse_serial(fields, n, e))
-      return bad(msg, msglen, spec,
-                 "give rtu:DEVICE,BAUD,PARITY(N/E/O),DATABITS(5-8),STOPBITS(1-2)");
+      return bad(err, spec, "give rtu:DEVICE,BAUD,PARITY(N/E/O),DATABITS(5-8),STOPBITS(1-2)");
     first_extra = 5;
   } else {
-    return bad(msg, msglen, spec,
+    return bad(err, spec,
                push ? "give tcp:HOST:PORT,unit=N,address=A"
                     : "give tcp:HOST:PORT or rtu:DEVICE,BAUD,PARITY,DATA,STOP");
   }
   for (int i = first_extra; i < n; i++)
     if (parse_extra(fields[i], push, e))
-      return bad(msg, msglen, spec,
+      return bad(err, spec,
                  push ? "options are unit=1..247, address=0..65472, interval=0.05..3600 (s)"
                       : "the only option is unit=1..247");
-  if (push && e->address < 0) return bad(msg, msglen, spec, "push needs address=A");
-  if (push && !strcmp(e->port, "0")) return bad(msg, msglen, spec, "push needs a real port");
-  return 0;
+  if (push && e->address < 0) return bad(err, spec, "push needs address=A");
+  if (push && !strcmp(e->port, "0")) return bad(err, spec, "push needs a real port");
+  return SWARF_OK;
 }

@@ -231,7 +231,8 @@ static void *loop(void *arg) {
 }
 
 /* Bind and listen on e's host and port; fills t->listen_fd and t->port. */
-static int listen_on(struct swarf_mb_tcp *t, const swarf_mb_endpoint *e, char *msg, size_t msglen) {
+static swarf_status listen_on(struct swarf_mb_tcp *t, const swarf_mb_endpoint *e,
+                              swarf_error *err) {
   struct addrinfo hints = {0}, *ai = NULL;
   struct sockaddr_storage ss;
   socklen_t sl = sizeof ss;
@@ -239,51 +240,55 @@ static int listen_on(struct swarf_mb_tcp *t, const swarf_mb_endpoint *e, char *m
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_STREAM;
   hints.ai_flags = AI_PASSIVE;
-  if ((rc = getaddrinfo(e->host, e->port, &hints, &ai)) != 0) {
-    snprintf(msg, msglen, "--modbus: cannot resolve \"%s\": %s", e->host, gai_strerror(rc));
-    return -1;
-  }
+  if ((rc = getaddrinfo(e->host, e->port, &hints, &ai)) != 0)
+    return swarf_error_set(err, SWARF_ERR_ARG, "--modbus: cannot resolve \"%s\": %s", e->host,
+                           gai_strerror(rc));
   t->listen_fd = socket(ai->ai_family, ai->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (t->listen_fd >= 0) setsockopt(t->listen_fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   rc = t->listen_fd < 0 || bind(t->listen_fd, ai->ai_addr, ai->ai_addrlen) ||
        listen(t->listen_fd, SOMAXCONN) || getsockname(t->listen_fd, (struct sockaddr *)&ss, &sl);
   freeaddrinfo(ai);
-  if (rc) {
-    snprintf(msg, msglen,
-             "--modbus: cannot listen on %s:%s: %s (choose another port, or 0 for a free one)",
-             e->host, e->port, strerror(errno));
-    return -1;
-  }
+  if (rc)
+    return swarf_error_set(
+        err, SWARF_ERR_ARG,
+        "--modbus: cannot listen on %s:%s: %s (choose another port, or 0 for a free one)", e->host,
+        e->port, strerror(errno));
   t->port = ntohs(ss.ss_family == AF_INET6 ? ((struct sockaddr_in6 *)&ss)->sin6_port
                                            : ((struct sockaddr_in *)&ss)->sin_port);
-  return 0;
+  return SWARF_OK;
 }
 
-swarf_mb_tcp *swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_job *status, char *msg,
-                               size_t msglen) {
+swarf_status swarf_mb_tcp_new(const swarf_mb_endpoint *e, swarf_job *status, swarf_mb_tcp **out,
+                              swarf_error *err) {
   struct swarf_mb_tcp *t;
-  if (e == NULL || status == NULL || e->kind != SWARF_MB_TCP) return NULL;
-  if ((t = calloc(1, sizeof *t)) == NULL) return NULL;
+  swarf_status st;
+  if (out == NULL || e == NULL || status == NULL || e->kind != SWARF_MB_TCP)
+    return swarf_error_set(err, SWARF_ERR_ARG, "swarf_mb_tcp_new: no TCP endpoint");
+  *out = NULL;
+  if ((t = calloc(1, sizeof *t)) == NULL)
+    return swarf_error_set(err, SWARF_ERR_MEMORY, "out of memory");
   t->listen_fd = t->wake[0] = t->wake[1] = -1;
   for (int i = 0; i < SWARF_MB_MAX_CLIENTS; i++)
     t->clients[i].fd = -1;
   atomic_init(&t->stop, 0);
-  if (listen_on(t, e, msg, msglen)) goto err;
+  if ((st = listen_on(t, e, err)) != SWARF_OK) goto err;
   t->ctx = modbus_new_tcp("127.0.0.1", t->port);
   if (t->ctx) modbus_set_response_timeout(t->ctx, 0, 1); /* libmodbus sleeps it on errors */
   if (t->ctx == NULL || swarf_mb_responder_init(&t->resp, status, e->unit, 1) ||
       pipe2(t->wake, O_CLOEXEC) || pthread_create(&t->thread, NULL, loop, t)) {
-    snprintf(msg, msglen, "--modbus: cannot start the server: %s", strerror(errno));
+    st = swarf_error_set(err, SWARF_ERR_INTERNAL, "--modbus: cannot start the server: %s",
+                         strerror(errno));
     goto err;
   }
-  return t;
+  *out = t;
+  return SWARF_OK;
 err:
   if (t->ctx) modbus_free(t->ctx);
   swarf_mb_responder_clear(&t->resp);
   if (t->listen_fd >= 0) close(t->listen_fd);
   if (t->wake[0] >= 0) close(t->wake[0]), close(t->wake[1]);
   free(t);
-  return NULL;
+  return st;
 }
 
 int swarf_mb_tcp_port(const swarf_mb_tcp *t) {

@@ -172,16 +172,24 @@ static int boxes_overlap(const double alo[3], const double ahi[3], const double 
   return 1;
 }
 
-/* The rapid in slot 0 against the stock as it stands. */
-static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *c) {
+/* Whether rapid m's cut c enters the material of the stock as it stands
+ * (moves still queued not removed): *hit, and where. */
+static int rapid_hits(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *c, int *hit,
+                      double where[3]) {
   swarf_error e;
-  int hit = 0;
-  double where[3];
-  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, &hit, where, &e) != SWARF_OK) {
+  *hit = 0;
+  if (swarf_stock_overlaps(s->stock, c, 0.5 * s->cfg.voxel, hit, where, &e) != SWARF_OK) {
     swarf_sim_fail(s, SWARF_ERR_INTERNAL, m->line, m->column, "%s", e.message);
     return 1;
   }
-  if (swarf_sim_slab_hit(s, &hit, where) != 0) return 1;
+  return swarf_sim_slab_hit(s, hit, where);
+}
+
+/* The rapid in slot 0 against the stock as it stands. */
+static int check_rapid(swarf_sim *s, const swarf_motion *m, const swarf_stock_cut *c) {
+  int hit = 0;
+  double where[3];
+  if (rapid_hits(s, m, c, &hit, where) != 0) return 1;
   if (hit) {
     swarf_alarm a = {SWARF_ALARM_RAPID,
                      m->line,
@@ -273,8 +281,6 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     if (reach) swarf_sim_slab_survey(s, c);
     return 0;
   }
-  if (reach && m->rapid && s->n > 0) /* checked against the stock as it stands: from slot 0 */
-    return swarf_sim_batch_flush(s) != 0 ? 1 : swarf_sim_batch_queue(s, mv);
   c->sdf = sweep_sdf;
   c->ctx = w;
   c->range = m->kind == SWARF_MOTION_RIGID ? sweep_range : NULL; /* rotary: pruned searches */
@@ -289,9 +295,20 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     c->range = NULL;
     s->supports[s->n] = NULL;
   }
+  /* A rapid is checked against the material as it finds it. Removal only
+   * takes material away, so one clear of the stock before the queued moves
+   * are removed is clear after them: only a rapid that enters it flushes the
+   * batch and is checked again from slot 0. Programs with many rapids keep
+   * their batches whole; the alarms are as they were. */
+  if (m->rapid && s->n > 0) {
+    int hit;
+    double where[3];
+    if (rapid_hits(s, m, c, &hit, where) != 0) return 1;
+    if (hit) return swarf_sim_batch_flush(s) != 0 ? 1 : swarf_sim_batch_queue(s, mv);
+  }
   s->rep.cutting_moves++;
   s->cut_id[s->n] = s->cur_id;
-  if (m->rapid && check_rapid(s, m, c) != 0) return 1;
+  if (m->rapid && s->n == 0 && check_rapid(s, m, c) != 0) return 1;
   s->blocks += cut_blocks(s, c);
   if (++s->n == s->cap || s->blocks > BATCH_BLOCKS) return swarf_sim_batch_flush(s);
   return 0;

@@ -441,12 +441,63 @@ def test_arguments():
         check(True, "a closed simulation refuses input")
 
 
+# A tool table (T1's G43 length, T2's diameter), a holder that enters the
+# top (line 4), a clamp the cutter runs into (line 7): as assembly.sh's job.
+ASSEMBLY = ("G21 G90\nT1 M6 G43 H1\nG0 X20 Y20 Z5\nG1 Z-20 F300\nG1 Z-27\nG0 Z30\n"
+            "G0 X30 Y20 Z2\nG1 X58\nG0 Z30\nM2\n")
+
+
+def test_assembly_against_cli():
+    prog = write_program("assembly.ngc", ASSEMBLY)
+    table = path("tools.tbl")
+    with open(table, "w") as f:
+        f.write("T1 P1 D6 Z+0 ;flat 6\nT2 P2 D4 Z+12 ;unused\n")
+    opts = dict(stock="box:0,0,-40,60,40,0", voxel=0.25, units="mm", tool_table=table,
+                tools=["T1=flat,D6,L10,S25"], holders=["T1=20x40"],
+                fixtures=["box:50,0,0,60,40,5"])
+    report = path("assembly.json")
+    cli = subprocess.run([os.path.join(PREFIX, "bin", "swarf"), "simulate", prog, "--stock",
+                          opts["stock"], "--voxel", "0.25", "--units", "mm", "--tool-table",
+                          table, "--tool", opts["tools"][0], "--holder", opts["holders"][0],
+                          "--fixture", opts["fixtures"][0], "--out", path("assembly_cli.vdb"),
+                          "--report", report, "--quiet"], capture_output=True, text=True)
+    check(cli.returncode == 0, "assembly: the CLI ran: %s" % cli.stderr.strip()[-300:])
+    with open(report) as f:
+        want = [(a["kind"], a["line"], round(a["depth_mm"], 6)) for a in json.load(f)["alarms"]]
+    r = swarf.simulate(prog, line_volumes=True, **opts)
+    got = [(a.kind, a.line, round(a.depth, 6)) for a in r.alarms]
+    check(got == want and len(got) == 4, "assembly: the CLI's alarms %s, Python's %s"
+          % (want, got))
+    with open(report) as f:
+        cli_lines = json.load(f)["lines"]
+    a = r.line_array()
+    check(a.dtype.names == ("line", "tool", "moves", "time_s", "path_mm", "removed") and
+          list(a["line"]) == [l["line"] for l in cli_lines],
+          "line_array: the CLI report's lines %s" % list(a["line"]))
+    near(float(a["removed"].sum()), r.removed, 1e-6, "line_array: the lines' volumes add up")
+    near(float(a["removed"].sum()), sum(l["removed_mm3"] for l in cli_lines), 1e-9,
+         "line_array: the CLI report's volumes")
+    r.write_vdb(path("assembly_py.vdb"))
+    same_grid(path("assembly_py.vdb"), path("assembly_cli.vdb"), "assembly")
+    try:
+        swarf.simulate(prog, **dict(opts, tools=["T1=flat,D6", "T1=ball,D6"]))
+        check(False, "assembly: a tool given twice is refused")
+    except swarf.InputError as e:
+        check("twice" in str(e), "assembly: a tool given twice: %s" % e)
+    try:
+        swarf.simulate(prog, **dict(opts, tool_table=path("none.tbl")))
+        check(False, "assembly: a missing tool table is refused")
+    except swarf.InputError as e:
+        check("none.tbl" in str(e), "assembly: a missing tool table: %s" % e)
+
+
 def main():
     os.makedirs(WORK, exist_ok=True)
     for t in (test_version, test_slot, test_trench_lines, test_against_cli,
               test_rotary_against_cli, test_outputs,
               test_stock_reuse_and_streaming, test_alarms, test_errors, test_abort,
-              test_dialect, test_design, test_numpy, test_arguments):
+              test_dialect, test_design, test_numpy, test_arguments,
+              test_assembly_against_cli):
         print("--", t.__name__)
         try:
             t()

@@ -132,6 +132,8 @@ static void structs(void) {
   FIELD(swarf_sim_callbacks, line, "LINE_FN");
   FIELD(swarf_sim_callbacks, user, "c_void_p");
   end();
+  STRUCT(swarf_sim_fixture); /* filled by swarf_sim_parse_fixture only */
+  end();
   STRUCT(swarf_sim_config);
   FIELD(swarf_sim_config, machine, "swarf_machine");
   FIELD(swarf_sim_config, stock, "swarf_sim_stock_spec");
@@ -140,6 +142,11 @@ static void structs(void) {
   FIELD(swarf_sim_config, batch, "c_int");
   FIELD(swarf_sim_config, ntools, "c_int");
   FIELD(swarf_sim_config, line_volumes, "c_int");
+  char fixtures[64];
+  snprintf(fixtures, sizeof fixtures, "swarf_sim_fixture * %d", SWARF_SIM_MAX_FIXTURES);
+  FIELD(swarf_sim_config, fixtures, fixtures);
+  FIELD(swarf_sim_config, nfixtures, "c_int");
+  FIELD(swarf_sim_config, collision_depths, "c_long");
   FIELD(swarf_sim_config, cb, "swarf_sim_callbacks");
   FIELD(swarf_sim_config, units, "c_int");
   FIELD(swarf_sim_config, offsets_file, "c_char_p");
@@ -204,6 +211,23 @@ static void functions(void) {
   FN(swarf_sim_config_add_tool, "\"c_int\"",
      "\"" P_CFG "\", \"POINTER(swarf_sim_tool)\", \"" P_ERR "\"", swarf_status, swarf_sim_config *,
      const swarf_sim_tool *, swarf_error *);
+  FN(swarf_sim_config_put_tool, "\"c_int\"",
+     "\"" P_CFG "\", \"POINTER(swarf_sim_tool)\", \"" P_ERR "\"", swarf_status, swarf_sim_config *,
+     const swarf_sim_tool *, swarf_error *);
+  FN(swarf_sim_config_put_holder, "\"c_int\"",
+     "\"" P_CFG "\", \"POINTER(swarf_sim_tool)\", \"" P_ERR "\"", swarf_status, swarf_sim_config *,
+     const swarf_sim_tool *, swarf_error *);
+  FN(swarf_sim_parse_holder, "\"c_int\"",
+     "\"c_char_p\", \"POINTER(swarf_sim_tool)\", \"" P_ERR "\"", swarf_status, const char *,
+     swarf_sim_tool *, swarf_error *);
+  FN(swarf_sim_parse_fixture, "\"c_int\"",
+     "\"c_char_p\", \"POINTER(swarf_sim_fixture)\", \"" P_ERR "\"", swarf_status, const char *,
+     swarf_sim_fixture *, swarf_error *);
+  FN(swarf_sim_config_load_tool_table, "\"c_int\"",
+     "\"" P_CFG "\", \"c_char_p\", \"c_double\", \"" P_ERR "\"", swarf_status, swarf_sim_config *,
+     const char *, double, swarf_error *);
+  FN(swarf_sim_config_load_tool_library, "\"c_int\"", "\"" P_CFG "\", \"c_char_p\", \"" P_ERR "\"",
+     swarf_status, swarf_sim_config *, const char *, swarf_error *);
   FN(swarf_sim_parse_tool, "\"c_int\"", "\"c_char_p\", \"POINTER(swarf_sim_tool)\", \"" P_ERR "\"",
      swarf_status, const char *, swarf_sim_tool *, swarf_error *);
   FN(swarf_sim_parse_stock, "\"c_int\"",
@@ -275,6 +299,7 @@ static void constants(void) {
   fprintf(out, "CONSTANTS = {\n");
 #define C(name) fprintf(out, "    \"%s\": %ld,\n", #name, (long)(name))
   C(SWARF_SIM_MAX_TOOLS);
+  C(SWARF_SIM_MAX_FIXTURES);
   C(SWARF_SIM_MAX_ALARMS);
   C(SWARF_SIM_STOCK_BOX);
   C(SWARF_SIM_STOCK_CYLINDER);

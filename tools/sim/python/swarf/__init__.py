@@ -383,6 +383,16 @@ class Result:
         """Volume removed from the stock, mm^3."""
         return self.report.removed
 
+    def line_array(self):
+        """The lines as a NumPy structured array, one record a line in program
+        order: line, tool, moves, time_s, path_mm, removed (mm^3; NaN unless
+        line_volumes=True), for sorting and summing without a loop."""
+        import numpy as np
+        dtype = [("line", np.int64), ("tool", np.int32), ("moves", np.int64),
+                 ("time_s", np.float64), ("path_mm", np.float64), ("removed", np.float64)]
+        return np.array([(r.line, r.tool, r.moves, r.time_s, r.path_mm, r.removed)
+                         for r in self.lines], dtype=dtype)
+
     def write_vdb(self, path):
         self.stock.write_vdb(path)
 
@@ -433,7 +443,75 @@ def _number(v, name, lo, hi):
     return float(v)
 
 
-def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units, offsets):
+def _specs(v, name):
+    """A spec string or a sequence of them, as a list."""
+    if v is None:
+        return []
+    if isinstance(v, (str, bytes, os.PathLike)):
+        return [v]
+    try:
+        return list(v)
+    except TypeError:
+        raise TypeError("swarf: %s: a spec string or a sequence of them, not %s"
+                        % (name, type(v).__name__)) from None
+
+
+def _tool_files(cfg, err, tool_table, tool_table_units, tool_library):
+    """The tool table and the library into cfg, as --tool-table and --tool-library."""
+    if tool_table_units not in ("mm", "in"):
+        _raise_msg("SWARF_ERR_ARG", "tool_table_units: mm or in, not %r" % (tool_table_units,),
+                   "tool_table_units")
+    if tool_table is not None:
+        per_unit = 25.4 if tool_table_units == "in" else 1.0
+        if lib.swarf_sim_config_load_tool_table(byref(cfg), _path(tool_table), per_unit,
+                                                byref(err)) != _OK:
+            _raise(err)
+    if tool_library is not None:
+        if lib.swarf_sim_config_load_tool_library(byref(cfg), _path(tool_library),
+                                                  byref(err)) != _OK:
+            _raise(err)
+
+
+def _tools(cfg, err, tools, holders):
+    """Each tool spec (replacing a table's or library's tool of its number, as
+    --tool does), then each holder spec (--holder)."""
+    given = set()
+    for spec in _specs(tools, "tools"):
+        tool = S["swarf_sim_tool"]()
+        if lib.swarf_sim_parse_tool(_spec(spec, "tools"), byref(tool), byref(err)) != _OK:
+            _raise(err)
+        if tool.number in given:
+            _raise_msg("SWARF_ERR_ARG", "tools: T%d is given twice" % tool.number, "tools")
+        given.add(tool.number)
+        if lib.swarf_sim_config_put_tool(byref(cfg), byref(tool), byref(err)) != _OK:
+            _raise(err)
+    for spec in _specs(holders, "holders"):
+        tool = S["swarf_sim_tool"]()
+        if (lib.swarf_sim_parse_holder(_spec(spec, "holders"), byref(tool), byref(err)) != _OK
+                or lib.swarf_sim_config_put_holder(byref(cfg), byref(tool), byref(err)) != _OK):
+            _raise(err)
+
+
+def _fixtures(cfg, err, fixtures):
+    """The fixture specs into cfg (--fixture); returns the encoded specs, which
+    an STL fixture's path points into until swarf_sim_new returns."""
+    kept = []
+    for spec in _specs(fixtures, "fixtures"):
+        if cfg.nfixtures == const["SWARF_SIM_MAX_FIXTURES"]:
+            _raise_msg("SWARF_ERR_ARG", "fixtures: %d at most" % const["SWARF_SIM_MAX_FIXTURES"],
+                       "fixtures")
+        text = create_string_buffer(_spec(spec, "fixtures"))
+        kept.append(text)
+        if lib.swarf_sim_parse_fixture(text, byref(cfg.fixtures[cfg.nfixtures]),
+                                       byref(err)) != _OK:
+            _raise(err)
+        cfg.nfixtures += 1
+    return kept
+
+
+def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units, offsets,
+            tool_table=None, tool_table_units="mm", tool_library=None, holders=None,
+            fixtures=None, collision_depths=None):
     """The swarf_sim_config of the options; also returns what it borrows."""
     cfg = S["swarf_sim_config"]()
     lib.swarf_sim_config_init(byref(cfg))
@@ -460,13 +538,11 @@ def _config(tools, voxel, machine, band, batch, line_volumes, start, g54, units,
     if batch is not None:
         cfg.batch = _whole(batch, "batch", 1, 2**31 - 1)
     cfg.line_volumes = 1 if line_volumes else 0
-    for spec in [tools] if isinstance(tools, str) else tools:
-        tool = S["swarf_sim_tool"]()
-        if lib.swarf_sim_parse_tool(_spec(spec, "tools"), byref(tool), byref(err)) != _OK:
-            _raise(err)
-        if lib.swarf_sim_config_add_tool(byref(cfg), byref(tool), byref(err)) != _OK:
-            _raise(err)
-    return cfg, borrowed
+    if collision_depths is not None:
+        cfg.collision_depths = _whole(collision_depths, "collision_depths", 0, 10**9)
+    _tool_files(cfg, err, tool_table, tool_table_units, tool_library)
+    _tools(cfg, err, tools, holders)
+    return cfg, (borrowed, _fixtures(cfg, err, fixtures))
 
 
 class Simulation:
@@ -498,12 +574,21 @@ class Simulation:
     report.deviation compares the part with it; a Stock given stays the
     caller's and must stay open), fragment (True: the text is not a whole program and need
     not end; False, the default: a LinuxCNC program must end with M2, M30 or
-    a closing %, as rs274 requires). name is the program's name in messages."""
+    a closing %, as rs274 requires). The tools as `swarf simulate` takes
+    them: tool_table (a LinuxCNC tool table; tool_table_units "mm" or "in"),
+    tool_library (a JSON library of assemblies), then tools (spec strings
+    that replace a table's tool of the same number), holders ("T1=20x40,
+    20-32x10": the holder of a tool with a stick-out S), fixtures ("box:..."
+    or "stl:FILE": bodies no part of the tool may enter), collision_depths
+    (how many collisions of each kind get their depth measured, 0: all).
+    Collisions come as alarms "shank", "holder" and "fixture". name is the
+    program's name in messages."""
 
     def __init__(self, stock, tools=(), *, voxel=None, machine=None, band=None, batch=None,
                  line_volumes=False, start=None, g54=None, units=None, offsets=None,
                  dialect=None, block_delete=False, subroutine_path=None, fragment=False,
-                 design=None, tolerance=None,
+                 design=None, tolerance=None, tool_table=None, tool_table_units="mm",
+                 tool_library=None, holders=None, fixtures=None, collision_depths=None,
                  name="program", progress=None, alarm=None, line=None):
         self._h = c_void_p()
         self._exc = None
@@ -514,7 +599,8 @@ class Simulation:
         self.lines: List[LineResult] = []
         self.name = os.fsdecode(name)
         cfg, borrowed = _config(tools, voxel, machine, band, batch, line_volumes, start, g54,
-                                units, offsets)
+                                units, offsets, tool_table, tool_table_units, tool_library,
+                                holders, fixtures, collision_depths)
         if dialect is not None:
             if dialect not in _DIALECTS:
                 _raise_msg("SWARF_ERR_ARG", "dialect: linuxcnc, fanuc, haas or grbl, not %r"
@@ -678,7 +764,8 @@ class Simulation:
 def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=None, band=None,
              batch=None, line_volumes=False, start=None, g54=None, units=None, offsets=None,
              dialect=None, block_delete=False, subroutine_path=None, fragment=False,
-             design=None, tolerance=None,
+             design=None, tolerance=None, tool_table=None, tool_table_units="mm",
+             tool_library=None, holders=None, fixtures=None, collision_depths=None,
              name=None, progress=None, alarm=None, line=None) -> Result:
     """Runs a program: the G-code file at `program`, or the string `text`.
     Options as Simulation (and `swarf simulate`). Returns the Result; raises
@@ -691,7 +778,9 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
                     line_volumes=line_volumes, start=start, g54=g54, units=units,
                     offsets=offsets, dialect=dialect, block_delete=block_delete,
                     subroutine_path=subroutine_path, fragment=fragment,
-                    design=design, tolerance=tolerance,
+                    design=design, tolerance=tolerance, tool_table=tool_table,
+                    tool_table_units=tool_table_units, tool_library=tool_library,
+                    holders=holders, fixtures=fixtures, collision_depths=collision_depths,
                     name=name, progress=progress, alarm=alarm,
                     line=line) as sim:
         if text is not None:

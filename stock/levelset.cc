@@ -120,6 +120,14 @@ void check_mesh_size(const std::vector<Vec3s> &pts, const std::vector<Vec3I> &tr
                 "the mesh's surface is too large for this voxel size (band over 4e9 voxels)");
 }
 
+/// World points (mm) in index space (voxels), as the band and the surface take them.
+std::vector<Vec3s> index_points(const std::vector<Vec3s> &pts, double voxel) {
+  std::vector<Vec3s> ip(pts.size());
+  for (size_t i = 0; i < pts.size(); i++)
+    ip[i] = Vec3s(float(pts[i][0] / voxel), float(pts[i][1] / voxel), float(pts[i][2] / voxel));
+  return ip;
+}
+
 /// A stock from a closed polygon mesh (world points, mm): the exact signed
 /// distance in swarf's band (mesh_sdf.h: winding-number signs, closest-point
 /// distances; no meshToVolume, whose band expansion costs ten times more and
@@ -129,9 +137,7 @@ swarf_stock *mesh_stock(const std::vector<Vec3s> &pts, const std::vector<Vec3I> 
                         bool keep_surface = false) {
   check_mesh_size(pts, tris, quads, voxel, half_width);
   init_openvdb();
-  std::vector<Vec3s> ip(pts.size());
-  for (size_t i = 0; i < pts.size(); i++)
-    ip[i] = Vec3s(float(pts[i][0] / voxel), float(pts[i][1] / voxel), float(pts[i][2] / voxel));
+  std::vector<Vec3s> ip = index_points(pts, voxel);
   std::vector<Vec3I> t(tris);
   for (const Vec4I &q : quads)
     t.emplace_back(q[0], q[1], q[2]), t.emplace_back(q[0], q[2], q[3]);
@@ -326,22 +332,30 @@ std::string lower_extension(const char *path) {
   return ext;
 }
 
-swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double voxel,
-                      int half_width, bool keep_surface = false) {
-  check_grid_args(voxel, half_width);
+/// An STL file's points (placed by p, mm) and triangles.
+void load_stl(const char *path, const swarf_stock_placement *p, std::vector<Vec3s> &pts,
+              std::vector<Vec3I> &tris) {
   const Rigid m = placement_map(p ? *p : swarf_stock_placement{});
   TriMesh mesh;
   read_stl_file(path, mesh);
-  std::vector<Vec3s> pts(mesh.vertices());
+  pts.resize(mesh.vertices());
   for (size_t i = 0; i < pts.size(); i++) {
     const double x[3] = {mesh.xyz[3 * i], mesh.xyz[3 * i + 1], mesh.xyz[3 * i + 2]};
     double y[3];
     m.apply(x, y);
     pts[i] = Vec3s(float(y[0]), float(y[1]), float(y[2]));
   }
-  std::vector<Vec3I> tris(mesh.triangles());
+  tris.resize(mesh.triangles());
   for (size_t t = 0; t < tris.size(); t++)
     tris[t] = Vec3I(mesh.tri[3 * t], mesh.tri[3 * t + 1], mesh.tri[3 * t + 2]);
+}
+
+swarf_stock *read_stl(const char *path, const swarf_stock_placement *p, double voxel,
+                      int half_width, bool keep_surface = false) {
+  check_grid_args(voxel, half_width);
+  std::vector<Vec3s> pts;
+  std::vector<Vec3I> tris;
+  load_stl(path, p, pts, tris);
   return mesh_stock(pts, tris, {}, voxel, half_width, keep_surface); // the guard names the path
 }
 
@@ -392,6 +406,19 @@ extern "C" swarf_status swarf_stock_resample(const swarf_stock *s, double voxel,
 extern "C" swarf_status swarf_stock_read_design(const char *path, double voxel, swarf_stock **out,
                                                 swarf_error *err) {
   return swarf_stock_read_design_band(path, voxel, SWARF_STOCK_DESIGN_BAND, out, err);
+}
+
+extern "C" swarf_status swarf_stock_design_surface(swarf_stock *design, const char *path,
+                                                   swarf_error *err) {
+  return swarf::guard(err, path, [&] {
+    if (design == nullptr) throw Error(SWARF_ERR_ARG, "design is NULL");
+    swarf::check_path(path);
+    if (swarf::lower_extension(path) != "stl") throw Error(SWARF_ERR_ARG, "not a .stl file");
+    std::vector<openvdb::Vec3s> pts;
+    std::vector<openvdb::Vec3I> tris;
+    swarf::load_stl(path, nullptr, pts, tris);
+    design->surface = swarf::mesh_surface(swarf::index_points(pts, design->voxel), std::move(tris));
+  });
 }
 
 extern "C" swarf_status swarf_stock_read_design_band(const char *path, double voxel, int half_width,

@@ -379,6 +379,13 @@ SWARF_API swarf_status swarf_stock_read_design(const char *path, double voxel, s
 SWARF_API swarf_status swarf_stock_read_design_band(const char *path, double voxel, int half_width,
                                                     swarf_stock **out, swarf_error *err);
 
+/* Gives `design` (read from a .vdb that swarf_stock_read_design_band made
+ * from the STL at `path`, as the design cache keeps it) that STL's
+ * triangles, which the reader keeps for exact distances beyond the band:
+ * then it is the design that reader gives, value for value. */
+SWARF_API swarf_status swarf_stock_design_surface(swarf_stock *design, const char *path,
+                                                  swarf_error *err);
+
 /* The band (voxels) a design read from a mesh at `voxel` mm needs to give
  * the same results as with SWARF_STOCK_DESIGN_BAND, used with `stock` (NULL:
  * one made here at `voxel`) and `tolerance` (mm; <= 0: half the stock's

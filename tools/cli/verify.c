@@ -45,6 +45,11 @@ const char swarf_verify_help[] =
     "                   into it is told as FILE:LINE:COL: warning: gouge D mm into the\n"
     "                   design; the summary gives gouge and excess volumes\n"
     "  --tolerance MM   deviations within it are none (default half a voxel)\n"
+    "  --design-cache DIR|off  where an STL design's band is kept for the next run\n"
+    "                   with the same design, voxel and band (default\n"
+    "                   $XDG_CACHE_HOME/swarf/designs or ~/.cache/swarf/designs; off:\n"
+    "                   read the design every time)\n"
+    "  --design-cache-max MB  the cache folder's bound, oldest out first (default 1024)\n"
     "  --fail-on gouge  exit status 4 when a gouge is found (outputs still written)\n"
     "  --report FILE.json  what the run did, per program line and tool, alarms, inputs\n"
     "                   (each line's removed volume is measured cut by cut: the run\n"
@@ -105,6 +110,18 @@ static int value_option(swarf_verify *v, const char *flag, const char *val) {
     if (strcmp(val, "gouge")) return option_error(flag, "the one condition is gouge", val);
     return v->fail_on_gouge = 1, 0;
   }
+  if (!strcmp(flag, "--design-cache")) {
+    if (val[0] == '\0') return option_error(flag, "give a folder, or off", val);
+    if (!strcmp(val, "off")) return v->cache.off = 1, 0;
+    return v->cache.dir = val, 0;
+  }
+  if (!strcmp(flag, "--design-cache-max")) {
+    errno = 0;
+    const double mb = strtod(val, &end);
+    if (end == val || *end || errno || !(mb >= 1 && mb <= 1e7))
+      return option_error(flag, "give megabytes, 1 to 10000000", val);
+    return v->cache.max_bytes = (long long)(mb * 1024 * 1024), 0;
+  }
   errno = 0;
   v->tolerance = strtod(val, &end); /* --tolerance */
   if (end == val || *end || errno || !(v->tolerance > 0 && v->tolerance < 100))
@@ -113,9 +130,10 @@ static int value_option(swarf_verify *v, const char *flag, const char *val) {
 }
 
 int swarf_verify_option(swarf_verify *v, const char *flag, const char *val, int *i) {
-  static const char *mine[] = {"--report",  "--design",          "--offsets",    "--start",
-                               "--g54",     "--units",           "--fail-on",    "--tolerance",
-                               "--dialect", "--subroutine-path", "--work-limit", NULL};
+  static const char *mine[] = {
+      "--report",     "--design",       "--offsets",          "--start",   "--g54",
+      "--units",      "--fail-on",      "--tolerance",        "--dialect", "--subroutine-path",
+      "--work-limit", "--design-cache", "--design-cache-max", NULL};
   int k = 0;
   if (!strcmp(flag, "--block-delete")) return v->block_delete = 1, 0;
   if (val != NULL && !strcmp(flag, "--stock")) v->stock_spec = val;
@@ -157,8 +175,8 @@ static int read_design(swarf_verify *v, double voxel) {
   swarf_error_init(&err);
   const double t0 = process_seconds();
   const int band = swarf_stock_design_band(v->frame, voxel, v->tolerance, v->views);
-  const swarf_status st =
-      swarf_stock_read_design_band(v->design_path, voxel, band, &v->design, &err);
+  const swarf_status st = swarf_sim_read_design_cached(v->design_path, voxel, band, &v->cache,
+                                                       &v->design, &v->design_cached, &err);
   v->design_read_s = process_seconds() - t0;
   if (st == SWARF_OK) return 0;
   swarf_error_format(&err, msg, sizeof msg);
@@ -253,7 +271,8 @@ static void print_design(swarf_verify *v, const swarf_sim_report *r) {
     print_point(d->excess_at);
   }
   printf("; gouge warnings on %zu program lines\n", n);
-  printf("    design read %.2f s CPU, compared %.2f s CPU\n", v->design_read_s, r->design_s);
+  printf("    design read %.2f s CPU, compared %.2f s CPU%s\n", v->design_read_s, r->design_s,
+         v->design_cached ? " (its band from the design cache)" : "");
 }
 
 void swarf_verify_summary(swarf_verify *v, const swarf_sim_report *r) {

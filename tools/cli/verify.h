@@ -32,6 +32,7 @@ typedef struct {
   int lines_wanted;                      /* per-line volumes without --report (--html) */
   int block_delete;                      /* --block-delete */
   long work_limit;                       /* --work-limit (0: the default) */
+  swarf_design_cache cache;              /* --design-cache, --design-cache-max */
   long notes;                            /* the program's notes (the first ones are kept) */
   char *note_text[SWARF_VERIFY_NOTES];
   /* the inputs as given, for the report */
@@ -44,6 +45,7 @@ typedef struct {
   /* the run */
   swarf_stock *design;
   double design_read_s; /* CPU time (all threads) reading the design, s */
+  int design_cached;    /* the design's band came from the cache */
   swarf_report *report;
 } swarf_verify;
 

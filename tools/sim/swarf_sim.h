@@ -421,6 +421,26 @@ SWARF_API swarf_status swarf_sim_parse_holder(const char *spec, swarf_sim_tool *
 SWARF_API swarf_status swarf_sim_parse_fixture(const char *spec, swarf_sim_fixture *out,
                                                swarf_error *err);
 
+/* ---- The design's band, cached between runs ------------------------------ */
+
+/* Where designs' bands are kept (design_cache.c); all zero: the default. */
+typedef struct {
+  const char *dir;     /* NULL: $XDG_CACHE_HOME/swarf/designs, else ~/.cache/swarf/designs */
+  int off;             /* 1: read the design every time and keep nothing */
+  long long max_bytes; /* the folder's bound, oldest files out first; <= 0: 1 GiB */
+} swarf_design_cache;
+
+/* swarf_stock_read_design_band, through the cache: an STL design's band at
+ * `voxel` and `half_width` is kept under a key of the file's bytes, the
+ * voxel, the band and the library's version, and read back (bit for bit) by
+ * the next run that asks for the same. *hit (may be NULL) gets 1 when it
+ * came from the cache. A .vdb design is read as it is. The cache's own
+ * failures (no folder, a full disk, a damaged entry) fall back to reading
+ * the design; errors are the design's. cache may be NULL (the default). */
+SWARF_API swarf_status swarf_sim_read_design_cached(const char *path, double voxel, int half_width,
+                                                    const swarf_design_cache *cache,
+                                                    swarf_stock **out, int *hit, swarf_error *err);
+
 /* ---- Tool tables and libraries (the tool table of cfg) ------------------- */
 
 /* Reads a LinuxCNC tool table ("T1 P1 D6 Z+30 ;comment", tooltable.c), its

@@ -373,6 +373,17 @@ def test_design():
     gouges = sorted({a.line for a in r.alarms if a.kind == "gouge"})
     check(gouges == sorted({a["line"] for a in cli["alarms"] if a["kind"] == "gouge"}) and gouges,
           "the same gouge lines as the CLI: %s" % gouges)
+    # design_cache=: the band kept in the folder, found by the next run; the same comparison
+    cache = path("design-cache")
+    runs = [swarf.simulate(prog, stock="box:0,0,-5,20,10,0", tools="T1=flat,D4", voxel=0.25,
+                           design=design, tolerance=0.05, design_cache=cache) for _ in range(2)]
+    kept = [f for f in os.listdir(cache) if f.endswith(".vdb")] if os.path.isdir(cache) else []
+    check(len(kept) == 1, "design_cache: one band kept in the folder: %s" % kept)
+    for k, run in enumerate(runs):
+        e = run.report.deviation
+        check((e.gouge_volume, e.excess_volume, e.gouge_depth) ==
+              (d.gouge_volume, d.excess_volume, d.gouge_depth),
+              "design_cache: run %d compares as the run without the cache" % (k + 1))
     try:
         swarf.simulate(text=SLOT, stock="box:0,0,-5,20,10,0", tools="T1=flat,D4", tolerance=0.1)
         check(False, "tolerance without a design is refused")

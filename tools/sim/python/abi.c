@@ -134,6 +134,11 @@ static void structs(void) {
   end();
   STRUCT(swarf_sim_fixture); /* filled by swarf_sim_parse_fixture only */
   end();
+  STRUCT(swarf_design_cache);
+  FIELD(swarf_design_cache, dir, "c_char_p");
+  FIELD(swarf_design_cache, off, "c_int");
+  FIELD(swarf_design_cache, max_bytes, "c_longlong");
+  end();
   STRUCT(swarf_sim_config);
   FIELD(swarf_sim_config, machine, "swarf_machine");
   FIELD(swarf_sim_config, stock, "swarf_sim_stock_spec");
@@ -279,6 +284,12 @@ static void functions(void) {
      swarf_error *);
   FN(swarf_stock_design_band, "\"c_int\"", "\"c_void_p\", \"c_double\", \"c_double\", \"c_int\"",
      int, const swarf_stock *, double, double, int);
+  FN(swarf_sim_read_design_cached, "\"c_int\"",
+     "\"c_char_p\", \"c_double\", \"c_int\", \"POINTER(swarf_design_cache)\", "
+     "\"POINTER(c_void_p)\", "
+     "\"POINTER(c_int)\", \"" P_ERR "\"",
+     swarf_status, const char *, double, int, const swarf_design_cache *, swarf_stock **, int *,
+     swarf_error *);
   FN(swarf_stock_read_design_band, "\"c_int\"",
      "\"c_char_p\", \"c_double\", \"c_int\", \"POINTER(c_void_p)\", \"" P_ERR "\"", swarf_status,
      const char *, double, int, swarf_stock **, swarf_error *);

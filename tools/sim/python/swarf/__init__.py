@@ -581,7 +581,9 @@ class Simulation:
     20-32x10": the holder of a tool with a stick-out S), fixtures ("box:..."
     or "stl:FILE": bodies no part of the tool may enter), collision_depths
     (how many collisions of each kind get their depth measured, 0: all).
-    Collisions come as alarms "shank", "holder" and "fixture". name is the
+    Collisions come as alarms "shank", "holder" and "fixture". design_cache:
+    where an STL design's band is kept for the next run (a folder; None: the
+    user's cache folder, as the command; False or "off": none). name is the
     program's name in messages."""
 
     def __init__(self, stock, tools=(), *, voxel=None, machine=None, band=None, batch=None,
@@ -589,7 +591,7 @@ class Simulation:
                  dialect=None, block_delete=False, subroutine_path=None, fragment=False,
                  design=None, tolerance=None, tool_table=None, tool_table_units="mm",
                  tool_library=None, holders=None, fixtures=None, collision_depths=None,
-                 name="program", progress=None, alarm=None, line=None):
+                 design_cache=None, name="program", progress=None, alarm=None, line=None):
         self._h = c_void_p()
         self._exc = None
         self._busy = False  # inside a C call (feed, feed_file, finish)
@@ -612,7 +614,7 @@ class Simulation:
         if subroutine_path is not None:
             subpath = _path(subroutine_path)  # borrowed by new (it copies it)
             cfg.subroutine_path = subpath
-        self._design = self._read_design(cfg, stock, design, tolerance)
+        self._design = self._read_design(cfg, stock, design, tolerance, design_cache)
         # The C callbacks; kept alive as long as the handle.
         self._cbs = (types["PROGRESS_FN"](self._on_progress), types["ALARM_FN"](self._on_alarm),
                      types["LINE_FN"](self._on_line))
@@ -694,9 +696,10 @@ class Simulation:
             _raise(lib.swarf_sim_error(self._handle()).contents)
 
     @staticmethod
-    def _read_design(cfg, stock, design, tolerance):
+    def _read_design(cfg, stock, design, tolerance, design_cache=None):
         """The design as a Stock (a path read at the run's voxel, with the band
-        the comparison needs, as `swarf simulate --design`), put into cfg."""
+        the comparison needs, as `swarf simulate --design`, through the design
+        cache), put into cfg."""
         if tolerance is not None:
             if design is None:
                 _raise_msg("SWARF_ERR_ARG", "tolerance: the design's; give design= too",
@@ -708,8 +711,14 @@ class Simulation:
             voxel = stock.voxel if isinstance(stock, Stock) else cfg.voxel
             band = lib.swarf_stock_design_band(None, voxel, cfg.tolerance, 0)
             err, h = S["swarf_error"](), c_void_p()
-            if lib.swarf_stock_read_design_band(_path(design), voxel, band, byref(h),
-                                                byref(err)) != 0:
+            cache = S["swarf_design_cache"]()
+            if design_cache is False or design_cache == "off":
+                cache.off = 1
+            elif design_cache is not None:
+                cache_dir = _path(design_cache)  # borrowed by the call
+                cache.dir = cache_dir
+            if lib.swarf_sim_read_design_cached(_path(design), voxel, band, byref(cache),
+                                                byref(h), None, byref(err)) != 0:
                 _raise(err)
             design = Stock(_handle=h.value)
         cfg.design = design._handle().value
@@ -766,7 +775,7 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
              dialect=None, block_delete=False, subroutine_path=None, fragment=False,
              design=None, tolerance=None, tool_table=None, tool_table_units="mm",
              tool_library=None, holders=None, fixtures=None, collision_depths=None,
-             name=None, progress=None, alarm=None, line=None) -> Result:
+             design_cache=None, name=None, progress=None, alarm=None, line=None) -> Result:
     """Runs a program: the G-code file at `program`, or the string `text`.
     Options as Simulation (and `swarf simulate`). Returns the Result; raises
     InputError with file, line and column for a bad program or option."""
@@ -781,7 +790,7 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
                     design=design, tolerance=tolerance, tool_table=tool_table,
                     tool_table_units=tool_table_units, tool_library=tool_library,
                     holders=holders, fixtures=fixtures, collision_depths=collision_depths,
-                    name=name, progress=progress, alarm=alarm,
+                    design_cache=design_cache, name=name, progress=progress, alarm=alarm,
                     line=line) as sim:
         if text is not None:
             sim.feed(text)

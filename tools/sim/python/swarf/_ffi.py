@@ -8,6 +8,7 @@ library's *_init functions fill in whatever the module does not know.
 import ctypes
 import os
 from ctypes import (CFUNCTYPE, POINTER, c_char, c_char_p, c_double, c_int, c_long,  # noqa: F401
+                    c_longlong,
                     c_size_t, c_ulonglong, c_void_p)
 
 from . import _abi

@@ -144,6 +144,9 @@ SWARF_API const swarf_error *swarf_gcode_parser_error(const swarf_gcode_parser *
 
 /* Number of lines read so far and whether the program ended (M2/M30/%). */
 SWARF_API long swarf_gcode_parser_lines(const swarf_gcode_parser *p);
+/* The bytes of the lines read so far, newlines included (a line's moves see
+ * it counted): with the program's size, the fraction of it read. */
+SWARF_API long long swarf_gcode_parser_bytes(const swarf_gcode_parser *p);
 SWARF_API int swarf_gcode_parser_ended(const swarf_gcode_parser *p);
 
 SWARF_API void swarf_gcode_parser_free(swarf_gcode_parser *p);

@@ -584,6 +584,7 @@ struct swarf_gcode_parser {
   swarf_error error;   /* .file holds the program's name from the start */
   swarf_status status; /* first error, sticky */
   long lines;          /* lines read so far */
+  long long bytes;     /* bytes of those lines, newlines included */
   int seen_code;       /* a non-blank line was read */
   int percent_open;    /* the program opened with a `%` line */
   int ended;           /* M2, M30 or a closing `%` */

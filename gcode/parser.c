@@ -490,6 +490,7 @@ static swarf_status keep_partial(swarf_gcode_parser *p, const char *s, size_t n)
 /* A whole line has arrived: its head may wait in `partial`. */
 static swarf_status complete_line(swarf_gcode_parser *p, const char *s, size_t n) {
   swarf_status status;
+  p->bytes += (long long)(p->partial_len + n + 1); /* before its moves: they count it read */
   if (p->partial_len == 0) return process_line(p, s, n);
   status = keep_partial(p, s, n);
   if (status == SWARF_OK) status = process_line(p, p->partial, p->partial_len);
@@ -550,6 +551,7 @@ swarf_status swarf_gcode_parser_feed(swarf_gcode_parser *p, const char *buf, siz
 swarf_status swarf_gcode_parser_finish(swarf_gcode_parser *p) {
   if (p == NULL) return SWARF_ERR_ARG;
   if (p->status == SWARF_OK && !p->ended && !p->finished && p->partial_len > 0) {
+    p->bytes += (long long)p->partial_len;
     process_line(p, p->partial, p->partial_len);
     p->partial_len = 0;
   }
@@ -612,6 +614,10 @@ const swarf_error *swarf_gcode_parser_error(const swarf_gcode_parser *p) {
 
 long swarf_gcode_parser_lines(const swarf_gcode_parser *p) {
   return p ? p->lines : 0;
+}
+
+long long swarf_gcode_parser_bytes(const swarf_gcode_parser *p) {
+  return p ? p->bytes : 0;
 }
 
 int swarf_gcode_parser_ended(const swarf_gcode_parser *p) {

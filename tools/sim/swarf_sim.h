@@ -318,6 +318,11 @@ SWARF_API swarf_status swarf_sim_new_with_stock(const swarf_sim_config *cfg, con
                                                 swarf_stock *stock, swarf_sim **out,
                                                 swarf_error *err);
 
+/* The program's size in bytes, when it is fed as text and known (0:
+ * unknown): progress then gives the fraction read after every move, as it
+ * does for swarf_sim_feed_file. */
+SWARF_API swarf_status swarf_sim_set_program_size(swarf_sim *sim, long long bytes);
+
 /* Feed `len` bytes of program text. Complete lines run at once. */
 SWARF_API swarf_status swarf_sim_feed(swarf_sim *sim, const char *text, size_t len);
 

@@ -70,8 +70,15 @@ SLOT = "G21 G90 G17\nG0 X5 Y5 Z2\nG1 Z-1 F100\nG1 X15\nG0 Z2\nM2\n"
 
 
 def test_slot():
+    fractions = []
     r = swarf.simulate(text=SLOT, stock="box:0,0,-5,20,10,0", tools=["T1=flat,D4,L12"],
-                       voxel=0.1)
+                       voxel=0.1, progress=lambda p: fractions.append(p.fraction))
+    moves = fractions
+    # after every move, the fraction of the text read: the bytes of its lines so far
+    want = [len("".join(SLOT.splitlines(True)[:n])) / len(SLOT) for n in (2, 3, 4, 5)]
+    check(len(moves) == 4 and all(abs(a - b) < 1e-12 for a, b in zip(moves, want)),
+          "progress after each move of text: the fraction of it read %s (lines' bytes %s)"
+          % (moves, want))
     near(r.report.volume_before, 20 * 10 * 5, 1e-3, "slot: volume before")
     near(r.removed, 1.0 * (10 * 4 + math.pi * 4), 0.01, "slot: removed = d (L D + pi D^2/4)")
     check(r.report.moves == 4 and r.report.rapids == 2, "slot: %d moves, %d rapids"

@@ -106,7 +106,13 @@ static int spindle_tool(const swarf_sim *s, int move_tool) {
 
 static int tell_pass(swarf_sim *s, long line, int tool, double pass);
 
+/* After a move: the fraction of the program read, from the parser's bytes
+ * when the program's size is known. */
 static int tell_progress(swarf_sim *s, long line, int tool) {
+  if (s->size > 0) {
+    const double f = (double)swarf_gcode_parser_bytes(s->parser) / (double)s->size;
+    s->fraction = f > 1.0 ? 1.0 : f;
+  }
   return tell_pass(s, line, tool, -1.0);
 }
 
@@ -431,6 +437,7 @@ swarf_status swarf_sim_feed_file(swarf_sim *s, const char *path) {
   if ((f = fopen(path, "rb")) == NULL)
     return swarf_sim_fail(s, SWARF_ERR_OPEN, 0, 0, "cannot open the program: %s", strerror(errno));
   double total = fstat(fileno(f), &sb) == 0 && sb.st_size > 0 ? (double)sb.st_size : 0.0, done = 0;
+  if (s->size <= 0) s->size = (long long)total; /* each move's fraction from the bytes read */
   if ((buf = malloc(chunk)) == NULL)
     st = swarf_sim_fail(s, SWARF_ERR_MEMORY, 0, 0, "out of memory");
   while (st == SWARF_OK && (n = fread(buf, 1, chunk, f)) > 0) {
@@ -445,6 +452,14 @@ swarf_status swarf_sim_feed_file(swarf_sim *s, const char *path) {
   free(buf);
   fclose(f);
   return st;
+}
+
+swarf_status swarf_sim_set_program_size(swarf_sim *s, long long bytes) {
+  swarf_status st = check_open(s);
+  if (st != SWARF_OK) return st;
+  if (bytes < 0) return swarf_sim_fail(s, SWARF_ERR_ARG, 0, 0, "a negative program size");
+  s->size = bytes;
+  return SWARF_OK;
 }
 
 swarf_status swarf_sim_add_motion(swarf_sim *s, const swarf_motion *m) {
@@ -546,7 +561,8 @@ static swarf_status feed_path(swarf_sim *s, const void *path, size_t len) {
 }
 
 static swarf_status feed_text(swarf_sim *s, const void *text, size_t len) {
-  return swarf_sim_feed(s, text, len);
+  swarf_status st = swarf_sim_set_program_size(s, (long long)len);
+  return st == SWARF_OK ? swarf_sim_feed(s, text, len) : st;
 }
 
 static swarf_status run(const swarf_sim_config *cfg, const char *name, feed_fn feed,

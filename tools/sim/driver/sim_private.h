@@ -34,6 +34,7 @@ struct swarf_sim {
   long nalarms, alarms_cap;
   double t0;       /* monotonic seconds at new */
   double fraction; /* of the file read; < 0 unknown */
+  long long size;  /* the program's bytes (swarf_sim_set_program_size, feed_file); 0 unknown */
   /* batch: motions, their sweeps and cuts, removed in one pass */
   swarf_motion *motions;
   swarf_sweep *sweeps;

@@ -249,6 +249,8 @@ static void functions(void) {
      swarf_error *);
   FN(swarf_sim_feed, "\"c_int\"", "\"c_void_p\", \"c_char_p\", \"c_size_t\"", swarf_status,
      swarf_sim *, const char *, size_t);
+  FN(swarf_sim_set_program_size, "\"c_int\"", "\"c_void_p\", \"c_longlong\"", swarf_status,
+     swarf_sim *, long long);
   FN(swarf_sim_feed_file, "\"c_int\"", "\"c_void_p\", \"c_char_p\"", swarf_status, swarf_sim *,
      const char *);
   FN(swarf_sim_finish, "\"c_int\"", "\"c_void_p\"", swarf_status, swarf_sim *);

@@ -734,6 +734,12 @@ class Simulation:
             raise TypeError("feed: program text as str or bytes, not %r" % (text,))
         self._run(lib.swarf_sim_feed, data, len(data))
 
+    def set_program_size(self, size):
+        """The program's size in bytes, when it is fed as text (feed) and known:
+        progress then gives the fraction read after every move (simulate(text=)
+        sets it)."""
+        self._run(lib.swarf_sim_set_program_size, _whole(size, "size", 0, 2**62))
+
     def feed_file(self, path):
         """The whole file at path (progress then has a fraction)."""
         self._run(lib.swarf_sim_feed_file, _path(path))
@@ -793,7 +799,10 @@ def simulate(program=None, *, text=None, stock, tools=(), voxel=None, machine=No
                     design_cache=design_cache, name=name, progress=progress, alarm=alarm,
                     line=line) as sim:
         if text is not None:
-            sim.feed(text)
+            data = text.encode() if isinstance(text, str) else text
+            if isinstance(data, (bytes, bytearray, memoryview)):
+                sim.set_program_size(len(bytes(data)))
+            sim.feed(data)
         else:
             sim.feed_file(program)
         return sim.finish()

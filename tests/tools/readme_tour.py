@@ -6,9 +6,11 @@ Every indented block of README.md that starts with `build/tools/swarf` is run
 `build/tools/swarf` the command under test; each file it names after --out,
 --mesh, --image, --report or --html must then exist and be non-empty, and
 the report must be JSON with the per-line records. The Python block (`import
-swarf`) runs with the module installed under PREFIX. Blocks with `...` are
+swarf`) runs with the module installed under PREFIX, and the C example
+(`#include <stdio.h>`) is built with pkg-config against PREFIX and run. Blocks with `...` are
 templates (Modbus, MPI: their own tests run them) and are listed, not run.
 """
+import glob
 import json
 import os
 import re
@@ -22,20 +24,26 @@ OUTPUT_FLAGS = ("--out", "--mesh", "--image", "--report", "--html")
 
 
 def blocks(text):
-    """The README's indented code blocks, each a list of lines (indent removed)."""
+    """The README's indented code blocks, each a list of lines (indent removed;
+    blank lines inside a block kept, as Markdown keeps them)."""
     out, cur = [], []
     for line in text.splitlines():
         if line.startswith("    "):
             cur.append(line[4:])
-        elif cur and line.strip() == "" and out is not None:
-            out.append(cur)
-            cur = []
+        elif cur and line.strip() == "":
+            cur.append("")
         elif cur:
             out.append(cur)
             cur = []
     if cur:
         out.append(cur)
-    return out
+    return [[l for l in b] for b in (strip_blank(b) for b in out) if b]
+
+
+def strip_blank(b):
+    while b and b[-1] == "":
+        b = b[:-1]
+    return b
 
 
 def fail(msg):
@@ -62,6 +70,31 @@ def run_command(block):
                 if not rep.get("lines"):
                     fail("the report %s has no per-line records" % argv[i + 1])
     return argv
+
+
+def run_c(block):
+    """The C example: built against the installed library with pkg-config
+    (PREFIX's swarf.pc only) and run where fixtures/ is."""
+    pc = os.path.join(PREFIX, "lib", "pkgconfig")
+    if not os.path.isdir(pc):
+        pc = glob.glob(os.path.join(PREFIX, "lib*", "*", "pkgconfig"))[0]
+    src, exe = os.path.join(WORK, "demo.c"), os.path.join(WORK, "demo")
+    with open(src, "w") as f:
+        f.write("\n".join(block) + "\n")
+    env = dict(os.environ, PKG_CONFIG_LIBDIR=pc)
+    flags = subprocess.run(["pkg-config", "--cflags", "--libs", "swarf"], env=env,
+                           capture_output=True, text=True, check=True).stdout.split()
+    libdir = [f[2:] for f in flags if f.startswith("-L")]
+    r = subprocess.run(["cc", "-std=c11", "-Wall", "-Werror", src, "-o", exe] + flags +
+                       ["-Wl,-rpath," + libdir[0]], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail("the C example does not build: %s" % r.stderr[-2000:])
+    print("$ cc demo.c $(pkg-config --cflags --libs swarf) -o demo && ./demo")
+    r = subprocess.run([exe], cwd=WORK, capture_output=True, text=True, timeout=600)
+    if r.returncode != 0 or not r.stdout.startswith("removed "):
+        fail("the C example: exit %d: %s %s" % (r.returncode, r.stdout, r.stderr[-1000:]))
+    print(r.stdout.strip())
+    return float(r.stdout.split()[1])
 
 
 def run_python(block):
@@ -98,7 +131,12 @@ def main():
         elif b[0].startswith("import swarf"):
             run_python(b)
             ran += 1
-    if ran < 4:
+        elif b[0].startswith("#include <stdio.h>"):
+            removed = run_c(b)
+            if not 1000 < removed < 80 * 60 * 20:
+                fail("the C example removed %g mm^3" % removed)
+            ran += 1
+    if ran < 5:
         fail("only %d runnable tour blocks found in README.md" % ran)
     print("README tour: %d blocks ran, %d templates" % (ran, templates))
 

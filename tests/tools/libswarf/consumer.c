@@ -8,9 +8,13 @@
  * against the analytic one: a D = 4 mm cutter plunged 1 mm deep and moved
  * 10 mm removes a stadium prism, depth * (L D + pi D^2 / 4) = 52.566 mm^3.
  * Also: the header's and the library's versions agree, the line callback
- * sees every line that moved, progress is called.
+ * sees every line that moved, progress is called. It runs in a thread with
+ * a 256 KB stack, as a plug-in's worker might: the config comes from
+ * swarf_sim_config_new (over half a megabyte), and nothing in the library
+ * may need more stack than that.
  */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -44,7 +48,7 @@ static void on_line(void *user, const swarf_line_result *r) {
   t->line_path += r->path_mm;
 }
 
-int main(void) {
+static int mill(void) {
   static const char program[] = "G21 G90 G17\nG0 X5 Y5 Z2\nG1 Z-1 F100\nG1 X15\nG0 Z2\nM2\n";
   const double depth = 1.0, d = 4.0, len = 10.0;
   const double analytic = depth * (len * d + 3.14159265358979323846 * d * d / 4.0);
@@ -52,24 +56,27 @@ int main(void) {
   EXPECT(strcmp(swarf_version(), SWARF_VERSION_STRING) == 0, "library %s, headers %s",
          swarf_version(), SWARF_VERSION_STRING);
 
-  swarf_sim_config cfg;
-  swarf_sim_config_init(&cfg);
+  swarf_sim_config *cfg = swarf_sim_config_new();
   swarf_error err;
   swarf_sim_tool tool;
   tally t = {0, 0, 0.0};
-  if (swarf_sim_parse_stock("box:0,0,-5,20,10,0", &cfg.stock, &err) != SWARF_OK ||
+  if (cfg == NULL) return fputs("consumer: out of memory\n", stderr), 1;
+  if (swarf_sim_parse_stock("box:0,0,-5,20,10,0", &cfg->stock, &err) != SWARF_OK ||
       swarf_sim_parse_tool("T1=flat,D4,L12", &tool, &err) != SWARF_OK ||
-      swarf_sim_config_add_tool(&cfg, &tool, &err) != SWARF_OK) {
+      swarf_sim_config_add_tool(cfg, &tool, &err) != SWARF_OK) {
     fprintf(stderr, "consumer: %s\n", err.message);
+    swarf_sim_config_free(cfg);
     return 1;
   }
-  cfg.voxel = 0.1;
-  cfg.cb.progress = on_progress;
-  cfg.cb.line = on_line;
-  cfg.cb.user = &t;
+  cfg->voxel = 0.1;
+  cfg->cb.progress = on_progress;
+  cfg->cb.line = on_line;
+  cfg->cb.user = &t;
 
   swarf_sim *sim = NULL;
-  if (swarf_sim_new(&cfg, "slot.ngc", &sim, &err) != SWARF_OK) {
+  const swarf_status made = swarf_sim_new(cfg, "slot.ngc", &sim, &err);
+  swarf_sim_config_free(cfg); /* the handle copied what it needs */
+  if (made != SWARF_OK) {
     fprintf(stderr, "consumer: swarf_sim_new: %s\n", err.message);
     return 1;
   }
@@ -105,4 +112,21 @@ int main(void) {
   printf("consumer (libswarf %s): removed %.4f mm^3, analytic %.4f: %s\n", swarf_version(), removed,
          analytic, failures ? "FAILED" : "ok");
   return failures ? 1 : 0;
+}
+
+static void *mill_thread(void *rc) {
+  *(int *)rc = mill();
+  return NULL;
+}
+
+int main(void) {
+  pthread_attr_t attr;
+  pthread_t th;
+  int rc = 1;
+  if (pthread_attr_init(&attr) != 0 || pthread_attr_setstacksize(&attr, 256 * 1024) != 0 ||
+      pthread_create(&th, &attr, mill_thread, &rc) != 0)
+    return fputs("consumer: cannot start a thread with a 256 KB stack\n", stderr), 1;
+  pthread_join(th, NULL);
+  pthread_attr_destroy(&attr);
+  return rc;
 }

@@ -7,9 +7,11 @@
 #   - libswarf.so exports exactly the SWARF_API functions its headers declare;
 #   - every public header compiles on its own, as C11 and as C++17, with
 #     -pedantic -Wall -Wextra -Werror;
-#   - consumer.c built with pkg-config (shared, and static with --static) and
-#     with CMake's find_package (swarf::swarf, swarf::swarf_static) runs and
-#     checks a simulated volume against the analytic one;
+#   - consumer.c built with pkg-config (swarf.pc shared, seeing no other
+#     package's .pc file, as without the dependencies' -dev packages; and
+#     swarf-static.pc) and with CMake's find_package (swarf::swarf,
+#     swarf::swarf_static) runs in a thread with a 256 KB stack and checks a
+#     simulated volume against the analytic one;
 #   - the installed command simulates (its stock module found under LIBDIR/swarf/);
 #   - the man page formats without warnings and holds every command;
 #   - the .vdb reader program (LIBEXECDIR/swarf/swarf-vdb-read) is found by
@@ -83,24 +85,35 @@ done
 echo "headers: $(ls "$prefix"/include/swarf/*.h | wc -l) compile alone as C11 and C++17"
 
 # ---- pkg-config ---------------------------------------------------------------
-export PKG_CONFIG_PATH=$libdir/pkgconfig
+# Only swarf's own .pc files are visible (PKG_CONFIG_LIBDIR), as on a machine without
+# the dependencies' -dev packages: a shared link needs nothing of theirs.
+export PKG_CONFIG_LIBDIR=$libdir/pkgconfig
 [ "$(pkg-config --modversion swarf)" = "$version" ] || fail "pkg-config --modversion"
-pkg-config --print-requires-private swarf | grep '^gmp' >/dev/null || fail "swarf.pc: gmp not in Requires.private"
-pkg-config --static --libs swarf | grep -- '-lopenvdb' >/dev/null || fail "swarf.pc: no -lopenvdb in Libs.private"
 # shellcheck disable=SC2046
-"$cc" -std=c11 -Wall -Werror -o "$work/pc_shared" "$src/tests/tools/libswarf/consumer.c" \
+set -- $(pkg-config --cflags swarf)
+[ $# -eq 1 ] && [ "$(realpath "${1#-I}")" = "$(realpath "$prefix/include")" ] ||
+  fail "pkg-config --cflags swarf: $* (only swarf's include folder)"
+# shellcheck disable=SC2046
+set -- $(pkg-config --libs swarf)
+[ $# -eq 2 ] && [ "$(realpath "${1#-L}")" = "$(realpath "$libdir")" ] && [ "$2" = -lswarf ] ||
+  fail "pkg-config --libs swarf: $* (only -L LIBDIR -lswarf)"
+pkg-config --static --libs swarf | grep -- '-lopenvdb' >/dev/null || fail "swarf.pc: no -lopenvdb in Libs.private"
+pkg-config --static --libs swarf | grep -- '-lgmp' >/dev/null || fail "swarf.pc: no -lgmp in Libs.private"
+# shellcheck disable=SC2046
+"$cc" -std=c11 -Wall -Werror -pthread -o "$work/pc_shared" "$src/tests/tools/libswarf/consumer.c" \
   $(pkg-config --cflags --libs swarf) -lm -Wl,-rpath,"$libdir"
 ldd "$work/pc_shared" >"$work/ldd_shared"
 grep -q "$soname" "$work/ldd_shared" || fail "pc_shared does not use $soname"
 "$work/pc_shared"
-# Static: libswarf.a by name, then its private requirements.
-static_libs=$(pkg-config --static --libs swarf | sed 's/\(^\| \)-lswarf\( \|$\)/ /')
-# shellcheck disable=SC2086,SC2046
-"$cc" -std=c11 -Wall -Werror -o "$work/pc_static" "$src/tests/tools/libswarf/consumer.c" \
-  $(pkg-config --cflags swarf) "$libdir/libswarf.a" $static_libs
+# Static: swarf-static.pc names libswarf.a and what it needs (pkg-config --static swarf
+# cannot keep the linker from taking libswarf.so, which -lswarf finds first).
+# shellcheck disable=SC2046
+"$cc" -std=c11 -Wall -Werror -pthread -o "$work/pc_static" "$src/tests/tools/libswarf/consumer.c" \
+  $(pkg-config --cflags --libs swarf-static)
 ldd "$work/pc_static" >"$work/ldd_static"
 if grep -q libswarf "$work/ldd_static"; then fail "pc_static uses the shared library"; fi
 "$work/pc_static"
+unset PKG_CONFIG_LIBDIR
 
 # ---- CMake package --------------------------------------------------------------
 cmake -S "$src/tests/tools/libswarf" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$prefix" \

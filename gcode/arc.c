@@ -55,7 +55,7 @@ static const plane_axes *plane_of(const swarf_gc_state *st) {
 }
 
 static int check_offsets(const swarf_gc_block *b, const swarf_gc_state *st, const arc_data *a,
-                         swarf_gc_fault *f) {
+                         swarf_error *f) {
   const swarf_gc_word *banned = swarf_gc_block_word(b, a->pl->banned);
   if (banned->present)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_PLANE_WORD, banned->column, a->pl->banned,
@@ -71,7 +71,7 @@ static int check_offsets(const swarf_gc_block *b, const swarf_gc_state *st, cons
 
 /* The word checks of LinuxCNC's convert_arc, in its order. */
 static int check_words(const swarf_gc_block *b, const swarf_gc_state *st, const arc_data *a,
-                       swarf_gc_fault *f) {
+                       swarf_error *f) {
   int r = swarf_gc_block_has(b, 'R');
   int ijk = swarf_gc_block_has(b, 'I') || swarf_gc_block_has(b, 'J') || swarf_gc_block_has(b, 'K');
   if (!r && !ijk) return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_WORDS_MISSING, a->column);
@@ -87,7 +87,7 @@ static int check_words(const swarf_gc_block *b, const swarf_gc_state *st, const 
 }
 
 static int radius_mismatch(const arc_data *a, double r1, double r2, double abs_err, double rel_err,
-                           swarf_gc_fault *f) {
+                           swarf_error *f) {
   double k = 1.0 / a->scale;
   char p = a->pl->axis1, q = a->pl->axis2;
   return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_RADIUS_MISMATCH, a->column, p, a->s1 * k, q, a->s2 * k,
@@ -99,7 +99,7 @@ static int radius_mismatch(const arc_data *a, double r1, double r2, double abs_e
  * an error beyond 100 times the absolute tolerance, or beyond both the
  * absolute and the relative tolerance). */
 static int centre_ijk(const swarf_gc_block *b, const swarf_gc_state *st, arc_data *a,
-                      swarf_gc_fault *f) {
+                      swarf_error *f) {
   double o1 = swarf_gc_block_word(b, a->pl->off1)->value * a->scale;
   double o2 = swarf_gc_block_word(b, a->pl->off2)->value * a->scale;
   double tol =
@@ -121,7 +121,7 @@ static int centre_ijk(const swarf_gc_block *b, const swarf_gc_state *st, arc_dat
 
 /* Radius format: the centre lies on the perpendicular bisector of the chord,
  * on the side that makes the arc short (R > 0) or long (R < 0). */
-static int centre_r(const swarf_gc_block *b, arc_data *a, swarf_gc_fault *f) {
+static int centre_r(const swarf_gc_block *b, arc_data *a, swarf_error *f) {
   double r = swarf_gc_block_word(b, 'R')->value * a->scale;
   double abs_r = fabs(r), m1, m2, half, theta, offset;
   if (a->e1 == a->s1 && a->e2 == a->s2)
@@ -166,7 +166,7 @@ static int turns_of(const swarf_gc_block *b) {
 }
 
 int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv, int *turns,
-                 swarf_gc_fault *f) {
+                 swarf_error *f) {
   arc_data a;
   double sign;
   int status;

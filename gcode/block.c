@@ -73,7 +73,7 @@ static void set_code_word(swarf_gc_code_word *cw, int code, const swarf_gc_token
 
 /* G80 next to another motion code gives way to it, as in LinuxCNC's read_g
  * ("G0 G80 X1" is G0 X1): CAM preambles write such lines. */
-static int add_g(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
+static int add_g(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_error *f) {
   int code = tenths_of(t->value);
   const swarf_gc_code *c = code < 0 ? NULL : swarf_gc_dialect_g(dialect, code);
   if (c == NULL && code >= 0) c = swarf_gc_g_code(code);
@@ -87,7 +87,7 @@ static int add_g(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_
   return SWARF_OK;
 }
 
-static int add_m(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
+static int add_m(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_error *f) {
   int code = tenths_of(t->value);
   const swarf_gc_code *c = (code < 0 || code % 10 != 0) ? NULL : swarf_gc_dialect_m(dialect, code);
   if (c == NULL && code >= 0 && code % 10 == 0) c = swarf_gc_m_code(code);
@@ -105,7 +105,7 @@ static int add_m(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_
   return SWARF_OK;
 }
 
-static int add_other(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
+static int add_other(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_error *f) {
   swarf_gc_word *w = &b->words[t->letter - 'A'];
   const char *later = later_letter(t->letter, dialect);
   if (later != NULL)
@@ -122,7 +122,7 @@ static int add_other(swarf_gc_block *b, const swarf_gc_token *t, int dialect, sw
   return SWARF_OK;
 }
 
-static int add_word(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_gc_fault *f) {
+static int add_word(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swarf_error *f) {
   int status;
   if (t->letter == 'G')
     status = add_g(b, t, dialect, f);
@@ -134,7 +134,7 @@ static int add_word(swarf_gc_block *b, const swarf_gc_token *t, int dialect, swa
   return status;
 }
 
-static int add_assign(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault *f) {
+static int add_assign(swarf_gc_block *b, const swarf_gc_token *t, swarf_error *f) {
   swarf_gc_assign *a;
   if (b->assign_count == SWARF_GC_MAX_ASSIGN)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_TOO_MANY_ASSIGNMENTS, t->column, SWARF_GC_MAX_ASSIGN);
@@ -146,7 +146,7 @@ static int add_assign(swarf_gc_block *b, const swarf_gc_token *t, swarf_gc_fault
 }
 
 int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
-                        swarf_gc_fault *f) {
+                        swarf_error *f) {
   swarf_gc_lexer lx;
   swarf_gc_token t;
   int dialect = ps != NULL && ps->state != NULL ? ps->state->dialect : 0;

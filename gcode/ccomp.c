@@ -35,7 +35,7 @@ int swarf_gc_comp_active(const swarf_gc_state *st) {
 /* ---- turning compensation on and off ------------------------------------ */
 
 static int comp_radius(const swarf_gc_block *b, const swarf_gc_state *st, const swarf_gc_exec *ex,
-                       double *radius, int *side, swarf_gc_fault *f) {
+                       double *radius, int *side, swarf_error *f) {
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_CUTTER_COMP];
   const swarf_gc_word *d = swarf_gc_block_word(b, 'D');
   int tool = st->tool;
@@ -59,8 +59,7 @@ static int comp_radius(const swarf_gc_block *b, const swarf_gc_state *st, const 
   return SWARF_OK;
 }
 
-static int comp_on(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                   swarf_gc_fault *f) {
+static int comp_on(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f) {
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_CUTTER_COMP];
   int side = cw->code == 410 || cw->code == 411 ? LEFT : RIGHT, status;
   double radius = 0;
@@ -81,7 +80,7 @@ static int comp_on(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *e
 
 /* G40: the held move goes out as it is; the tool stays at its end. */
 static int comp_off(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                    swarf_gc_fault *f) {
+                    swarf_error *f) {
   if (swarf_gc_comp_active(st) && !st->comp_first) {
     int status = swarf_gc_cc_move_ends(st, ex, st->comp_pos[swarf_gc_cc_plane_of(st).a1],
                                        st->comp_pos[swarf_gc_cc_plane_of(st).a2],
@@ -98,7 +97,7 @@ static int comp_off(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
 }
 
 int swarf_gc_comp_set(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                      swarf_gc_fault *f) {
+                      swarf_error *f) {
   int code = b->g[SWARF_GC_GROUP_CUTTER_COMP].code;
   if (code < 0) return SWARF_OK;
   return code == 400 ? comp_off(b, st, ex, f) : comp_on(b, st, ex, f);
@@ -106,7 +105,7 @@ int swarf_gc_comp_set(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec
 
 /* ---- what compensation refuses ------------------------------------------ */
 
-static int refuse_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+static int refuse_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
   const swarf_gc_word *l = swarf_gc_block_word(b, 'L'), *p = swarf_gc_block_word(b, 'P');
   switch (g0->code) {
@@ -132,7 +131,7 @@ static int refuse_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, sw
   }
 }
 
-int swarf_gc_comp_check(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+int swarf_gc_comp_check(const swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   const swarf_gc_code_word *g;
   if (!st->comp_side) return SWARF_OK;
   if ((g = &b->g[SWARF_GC_GROUP_PLANE])->code >= 0 && g->code != st->modal.plane)

@@ -43,7 +43,7 @@ void swarf_gc_cc_set_endpoint(swarf_gc_state *st, double x, double y);
  * does not record one for an entry arc, nor after a plain dequeue.
  * Errors name `column`. */
 int swarf_gc_cc_move_ends(swarf_gc_state *st, swarf_gc_exec *ex, double x, double y, int column,
-                          swarf_gc_fault *f);
+                          swarf_error *f);
 /* A held line from `at` to (x, y) in the plane, the other axes from `end`;
  * (d1, d2) is the programmed direction the gouging check compares with. */
 void swarf_gc_cc_hold_line(swarf_gc_state *st, swarf_gc_exec *ex, const swarf_gc_cc_plane *pl,

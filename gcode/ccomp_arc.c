@@ -12,7 +12,7 @@
 /* The first move is an arc: to the end offset along its radius, about a
  * new centre on that radius as far from the tool as from the new end. */
 static int arc_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                     const swarf_move *mv, int turns, swarf_gc_fault *f) {
+                     const swarf_move *mv, int turns, swarf_error *f) {
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
   double r = st->comp_radius, at[SWARF_NAXES];
   double cx = st->comp_pos[pl.a1], cy = st->comp_pos[pl.a2];
@@ -42,7 +42,7 @@ static int arc_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
 /* Where the held line's offset meets the new arc's offset circle. */
 static int line_arc_corner(double beta, double theta, double c1, double c2, double arc_r, double r,
                            int inside, int turns, double *mx, double *my, int column,
-                           swarf_gc_fault *f) {
+                           swarf_error *f) {
   double cy = arc_r * sin(beta - HALF_PI);
   double dist = inside ? arc_r - r : arc_r + r;
   double l = (inside ? cy + r : cy - r) / dist, ang;
@@ -59,7 +59,7 @@ static int line_arc_corner(double beta, double theta, double c1, double c2, doub
 /* Where the held arc (compensated) meets the new arc's offset circle. */
 static int arc_arc_corner(const swarf_gc_call *prev, const swarf_gc_cc_plane *pl, int side,
                           double c1, double c2, double newrad, int turns, double *mx, double *my,
-                          int column, swarf_gc_fault *f) {
+                          int column, swarf_error *f) {
   const swarf_move *mv = &prev->move;
   double pc1 = mv->center[pl->a1], pc2 = mv->center[pl->a2];
   double oldrad = hypot(pc1 - mv->end[pl->a1], pc2 - mv->end[pl->a2]);
@@ -102,7 +102,7 @@ static arc_corner arc_corner_of(int side, int ccw, double cx, double cy, double 
 
 static int arc_concave(swarf_gc_state *st, swarf_gc_exec *ex, const swarf_gc_cc_plane *pl,
                        const arc_corner *k, double c1, double c2, double arc_r, int turns,
-                       double at[SWARF_NAXES], int column, swarf_gc_fault *f) {
+                       double at[SWARF_NAXES], int column, swarf_error *f) {
   swarf_gc_call *prev = swarf_gc_cc_front(ex->out);
   double r = st->comp_radius, mx = 0, my = 0;
   int status;
@@ -118,7 +118,7 @@ static int arc_concave(swarf_gc_state *st, swarf_gc_exec *ex, const swarf_gc_cc_
 }
 
 static int arc_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                    const swarf_move *mv, int turns, swarf_gc_fault *f) {
+                    const swarf_move *mv, int turns, swarf_error *f) {
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
   double r = st->comp_radius, at[SWARF_NAXES];
   double opx = st->pos[pl.a1], opy = st->pos[pl.a2];
@@ -151,7 +151,7 @@ static int arc_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
 }
 
 int swarf_gc_comp_arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                      const swarf_move *mv, int turns, swarf_gc_fault *f) {
+                      const swarf_move *mv, int turns, swarf_error *f) {
   if (st->comp_first) return arc_entry(b, st, ex, mv, turns, f);
   return arc_next(b, st, ex, mv, turns, f);
 }

@@ -12,8 +12,7 @@
 
 /* The first move: to the end offset perpendicular to the move. */
 static int straight_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                          swarf_gc_call_kind kind, const double end[SWARF_NAXES],
-                          swarf_gc_fault *f) {
+                          swarf_gc_call_kind kind, const double end[SWARF_NAXES], swarf_error *f) {
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
   double r = st->comp_radius, at[SWARF_NAXES];
   double cx = st->comp_pos[pl.a1], cy = st->comp_pos[pl.a2], px = end[pl.a1], py = end[pl.a2];
@@ -34,7 +33,7 @@ static int straight_entry(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_
 /* Where a held arc (compensated) meets the next line's offset. */
 static int arc_line_corner(const swarf_gc_call *prev, const swarf_gc_cc_plane *pl, int side,
                            double r, double base_dir, double opx, double opy, double *mx,
-                           double *my, int column, swarf_gc_fault *f) {
+                           double *my, int column, swarf_error *f) {
   const swarf_move *mv = &prev->move;
   double pc1 = mv->center[pl->a1], pc2 = mv->center[pl->a2];
   double oldrad = hypot(pc1 - mv->end[pl->a1], pc2 - mv->end[pl->a2]);
@@ -76,7 +75,7 @@ static corner line_corner(int side, double cx, double cy, double opx, double opy
 /* Concave corner before a line: the held move ends where the paths cross. */
 static int line_concave(swarf_gc_state *st, swarf_gc_exec *ex, const swarf_gc_cc_plane *pl,
                         const corner *k, double px, double py, double at[SWARF_NAXES], int column,
-                        swarf_gc_fault *f) {
+                        swarf_error *f) {
   double cx = st->comp_pos[pl->a1], cy = st->comp_pos[pl->a2], r = st->comp_radius, mx = 0, my = 0;
   double opx = st->pos[pl->a1], opy = st->pos[pl->a2];
   swarf_gc_call *prev = swarf_gc_cc_front(ex->out);
@@ -98,8 +97,7 @@ static int line_concave(swarf_gc_state *st, swarf_gc_exec *ex, const swarf_gc_cc
 
 /* A later straight move: corner, then a held line to the offset end. */
 static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                         swarf_gc_call_kind kind, const double end[SWARF_NAXES],
-                         swarf_gc_fault *f) {
+                         swarf_gc_call_kind kind, const double end[SWARF_NAXES], swarf_error *f) {
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
   double r = st->comp_radius, at[SWARF_NAXES], x, y;
   double cx = st->comp_pos[pl.a1], cy = st->comp_pos[pl.a2];
@@ -138,7 +136,7 @@ static int straight_next(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
 }
 
 int swarf_gc_comp_straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                           const double end[SWARF_NAXES], swarf_gc_fault *f) {
+                           const double end[SWARF_NAXES], swarf_error *f) {
   swarf_gc_call_kind kind = b->motion == 0 ? SWARF_GC_CALL_TRAVERSE : SWARF_GC_CALL_FEED;
   if (st->comp_first) return straight_entry(b, st, ex, kind, end, f);
   return straight_next(b, st, ex, kind, end, f);

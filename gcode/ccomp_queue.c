@@ -68,7 +68,7 @@ swarf_gc_call *swarf_gc_cc_front(swarf_gc_out *o) {
  * recorded end point `ep` (NULL: none), not grow past what it was by more
  * than LinuxCNC allows. */
 static int move_arc_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, const double *ep, double x,
-                        double y, int column, swarf_gc_fault *f) {
+                        double y, int column, swarf_error *f) {
   swarf_move *mv = &c->move;
   double c1 = mv->center[pl->a1], c2 = mv->center[pl->a2];
   double r1 = hypot(mv->end[pl->a1] - c1, mv->end[pl->a2] - c2), r2 = hypot(x - c1, y - c2);
@@ -86,7 +86,7 @@ static int move_arc_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, const dou
 /* A held line ends at (x, y): seen from `ep` (NULL: none), it must not
  * turn back against its programmed direction. */
 static int move_line_end(swarf_gc_call *c, const swarf_gc_cc_plane *pl, const double *ep, double x,
-                         double y, int column, swarf_gc_fault *f) {
+                         double y, int column, swarf_error *f) {
   swarf_move *mv = &c->move;
   if (ep != NULL && c->dir[0] * (x - ep[0]) + c->dir[1] * (y - ep[1]) < 0)
     return c->kind == SWARF_GC_CALL_TRAVERSE
@@ -111,7 +111,7 @@ void swarf_gc_cc_set_endpoint(swarf_gc_state *st, double x, double y) {
 /* Every held move ends at (x, y), then all held calls go out
  * (LinuxCNC's move_endpoint_and_flush). */
 int swarf_gc_cc_move_ends(swarf_gc_state *st, swarf_gc_exec *ex, double x, double y, int column,
-                          swarf_gc_fault *f) {
+                          swarf_error *f) {
   swarf_gc_out *o = ex->out;
   swarf_gc_cc_plane pl = swarf_gc_cc_plane_of(st);
   const double *prev = NULL, *ep = st->comp_end_valid ? st->comp_end : NULL;

@@ -102,7 +102,7 @@ static void fanuc_repeats(swarf_gc_block *b) {
   b->letters = (b->letters & ~L('K')) | L('L');
 }
 
-static int find_motion(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+static int find_motion(swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   const swarf_gc_code_word *g1 = &b->g[SWARF_GC_GROUP_MOTION];
   int axis_column = first_column(b, AXES);
   int ijk_column = first_column(b, OFFSETS);
@@ -139,7 +139,7 @@ static int is_whole(double v, double tolerance) {
   return fabs(v - floor(v + 0.5)) <= tolerance;
 }
 
-static int check_values(const swarf_gc_block *b, swarf_gc_fault *f) {
+static int check_values(const swarf_gc_block *b, swarf_error *f) {
   static const char nonnegative[] = "FSNTHL";
   if (!(b->letters & (L('F') | L('S') | L('N') | L('T') | L('H') | L('L')))) return SWARF_OK;
   for (const char *l = nonnegative; *l; l++) {
@@ -155,7 +155,7 @@ static int check_values(const swarf_gc_block *b, swarf_gc_fault *f) {
   return SWARF_OK;
 }
 
-static int check_g4(const swarf_gc_block *b, swarf_gc_fault *f) {
+static int check_g4(const swarf_gc_block *b, swarf_error *f) {
   const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
   const swarf_gc_word *p = swarf_gc_block_word(b, 'P');
   int g1 = b->g[SWARF_GC_GROUP_MOTION].code;
@@ -165,7 +165,7 @@ static int check_g4(const swarf_gc_block *b, swarf_gc_fault *f) {
   return SWARF_OK;
 }
 
-static int check_g53(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+static int check_g53(const swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   const swarf_gc_code_word *g0 = &b->g[SWARF_GC_GROUP_NONMODAL];
   int distance = b->g[SWARF_GC_GROUP_DISTANCE].code;
   if (b->motion != MOTION_G0 && b->motion != MOTION_G1)
@@ -175,7 +175,7 @@ static int check_g53(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc
   return SWARF_OK;
 }
 
-static int check_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+static int check_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   switch (b->g[SWARF_GC_GROUP_NONMODAL].code) {
   case 40:
     return check_g4(b, f);
@@ -186,11 +186,11 @@ static int check_nonmodal(const swarf_gc_block *b, const swarf_gc_state *st, swa
   }
 }
 
-static int unused(const swarf_gc_word *w, const char *users, swarf_gc_fault *f) {
+static int unused(const swarf_gc_word *w, const char *users, swarf_error *f) {
   return SWARF_GC_FAIL(f, SWARF_GCODE_E_UNUSED_WORD, w->column, w->text[0], users, w->text);
 }
 
-static int check_arc_p(const swarf_gc_word *p, swarf_gc_fault *f) {
+static int check_arc_p(const swarf_gc_word *p, swarf_error *f) {
   if (!is_whole(p->value, 0.001))
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_ARC_P_NOT_INTEGER, p->column, p->text);
   if (floor(p->value + 0.5) < 1)
@@ -205,7 +205,7 @@ static int is_user_m(const swarf_gc_block *b) {
          b->m[SWARF_GC_MGROUP_VENDOR].code >= 0;
 }
 
-static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   const swarf_gc_word *w;
   int col = b->motion_column;
   for (const char *l = "ABC"; *l; l++)
@@ -222,7 +222,7 @@ static int check_cycle(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
 }
 
 /* Words that need a code to use them (LinuxCNC's check_other_codes). */
-static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   int arc = is_arc(b->motion), cycle = is_cycle(b->motion);
   int g0 = b->g[SWARF_GC_GROUP_NONMODAL].code;
   int g4 = g0 == 40, g10 = g0 == 100;
@@ -263,7 +263,7 @@ static int check_users(const swarf_gc_block *b, const swarf_gc_state *st, swarf_
   return SWARF_OK;
 }
 
-int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f) {
+int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f) {
   int status = check_values(b, f);
   if (status == SWARF_OK && st->dialect == SWARF_GCODE_DIALECT_GRBL)
     status = swarf_gc_grbl_check(b, f);

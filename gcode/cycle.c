@@ -215,7 +215,7 @@ static void hole(cycle_run *c, int motion) {
 
 /* G87's I J K (offsets in the plane, the middle height), kept from the last
  * G87 as R is; the spindle must turn (rs274's checks and messages). */
-static int g87_words(cycle_run *c, int same, swarf_gc_fault *f) {
+static int g87_words(cycle_run *c, int same, swarf_error *f) {
   const swarf_gc_block *b = c->b;
   swarf_gc_state *st = c->st;
   double s = swarf_gc_scale(st);
@@ -233,7 +233,7 @@ static int g87_words(cycle_run *c, int same, swarf_gc_fault *f) {
 }
 
 /* R, bottom, Q, P from the block or kept from the same cycle before. */
-static int cycle_words(cycle_run *c, swarf_gc_fault *f) {
+static int cycle_words(cycle_run *c, swarf_error *f) {
   const swarf_gc_block *b = c->b;
   swarf_gc_state *st = c->st;
   int same = st->modal.motion == b->motion;
@@ -261,7 +261,7 @@ static int cycle_words(cycle_run *c, swarf_gc_fault *f) {
   return SWARF_OK;
 }
 
-static int cycle_heights(cycle_run *c, double old, swarf_gc_fault *f) {
+static int cycle_heights(cycle_run *c, double old, swarf_error *f) {
   swarf_gc_state *st = c->st;
   if (st->modal.distance == 910) {
     c->g.r = old + st->cycle_r;
@@ -279,8 +279,7 @@ static int cycle_heights(cycle_run *c, double old, swarf_gc_fault *f) {
   return SWARF_OK;
 }
 
-int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                   swarf_gc_fault *f) {
+int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f) {
   cycle_run c = {b, st, ex, {0}};
   const swarf_gc_word *lw = swarf_gc_block_word(b, 'L');
   int repeats = lw->present ? (int)floor(lw->value + 0.5) : 1, status;

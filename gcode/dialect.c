@@ -273,7 +273,7 @@ static int grbl_m(int tenths) {
   return 0;
 }
 
-int swarf_gc_grbl_check(const swarf_gc_block *b, swarf_gc_fault *f) {
+int swarf_gc_grbl_check(const swarf_gc_block *b, swarf_error *f) {
   static const char letters[] = "FIJKLNPRSTXYZ";
   for (int g = 0; g < SWARF_GC_NGROUPS; g++)
     if (b->g[g].code >= 0 && !grbl_g(b->g[g].code))

@@ -41,16 +41,16 @@ static int match(swarf_gc_lexer *lx, const char *word) {
 }
 
 /* The character c, or error `code` (its message takes no argument). */
-static int expect(swarf_gc_lexer *lx, char c, int code, swarf_gc_fault *f) {
+static int expect(swarf_gc_lexer *lx, char c, int code, swarf_error *f) {
   if (peek(lx) != c) return swarf_gc_fail_code(f, code, col(lx));
   lx->pos++;
   return SWARF_OK;
 }
 
-static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f);
-static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f);
+static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_error *f);
+static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_error *f);
 
-int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_gc_fault *f) {
+int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_error *f) {
   size_t n = 0;
   int at = col(lx);
   lx->pos++; /* '<' */
@@ -69,7 +69,7 @@ int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_g
 
 /* After '#': a name or an index value. */
 static int param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX], int depth,
-                     swarf_gc_fault *f) {
+                     swarf_error *f) {
   double v;
   int at = col(lx), status;
   *index = 0;
@@ -89,7 +89,7 @@ static int param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX
 }
 
 int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX],
-                            swarf_gc_fault *f) {
+                            swarf_error *f) {
   int at, status;
   lx->pos++; /* '#' */
   at = col(lx);
@@ -99,7 +99,7 @@ int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_N
   return status;
 }
 
-static int parameter(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+static int parameter(swarf_gc_lexer *lx, double *v, int depth, swarf_error *f) {
   char name[SWARF_GC_NAME_MAX];
   int index, at = col(lx), status;
   if (lx->params == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_NOT_ALLOWED, at);
@@ -115,7 +115,7 @@ static int parameter(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f
   return SWARF_OK;
 }
 
-static int exists(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
+static int exists(swarf_gc_lexer *lx, double *v, swarf_error *f) {
   char name[SWARF_GC_NAME_MAX];
   double ignored;
   int index, status = expect(lx, '[', SWARF_GCODE_E_LEFT_BRACKET_MISSING, f);
@@ -161,7 +161,7 @@ static func_id function_name(swarf_gc_lexer *lx) {
   return F_NONE;
 }
 
-static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
+static int apply(func_id id, double x, int at, double *v, swarf_error *f) {
   switch (id) {
   case F_ABS:
     *v = fabs(x);
@@ -209,7 +209,7 @@ static int apply(func_id id, double x, int at, double *v, swarf_gc_fault *f) {
   return SWARF_OK;
 }
 
-static int function(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+static int function(swarf_gc_lexer *lx, double *v, int depth, swarf_error *f) {
   int at = col(lx), status;
   double x, y;
   func_id id = function_name(lx);
@@ -229,7 +229,7 @@ static int function(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f)
   return status;
 }
 
-static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+static int value(swarf_gc_lexer *lx, double *v, int depth, swarf_error *f) {
   int c = peek(lx);
   if (depth > MAX_DEPTH) return SWARF_GC_FAIL(f, SWARF_GCODE_E_EXPRESSION_TOO_DEEP, col(lx));
   if (c == '[') return expression(lx, v, depth, f);
@@ -292,7 +292,7 @@ static int read_op(swarf_gc_lexer *lx) {
   return OP_NONE;
 }
 
-static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault *f) {
+static int binary(int op, double a, double b, int at, double *v, swarf_error *f) {
   switch (op) {
   case OP_POW:
     if (a < 0 && floor(b) != b) return SWARF_GC_FAIL(f, SWARF_GCODE_E_NEGATIVE_POWER, at);
@@ -350,7 +350,7 @@ static int binary(int op, double a, double b, int at, double *v, swarf_gc_fault 
 }
 
 /* Precedence climbing: operands of operators binding at least `min`. */
-static int climb(swarf_gc_lexer *lx, double *lhs, int min, int depth, swarf_gc_fault *f) {
+static int climb(swarf_gc_lexer *lx, double *lhs, int min, int depth, swarf_error *f) {
   for (;;) {
     size_t save = lx->pos;
     int at, op, status;
@@ -369,7 +369,7 @@ static int climb(swarf_gc_lexer *lx, double *lhs, int min, int depth, swarf_gc_f
   }
 }
 
-static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *f) {
+static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_error *f) {
   int status;
   lx->pos++; /* '[' */
   status = value(lx, v, depth + 1, f);
@@ -383,6 +383,6 @@ static int expression(swarf_gc_lexer *lx, double *v, int depth, swarf_gc_fault *
   return status;
 }
 
-int swarf_gc_expr_value(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
+int swarf_gc_expr_value(swarf_gc_lexer *lx, double *v, swarf_error *f) {
   return value(lx, v, 0, f);
 }

@@ -216,7 +216,7 @@ static void classify(fline *l, int lcnc) {
 }
 
 int swarf_gc_fanuc_store(swarf_gc_fanuc *fa, const char *text, size_t len, long line,
-                         swarf_gc_fault *f) {
+                         swarf_error *f) {
   fline *l;
   if (fa->n == fa->cap) {
     size_t cap = fa->cap ? 2 * fa->cap : 256;
@@ -300,7 +300,7 @@ static size_t current_prog(const swarf_gc_fanuc *fa) {
   return fa->depth > 0 ? fa->stack[fa->depth - 1].prog : 0;
 }
 
-static int count_jump(swarf_gc_fanuc *fa, int column, swarf_gc_fault *f) {
+static int count_jump(swarf_gc_fanuc *fa, int column, swarf_error *f) {
   if (++fa->jumps > MAX_JUMPS)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_FANUC_LOOP_LIMIT, column, MAX_JUMPS);
   return SWARF_OK;
@@ -309,7 +309,7 @@ static int count_jump(swarf_gc_fanuc *fa, int column, swarf_gc_fault *f) {
 /* ---- macro statements ---------------------------------------------------------- */
 
 /* A value (number, #i, [expression]) at `at` of line l. */
-static int value_at(swarf_gc_fanuc *fa, const fline *l, size_t *at, double *v, swarf_gc_fault *f) {
+static int value_at(swarf_gc_fanuc *fa, const fline *l, size_t *at, double *v, swarf_error *f) {
   swarf_gc_lexer lx;
   int status;
   swarf_gc_lexer_init(&lx, l->text, l->len, &fa->p->params);
@@ -333,7 +333,7 @@ static char *buffer(swarf_gc_fanuc *fa, size_t need) {
 
 /* `#i = e` from `at` (Fanuc needs no brackets on the right): run as
  * LinuxCNC's `#i=[e]`; #3000 = n stops the program with the macro alarm. */
-static int assign(swarf_gc_fanuc *fa, const fline *l, size_t at, swarf_gc_fault *f) {
+static int assign(swarf_gc_fanuc *fa, const fline *l, size_t at, swarf_error *f) {
   const char *t = l->text, *eq = memchr(t + at, '=', l->len - at);
   size_t e, end, k = 0;
   char *b;
@@ -365,7 +365,7 @@ static int assign(swarf_gc_fanuc *fa, const fline *l, size_t at, swarf_gc_fault 
 }
 
 /* Runs the statement of line *pc and sets *pc to the next line. */
-static int statement(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
+static int statement(swarf_gc_fanuc *fa, size_t *pc, swarf_error *f) {
   const fline *l = &fa->v[*pc];
   size_t at = l->at;
   double v = 0;
@@ -454,8 +454,7 @@ static int may_have_flow(const char *t, size_t n) {
 
 /* Takes M98/M97/M99/G65 and their words out of the line: `b` gets a copy
  * with them blanked (the G65 arguments too), the rest of the block. */
-static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
-                     swarf_gc_fault *f) {
+static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w, swarf_error *f) {
   swarf_gc_lexer lx;
   swarf_gc_token t;
   size_t spans[64][2];
@@ -492,7 +491,7 @@ static int take_flow(swarf_gc_fanuc *fa, const fline *l, char *b, flow_words *w,
 }
 
 static int push(swarf_gc_fanuc *fa, size_t ret, size_t start, long repeats, size_t prog, int macro,
-                const flow_words *w, int column, swarf_gc_fault *f) {
+                const flow_words *w, int column, swarf_error *f) {
   frame *fr;
   if (fa->depth == MAX_DEPTH)
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_FANUC_CALLS_TOO_DEEP, column, MAX_DEPTH);
@@ -513,7 +512,7 @@ static int push(swarf_gc_fanuc *fa, size_t ret, size_t start, long repeats, size
 }
 
 /* M99: the next line after the running body (or its next repeat). */
-static int ret(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_gc_fault *f) {
+static int ret(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_error *f) {
   frame *fr;
   if (fa->depth == 0) {
     size_t to;
@@ -547,7 +546,7 @@ static int ret(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_gc_fau
   return SWARF_OK;
 }
 
-static int call(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_gc_fault *f) {
+static int call(swarf_gc_fanuc *fa, size_t *pc, const flow_words *w, swarf_error *f) {
   const char *name = w->code == 98 ? "M98" : w->code == 97 ? "M97" : "G65";
   long target, repeats = w->has_l ? (long)floor(w->l + 0.5) : 1;
   size_t to;
@@ -600,7 +599,7 @@ static int run_text(swarf_gc_fanuc *fa, const char *text, size_t len, long line)
 }
 
 /* A block: its motion first, then its call or return. */
-static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
+static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_error *f) {
   const fline *l = &fa->v[*pc];
   flow_words w;
   char *b;
@@ -625,7 +624,7 @@ static int block(swarf_gc_fanuc *fa, size_t *pc, swarf_gc_fault *f) {
   return call(fa, pc, &w, f);
 }
 
-int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_gc_fault *f) {
+int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_error *f) {
   size_t pc = 0;
   long run = 0;
   int status = SWARF_OK;

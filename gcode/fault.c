@@ -2,9 +2,9 @@
  * error identities (errors.def).
  *
  * Every step (lexer, block, check, interp, arc) reports a failure by filling
- * a swarf_gc_fault with an identity, its status, the column on the current
- * line and a message; the parser adds the file name, line number and word
- * and owns the public swarf_error.
+ * a swarf_error (swarf_status.h) with an identity, its status, the column on
+ * the current line and a message; the parser adds the file name, line number
+ * and word to its own, which its callers read.
  */
 #include <stdarg.h>
 #include <stdio.h>
@@ -42,7 +42,7 @@ const char *swarf_gcode_error_format(int code) {
   return find(code) ? find(code)->format : NULL;
 }
 
-swarf_status swarf_gc_fail(swarf_gc_fault *f, int code, const char *format, int column, ...) {
+swarf_status swarf_gc_fail(swarf_error *f, int code, const char *format, int column, ...) {
   va_list ap;
   f->status = swarf_gcode_error_status(code);
   f->code = code;
@@ -64,7 +64,7 @@ swarf_status swarf_gc_error(int code, const char *format, swarf_error *err, ...)
   return err->status;
 }
 
-swarf_status swarf_gc_fail_code(swarf_gc_fault *f, int code, int column) {
+swarf_status swarf_gc_fail_code(swarf_error *f, int code, int column) {
   const char *s = swarf_gcode_error_format(code);
   size_t k = 0;
   f->status = swarf_gcode_error_status(code);

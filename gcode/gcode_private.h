@@ -43,13 +43,9 @@
 #define SWARF_GC_NSYSTEMS 9                 /* G54..G59.3 */
 
 /* ---- fault.c: what went wrong, and where on the line -------------------- */
-
-typedef struct {
-  swarf_status status; /* the identity's status (errors.def) */
-  int code;            /* SWARF_GCODE_E_* */
-  int column;          /* 1-based column on the current line */
-  char message[512];
-} swarf_gc_fault;
+/* Every step fills the project's swarf_error (swarf_status.h): status (the
+ * identity's, errors.def), code (SWARF_GCODE_E_*), column on the current line
+ * and message; the parser adds the file, the line and the word. */
 
 /* The message formats of errors.def, one array an identity, named after it
  * (swarf_gc_fmt_SWARF_GCODE_E_NESTED_COMMENT), so that SWARF_GC_FAIL finds
@@ -62,13 +58,13 @@ typedef struct {
  * `column`: SWARF_GC_FAIL(f, code, column, format arguments...). Fills `f`
  * and returns the identity's status, so callers can `return SWARF_GC_FAIL(...)`. */
 #define SWARF_GC_FAIL(f, code, ...) swarf_gc_fail((f), (code), swarf_gc_fmt_##code, __VA_ARGS__)
-swarf_status swarf_gc_fail(swarf_gc_fault *f, int code, const char *format, int column, ...)
+swarf_status swarf_gc_fail(swarf_error *f, int code, const char *format, int column, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 5)))
 #endif
     ;
 /* The same for an identity held in a variable; its message takes no argument. */
-swarf_status swarf_gc_fail_code(swarf_gc_fault *f, int code, int column);
+swarf_status swarf_gc_fail_code(swarf_error *f, int code, int column);
 
 /* Fails a call of the public API with identity `code`, written out, into the
  * caller's record: SWARF_GC_ERROR(code, err, format arguments...) sets
@@ -208,22 +204,22 @@ typedef struct {
 void swarf_gc_lexer_init(swarf_gc_lexer *lx, const char *line, size_t len,
                          const swarf_gc_params *params);
 /* The next token; SWARF_OK or a syntax error in `f`. */
-int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f);
+int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_error *f);
 void swarf_gc_lexer_skip_blanks(swarf_gc_lexer *lx);
 int swarf_gc_lexer_peek(swarf_gc_lexer *lx); /* next non-blank char, -1 at end */
 /* A plain number at the lexer's position (no sign handling beyond LinuxCNC's). */
-int swarf_gc_lexer_number(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f);
+int swarf_gc_lexer_number(swarf_gc_lexer *lx, double *v, swarf_error *f);
 
 /* ---- expr.c: values, parameters, [expressions] and functions ------------- */
 
 /* A real value at the lexer's position: number, #param, [expr] or
  * function[...] (LinuxCNC's read_real_value). */
-int swarf_gc_expr_value(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f);
+int swarf_gc_expr_value(swarf_gc_lexer *lx, double *v, swarf_error *f);
 /* `#...` target of an assignment or of EXISTS: index (>0) or name. */
 int swarf_gc_expr_param_ref(swarf_gc_lexer *lx, int *index, char name[SWARF_GC_NAME_MAX],
-                            swarf_gc_fault *f);
+                            swarf_error *f);
 /* A <name> at the lexer's position (after '<'? no: at '<'), lower-cased. */
-int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_gc_fault *f);
+int swarf_gc_expr_name(swarf_gc_lexer *lx, char name[SWARF_GC_NAME_MAX], swarf_error *f);
 
 /* ---- codes.c: G and M codes and their modal groups ---------------------- */
 
@@ -315,7 +311,7 @@ typedef struct {
 /* Reads every token of the line into `b`: repeated words, two codes of one
  * modal group, unknown or not-yet-supported codes and letters are errors. */
 int swarf_gc_block_read(const char *line, size_t len, const swarf_gc_params *ps, swarf_gc_block *b,
-                        swarf_gc_fault *f);
+                        swarf_error *f);
 
 /* Shorthands for the words of a block (`letter`: 'A'..'Z'). */
 static inline const swarf_gc_word *swarf_gc_block_word(const swarf_gc_block *b, char letter) {
@@ -328,7 +324,7 @@ int swarf_gc_block_has_axis(const swarf_gc_block *b);
 
 /* ---- check.c: the block against the state ------------------------------- */
 
-int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f);
+int swarf_gc_block_check(swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f);
 
 /* ---- canon.c: the calls a block makes ----------------------------------- */
 
@@ -472,7 +468,7 @@ typedef struct {
 } swarf_gc_exec;
 
 int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
-                     swarf_gc_fault *f);
+                     swarf_error *f);
 
 /* grbl's homing cycle ($H): rapids in machine coordinates, Z to the home
  * first, then the other axes (offsets.c); no move for an axis already there. */
@@ -483,27 +479,23 @@ void swarf_gc_home_cycle(swarf_gc_state *st, swarf_gc_exec *ex, const double hom
 
 /* The end point of the block's axis words (program mm, absolute). */
 void swarf_gc_find_end(const swarf_gc_block *b, const swarf_gc_state *st, double end[SWARF_NAXES]);
-int swarf_gc_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                    swarf_gc_fault *f);
+int swarf_gc_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f);
 int swarf_gc_offsets(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                     swarf_gc_fault *f);
+                     swarf_error *f);
 int swarf_gc_select_system(int code, swarf_gc_state *st, swarf_gc_exec *ex);
 int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                         swarf_gc_fault *f);
-int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                   swarf_gc_fault *f);
+                         swarf_error *f);
+int swarf_gc_cycle(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f);
 
 /* ---- spline.c: G5 and G5.1 ------------------------------------------------ */
 
 #define SWARF_GC_SPLINE_TOLERANCE 0.001 /* chord tolerance of a spline's lines, mm */
-int swarf_gc_spline(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                    swarf_gc_fault *f);
+int swarf_gc_spline(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f);
 /* G38.2-G38.5 (motion.c). */
-int swarf_gc_probe(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                   swarf_gc_fault *f);
+int swarf_gc_probe(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f);
 /* G54.1 P / G154 P (offsets.c). */
 int swarf_gc_select_ext(const swarf_gc_block *b, int code, swarf_gc_state *st, swarf_gc_exec *ex,
-                        swarf_gc_fault *f);
+                        swarf_error *f);
 
 /* ---- arc.c: G2/G3 geometry ---------------------------------------------- */
 
@@ -511,7 +503,7 @@ int swarf_gc_select_ext(const swarf_gc_block *b, int code, swarf_gc_state *st, s
  * block's arc in the state's plane, with LinuxCNC's checks and tolerances;
  * *turns gets rs274's signed rotation. */
 int swarf_gc_arc(const swarf_gc_block *b, const swarf_gc_state *st, swarf_move *mv, int *turns,
-                 swarf_gc_fault *f);
+                 swarf_error *f);
 /* Sweep (radians, in (0, 2 pi]) from start to end about the centre, plane
  * coordinates in mm, as LinuxCNC's motion planner takes it (one turn). */
 double swarf_gc_arc_sweep(double s1, double s2, double e1, double e2, double c1, double c2,
@@ -521,16 +513,16 @@ double swarf_gc_arc_sweep(double s1, double s2, double e1, double e2, double c1,
 
 /* G40, G41, G42, G41.1, G42.1 of the block (execution order of group 7). */
 int swarf_gc_comp_set(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                      swarf_gc_fault *f);
+                      swarf_error *f);
 /* Refuses what LinuxCNC refuses while compensation is on (group 0, plane,
  * tool, offsets, path control codes of the block). */
-int swarf_gc_comp_check(const swarf_gc_block *b, const swarf_gc_state *st, swarf_gc_fault *f);
+int swarf_gc_comp_check(const swarf_gc_block *b, const swarf_gc_state *st, swarf_error *f);
 /* A compensated G0/G1 to the programmed `end`, or G2/G3 (mv: programmed
  * start, end, centre and turns from arc.c). */
 int swarf_gc_comp_straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                           const double end[SWARF_NAXES], swarf_gc_fault *f);
+                           const double end[SWARF_NAXES], swarf_error *f);
 int swarf_gc_comp_arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                      const swarf_move *mv, int turns, swarf_gc_fault *f);
+                      const swarf_move *mv, int turns, swarf_error *f);
 
 /* ---- oword.c: O-word control flow --------------------------------------- */
 
@@ -544,7 +536,7 @@ void swarf_gc_flow_free(swarf_gc_flow *fl);
 /* One line of the program as it streams in. On error, *column and the
  * fault say where (the line is `line` or a stored line: *err_line). */
 int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line, long *err_line,
-                       swarf_gc_fault *f);
+                       swarf_error *f);
 /* Where `o<name> call` looks for <name>.ngc when no such sub was defined
  * (borrowed: the parser owns the string). */
 void swarf_gc_flow_set_path(swarf_gc_flow *fl, const char *dirs);
@@ -625,7 +617,7 @@ void swarf_gc_parser_note(swarf_gcode_parser *p, int column, const char *fmt, ..
 /* A copy of `text` in the parser's scratch buffer (NULL: out of memory). */
 char *swarf_gc_scratch(swarf_gcode_parser *p, const char *text, size_t n);
 /* grbl: refuses what grbl 1.1 does not have (a G or M code, a letter). */
-int swarf_gc_grbl_check(const swarf_gc_block *b, swarf_gc_fault *f);
+int swarf_gc_grbl_check(const swarf_gc_block *b, swarf_error *f);
 /* A G or M code's entry in a dialect other than LinuxCNC (NULL: as LinuxCNC). */
 const swarf_gc_code *swarf_gc_dialect_g(int dialect, int tenths);
 const swarf_gc_code *swarf_gc_dialect_m(int dialect, int tenths);
@@ -643,8 +635,8 @@ swarf_gc_fanuc *swarf_gc_fanuc_new(swarf_gcode_parser *p);
 void swarf_gc_fanuc_free(swarf_gc_fanuc *fa);
 /* Keeps one line of the program. */
 int swarf_gc_fanuc_store(swarf_gc_fanuc *fa, const char *text, size_t len, long line,
-                         swarf_gc_fault *f);
+                         swarf_error *f);
 /* Runs the program kept; *err_line says where a fault is. */
-int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_gc_fault *f);
+int swarf_gc_fanuc_run(swarf_gc_fanuc *fa, long *err_line, swarf_error *f);
 
 #endif

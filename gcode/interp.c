@@ -56,7 +56,7 @@ static void substitute(const char *t, size_t n, const swarf_gc_params *ps, char 
   for (size_t i = 0; i < n && o + 32 < cap;) {
     if (t[i] == '#' && ps != NULL) {
       swarf_gc_lexer lx;
-      swarf_gc_fault f;
+      swarf_error f;
       double v;
       swarf_gc_lexer_init(&lx, t, n, ps);
       lx.pos = i;
@@ -263,7 +263,7 @@ static void run_stop(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
  * (the empty spindle) is always there. Fanuc and Haas controls hold their
  * tool data and grbl has no tool table: any T is taken. */
 static int check_tool_word(const swarf_gc_block *b, const swarf_gc_state *st,
-                           const swarf_gc_exec *ex, swarf_gc_fault *f) {
+                           const swarf_gc_exec *ex, swarf_error *f) {
   const swarf_gc_word *w = swarf_gc_block_word(b, 'T');
   int t;
   if (!w->present || st->dialect != SWARF_GCODE_DIALECT_LINUXCNC || ex->tools == NULL)
@@ -274,7 +274,7 @@ static int check_tool_word(const swarf_gc_block *b, const swarf_gc_state *st,
 }
 
 int swarf_gc_execute(const swarf_gc_block *b, swarf_gc_state *next, swarf_gc_exec *ex,
-                     swarf_gc_fault *f) {
+                     swarf_error *f) {
   int status, system = code_of(b, SWARF_GC_GROUP_COORD_SYSTEM);
   size_t moves;
   status = swarf_gc_comp_check(b, next, f);

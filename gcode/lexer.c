@@ -72,7 +72,7 @@ static void describe_char(char c, char *out, size_t cap) {
     snprintf(out, cap, "'\\x%02X'", u);
 }
 
-static int lex_paren_comment(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
+static int lex_paren_comment(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_error *f) {
   size_t open = lx->pos;
   for (size_t i = open + 1; i < lx->len; i++) {
     if (lx->line[i] == ')') {
@@ -169,7 +169,7 @@ static void word_text(char *out, char letter, const char *num, size_t len) {
   strcpy(out + 1 + keep, keep < len ? "..." : "");
 }
 
-static int number_status(int status, int column, const char *word, swarf_gc_fault *f) {
+static int number_status(int status, int column, const char *word, swarf_error *f) {
   switch (status) {
   case NUMBER_BAD:
     return SWARF_GC_FAIL(f, SWARF_GCODE_E_BAD_NUMBER, column, word);
@@ -197,7 +197,7 @@ static size_t gather_operand(swarf_gc_lexer *lx, char *buf, size_t *len) {
   return total;
 }
 
-int swarf_gc_lexer_number(swarf_gc_lexer *lx, double *v, swarf_gc_fault *f) {
+int swarf_gc_lexer_number(swarf_gc_lexer *lx, double *v, swarf_error *f) {
   char buf[NUMBER_TEXT_MAX], word[SWARF_GC_WORD_TEXT];
   size_t len, total;
   int column = column_of(lx->pos);
@@ -225,7 +225,7 @@ static int is_value_start(int c) {
 
 /* A value that is not a plain number: expr.c reads it. */
 static int lex_expr_word(swarf_gc_lexer *lx, swarf_gc_token *tok, size_t from, char letter,
-                         int column, swarf_gc_fault *f) {
+                         int column, swarf_error *f) {
   int status = swarf_gc_expr_value(lx, &tok->value, f);
   if (status != SWARF_OK) return status;
   raw_text(lx, from, tok->word);
@@ -237,7 +237,7 @@ static int lex_expr_word(swarf_gc_lexer *lx, swarf_gc_token *tok, size_t from, c
   return SWARF_OK;
 }
 
-static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
+static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_error *f) {
   char buf[NUMBER_TEXT_MAX];
   size_t len, total, from = lx->pos;
   int column = column_of(lx->pos), next;
@@ -267,7 +267,7 @@ static int lex_word(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) 
 }
 
 /* #n = value or #<name> = value. */
-static int lex_assign(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
+static int lex_assign(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_error *f) {
   int column = column_of(lx->pos), status;
   if (lx->params == NULL) return SWARF_GC_FAIL(f, SWARF_GCODE_E_PARAMETER_NOT_ALLOWED, column);
   status = swarf_gc_expr_param_ref(lx, &tok->index, tok->name, f);
@@ -284,14 +284,14 @@ static int lex_assign(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f
   return SWARF_OK;
 }
 
-static int lex_bad_char(swarf_gc_lexer *lx, swarf_gc_fault *f) {
+static int lex_bad_char(swarf_gc_lexer *lx, swarf_error *f) {
   char c = lx->line[lx->pos], shown[8];
   int column = column_of(lx->pos);
   describe_char(c, shown, sizeof shown);
   return SWARF_GC_FAIL(f, SWARF_GCODE_E_BAD_CHARACTER, column, shown);
 }
 
-int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_gc_fault *f) {
+int swarf_gc_lexer_next(swarf_gc_lexer *lx, swarf_gc_token *tok, swarf_error *f) {
   char c;
   tok->text = NULL;
   tok->text_len = 0;

@@ -63,7 +63,7 @@ static double inverse_length(const swarf_gc_state *st, const double *end, const 
 }
 
 static int inverse_feed(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                        const double *end, const swarf_move *arc, swarf_gc_fault *f) {
+                        const double *end, const swarf_move *arc, swarf_error *f) {
   double len, rate;
   if (st->modal.feed_mode != 930) return SWARF_OK;
   if (!swarf_gc_block_has(b, 'F'))
@@ -93,7 +93,7 @@ static void fix_inverse(swarf_gc_exec *ex, const swarf_gc_state *st, const doubl
 }
 
 static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                    swarf_gc_fault *f) {
+                    swarf_error *f) {
   double end[SWARF_NAXES];
   size_t first = swarf_gc_out_size(ex->out);
   int status = SWARF_OK;
@@ -118,7 +118,7 @@ static int straight(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
   return SWARF_OK;
 }
 
-static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_gc_fault *f) {
+static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f) {
   swarf_move mv;
   size_t first;
   int turns, status;
@@ -149,8 +149,7 @@ static int arc(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, s
  * rs274 reports. LinuxCNC's motion would stop G38.2 and G38.4 with an
  * error when the probe does not trip; the simulation goes on and says so
  * in a note. */
-int swarf_gc_probe(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                   swarf_gc_fault *f) {
+int swarf_gc_probe(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f) {
   double end[SWARF_NAXES], d = 0, s = swarf_gc_scale(st);
   size_t before;
   swarf_gc_find_end(b, st, end);
@@ -182,7 +181,7 @@ static int is_cycle(int m) {
 }
 
 int swarf_gc_motion(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                    swarf_gc_fault *f) {
+                    swarf_error *f) {
   int m = b->motion, status;
   if (m < 0) return SWARF_OK;
   if (swarf_gc_fanuc_like(st) && b->g[SWARF_GC_GROUP_NONMODAL].code == 530 &&

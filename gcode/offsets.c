@@ -53,7 +53,7 @@ static int ext_max(const swarf_gc_state *st) {
 }
 
 int swarf_gc_select_ext(const swarf_gc_block *b, int code, swarf_gc_state *st, swarf_gc_exec *ex,
-                        swarf_gc_fault *f) {
+                        swarf_error *f) {
   const swarf_gc_word *pw = swarf_gc_block_word(b, 'P');
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_COORD_SYSTEM];
   double pv = pw->present ? pw->value : 1, m[SWARF_NAXES];
@@ -80,7 +80,7 @@ static int tool_z(const swarf_gc_exec *ex, int tool, double *z) {
 }
 
 int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                         swarf_gc_fault *f) {
+                         swarf_error *f) {
   const swarf_gc_code_word *cw = &b->g[SWARF_GC_GROUP_TOOL_LENGTH];
   double m[SWARF_NAXES], z = 0;
   if (cw->code < 0) return SWARF_OK;
@@ -112,7 +112,7 @@ int swarf_gc_tool_length(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_e
 
 /* G10 L2 / L20: a work system's origin (and rotation). */
 static int set_system(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, int l20,
-                      swarf_gc_fault *f) {
+                      swarf_error *f) {
   const swarf_gc_word *pw = swarf_gc_block_word(b, 'P');
   int active = swarf_gc_system_index(st), k;
   double m[SWARF_NAXES];
@@ -146,7 +146,7 @@ static int set_system(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec
 
 /* G10 L1 / L10 / L11: a tool table entry. */
 static int set_tool(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, int l,
-                    swarf_gc_fault *f) {
+                    swarf_error *f) {
   const swarf_gc_word *pw = swarf_gc_block_word(b, 'P');
   int t = (int)(pw->value + 0.5);
   double m[SWARF_NAXES];
@@ -177,7 +177,7 @@ static int set_tool(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *
  * (Fanuc; Haas: the diameter), L13 its wear (noted only). Under G91 the
  * values are added to what is there. */
 static int fanuc_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, int l,
-                     swarf_gc_fault *f) {
+                     swarf_error *f) {
   const swarf_gc_word *pw = swarf_gc_block_word(b, 'P'), *rw = swarf_gc_block_word(b, 'R');
   int p = (int)floor(pw->value + 0.5), inc = st->modal.distance == 910, col = b->g[0].column;
   double r = rw->value * swarf_gc_scale(st), m[SWARF_NAXES];
@@ -213,8 +213,7 @@ static int fanuc_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec 
   return SWARF_OK;
 }
 
-static int run_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                   swarf_gc_fault *f) {
+static int run_g10(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex, swarf_error *f) {
   const swarf_gc_word *lw = swarf_gc_block_word(b, 'L');
   int l = lw->present ? (int)(lw->value + 0.5) : -1;
   if (swarf_gc_fanuc_like(st)) return fanuc_g10(b, st, ex, l, f);
@@ -288,7 +287,7 @@ static void store_home(swarf_gc_state *st, int code) {
 }
 
 int swarf_gc_offsets(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                     swarf_gc_fault *f) {
+                     swarf_error *f) {
   int code = b->g[SWARF_GC_GROUP_NONMODAL].code;
   switch (code) {
   case 100:

@@ -150,7 +150,7 @@ long swarf_gc_flow_open_line(const swarf_gc_flow *fl) {
 
 /* ---- reading a control line ---------------------------------------------- */
 
-static int read_name(swarf_gc_lexer *lx, char *name, swarf_gc_fault *f) {
+static int read_name(swarf_gc_lexer *lx, char *name, swarf_error *f) {
   size_t n = 0;
   if (swarf_gc_lexer_peek(lx) == '<') return swarf_gc_expr_name(lx, name, f);
   while (swarf_gc_lexer_peek(lx) != -1 && isdigit(lx->line[lx->pos]) && n + 1 < SWARF_GC_NAME_MAX)
@@ -202,7 +202,7 @@ static int only_comments(swarf_gc_lexer *lx) {
 }
 
 /* The control word of a line, if the line is one ("N10 o100 while [...]"). */
-static int read_ctl(const char *text, size_t len, octl *c, swarf_gc_fault *f) {
+static int read_ctl(const char *text, size_t len, octl *c, swarf_error *f) {
   swarf_gc_lexer lx;
   int ch, status;
   c->kind = O_NONE;
@@ -229,7 +229,7 @@ static int read_ctl(const char *text, size_t len, octl *c, swarf_gc_fault *f) {
 
 /* One [expression] after the keyword; `*v` unchanged (and 0 returned as
  * "absent") when there is none. */
-static int read_arg(swarf_gc_lexer *lx, double *v, int *present, swarf_gc_fault *f) {
+static int read_arg(swarf_gc_lexer *lx, double *v, int *present, swarf_error *f) {
   *present = 0;
   while (swarf_gc_lexer_peek(lx) == '(') { /* comments between arguments */
     while (lx->pos < lx->len && lx->line[lx->pos] != ')')
@@ -241,8 +241,7 @@ static int read_arg(swarf_gc_lexer *lx, double *v, int *present, swarf_gc_fault 
   return swarf_gc_expr_value(lx, v, f);
 }
 
-static int eval_arg(swarf_gc_flow *fl, const stored *s, double *v, int required,
-                    swarf_gc_fault *f) {
+static int eval_arg(swarf_gc_flow *fl, const stored *s, double *v, int required, swarf_error *f) {
   swarf_gc_lexer lx;
   int present, status;
   swarf_gc_lexer_init(&lx, s->text, s->len, fl->ps);
@@ -287,7 +286,7 @@ static int closes(okind k) {
 }
 
 /* Tracks nesting while recording; returns 1 when the outer construct closed. */
-static int track(swarf_gc_flow *fl, stored *s, swarf_gc_fault *f) {
+static int track(swarf_gc_flow *fl, stored *s, swarf_error *f) {
   open_ctl *top = fl->nopen > 0 ? &fl->open[fl->nopen - 1] : NULL;
   okind k = s->ctl.kind;
   if (k == O_WHILE && top != NULL && top->kind == O_DO && strcmp(top->name, s->ctl.name) == 0) {
@@ -317,7 +316,7 @@ static int track(swarf_gc_flow *fl, stored *s, swarf_gc_fault *f) {
 
 /* ---- running stored lines ------------------------------------------------ */
 
-static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f);
+static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_error *f);
 
 static sub_def *find_sub(swarf_gc_flow *fl, const char *name) {
   for (sub_def *s = fl->subs; s != NULL; s = s->next)
@@ -331,7 +330,7 @@ static sub_def *find_sub(swarf_gc_flow *fl, const char *name) {
 static int read_sub_file(swarf_gc_flow *fl, FILE *in, const char *name, long line) {
   char buf[4096];
   sub_def *sub = NULL;
-  swarf_gc_fault f;
+  swarf_error f;
   while (fgets(buf, sizeof buf, in) != NULL) {
     size_t n = strcspn(buf, "\r\n");
     octl c;
@@ -359,7 +358,7 @@ static int read_sub_file(swarf_gc_flow *fl, FILE *in, const char *name, long lin
  * FIFO or /dev/zero there hung the call): anything else that exists there
  * is an error at the call (*bad set, f filled). */
 static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line, int column, int *bad,
-                              swarf_gc_fault *f) {
+                              swarf_error *f) {
   const char *d = fl->path;
   while (d != NULL && *d) {
     size_t n = strcspn(d, ":");
@@ -386,7 +385,7 @@ static sub_def *find_sub_file(swarf_gc_flow *fl, const char *name, long line, in
   return NULL;
 }
 
-static int call(swarf_gc_flow *fl, const stored *s, swarf_gc_fault *f) {
+static int call(swarf_gc_flow *fl, const stored *s, swarf_error *f) {
   double args[MAX_ARGS] = {0}, saved[MAX_ARGS];
   swarf_gc_lexer lx;
   swarf_gc_named *locals;
@@ -441,7 +440,7 @@ static size_t find_back(const line_list *l, size_t from, const char *name, okind
 enum { DONE_END = 100 }; /* run_lines status: a return/endsub ended the sub */
 
 /* The if chain: where to go from an if or elseif whose test failed. */
-static int next_branch(swarf_gc_flow *fl, line_list *l, size_t *pc, swarf_gc_fault *f) {
+static int next_branch(swarf_gc_flow *fl, line_list *l, size_t *pc, swarf_error *f) {
   for (;;) {
     size_t j = find_fwd(l, *pc, l->v[*pc].ctl.name, O_ELSEIF, O_ELSE, O_ENDIF);
     double v;
@@ -461,8 +460,7 @@ static int next_branch(swarf_gc_flow *fl, line_list *l, size_t *pc, swarf_gc_fau
 }
 
 /* A do/while, while, repeat or break/continue: sets *pc. */
-static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts,
-                     swarf_gc_fault *f) {
+static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts, swarf_error *f) {
   const stored *s = &l->v[*pc];
   const char *name = s->ctl.name;
   double v;
@@ -504,7 +502,7 @@ static int loop_step(swarf_gc_flow *fl, line_list *l, size_t *pc, double *counts
   }
 }
 
-static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
+static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_error *f) {
   double *counts = calloc(l->n ? l->n : 1, sizeof *counts);
   size_t pc = 0;
   int status = SWARF_OK;
@@ -572,7 +570,7 @@ static int run_lines(swarf_gc_flow *fl, line_list *l, swarf_gc_fault *f) {
 
 /* ---- the streaming entry -------------------------------------------------- */
 
-static int finish_recording(swarf_gc_flow *fl, swarf_gc_fault *f) {
+static int finish_recording(swarf_gc_flow *fl, swarf_error *f) {
   int status = SWARF_OK;
   if (fl->rec.v[0].ctl.kind == O_SUB) {
     sub_def *sub = calloc(1, sizeof *sub);
@@ -594,7 +592,7 @@ static int finish_recording(swarf_gc_flow *fl, swarf_gc_fault *f) {
 }
 
 int swarf_gc_flow_line(swarf_gc_flow *fl, const char *text, size_t len, long line, long *err_line,
-                       swarf_gc_fault *f) {
+                       swarf_error *f) {
   octl c;
   int status = read_ctl(text, len, &c, f), closed;
   fl->err_line = err_line;

@@ -72,8 +72,7 @@ static void word_at(const char *text, size_t n, int column, char *out, size_t si
 
 /* The parser stops on fault `f` at the current line; `text` (may be NULL) is
  * that line, for the word. */
-static swarf_status fail(swarf_gcode_parser *p, const swarf_gc_fault *f, const char *text,
-                         size_t n) {
+static swarf_status fail(swarf_gcode_parser *p, const swarf_error *f, const char *text, size_t n) {
   p->status = f->status;
   p->error.status = f->status;
   p->error.code = f->code;
@@ -86,7 +85,7 @@ static swarf_status fail(swarf_gcode_parser *p, const swarf_gc_fault *f, const c
 
 /* The same for an identity whose message takes no argument. */
 static swarf_status fail_code(swarf_gcode_parser *p, int code, int column) {
-  swarf_gc_fault f;
+  swarf_error f;
   swarf_gc_fail_code(&f, code, column);
   return fail(p, &f, NULL, 0);
 }
@@ -195,7 +194,7 @@ static swarf_status emit(swarf_gcode_parser *p, const char *text, size_t n) {
     units +=
         1 + (c->move.kind == SWARF_MOVE_ARC ? (long)(fabs(c->move.angle) / 6.283185307179586) : 0);
     if (p->fn != NULL && p->fn(&c->move, p->user) != 0) {
-      swarf_gc_fault f;
+      swarf_error f;
       SWARF_GC_FAIL(&f, SWARF_GCODE_E_STOPPED, c->move.column);
       return fail(p, &f, text, n);
     }
@@ -240,9 +239,9 @@ static swarf_status release_held(swarf_gcode_parser *p) {
  * the first M98 of the streamed program (not inside a construct), the
  * line and the rest of the program are kept whole, as a Fanuc program is,
  * and run at the end (its O<n> ... M99 may come after M2). 1: switched. */
-static int m98_switch(swarf_gcode_parser *p, const swarf_gc_fault *f, const char *text, size_t n) {
+static int m98_switch(swarf_gcode_parser *p, const swarf_error *f, const char *text, size_t n) {
   char word[SWARF_GC_WORD_TEXT];
-  swarf_gc_fault g;
+  swarf_error g;
   if (f->code != SWARF_GCODE_E_UNKNOWN_M_CODE || p->fanuc != NULL ||
       p->state->dialect != SWARF_GCODE_DIALECT_LINUXCNC || p->cur_line != p->lines ||
       swarf_gc_flow_open_line(p->flow) != 0)
@@ -258,7 +257,7 @@ static int m98_switch(swarf_gcode_parser *p, const swarf_gc_fault *f, const char
 /* Read, check, execute on a copy; commit only if all of it succeeded. */
 static swarf_status run_block(swarf_gcode_parser *p, const char *text, size_t n) {
   swarf_gc_block b;
-  swarf_gc_fault f;
+  swarf_error f;
   swarf_gc_state *next = p->state == &p->states[0] ? &p->states[1] : &p->states[0];
   swarf_gc_exec ex = {&p->params, &p->out, p->tools, SWARF_GC_NTOOLS, &p->notes, p->ext};
   int status;
@@ -317,7 +316,7 @@ static int run_line(void *ctx, const char *text, size_t n, long line) {
 }
 
 int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t len, long line) {
-  swarf_gc_fault f;
+  swarf_error f;
   long err_line = line;
   int status = swarf_gc_flow_line(p->flow, text, len, line, &err_line, &f);
   if (status != SWARF_OK && p->status == SWARF_OK) {
@@ -329,7 +328,7 @@ int swarf_gc_parser_flow_line(swarf_gcode_parser *p, const char *text, size_t le
 
 /* Runs a Fanuc or Haas program kept whole (at its closing `%` or the end). */
 static swarf_status run_fanuc(swarf_gcode_parser *p) {
-  swarf_gc_fault f;
+  swarf_error f;
   long err_line = 0;
   int status;
   swarf_gc_fanuc *fa = p->fanuc;
@@ -347,7 +346,7 @@ static swarf_status run_fanuc(swarf_gcode_parser *p) {
 
 /* A line made of `%` alone: opens the program first, closes it later. */
 static swarf_status percent_line(swarf_gcode_parser *p, const char *text, size_t n, size_t at) {
-  swarf_gc_fault f;
+  swarf_error f;
   if (!p->seen_code) {
     p->seen_code = 1;
     p->percent_open = 1;
@@ -411,7 +410,7 @@ static int is_home(const char *text, size_t n, size_t first) {
 static swarf_status grbl_line(swarf_gcode_parser *p, const char *text, size_t n, size_t first,
                               size_t rest) {
   int depth = 0;
-  swarf_gc_fault f;
+  swarf_error f;
   if (is_home(text, n, first)) return grbl_home(p, text, n, first);
   if (text[first] == '$' || (text[first] == '%' && rest == n)) {
     swarf_gc_parser_note(p, (int)first + 1, "%s line ignored (grbl %s)",
@@ -435,7 +434,7 @@ static swarf_status grbl_line(swarf_gcode_parser *p, const char *text, size_t n,
 
 static swarf_status process_line(swarf_gcode_parser *p, const char *text, size_t n) {
   size_t first, rest;
-  swarf_gc_fault f;
+  swarf_error f;
   long err_line;
   int status;
   p->lines++;

@@ -52,7 +52,7 @@ static int pieces(const double px[4], const double py[4], int n) {
   return k < 1 ? 1 : k > MAX_PIECES ? MAX_PIECES : (int)k;
 }
 
-static int check(const swarf_gc_block *b, const swarf_gc_state *st, int cubic, swarf_gc_fault *f) {
+static int check(const swarf_gc_block *b, const swarf_gc_state *st, int cubic, swarf_error *f) {
   int col = b->motion_column;
   const char *name = cubic ? "G5" : "G5.1";
   if (st->modal.plane != 170) return SWARF_GC_FAIL(f, SWARF_GCODE_E_SPLINE_PLANE, col);
@@ -69,7 +69,7 @@ static int check(const swarf_gc_block *b, const swarf_gc_state *st, int cubic, s
 }
 
 int swarf_gc_spline(const swarf_gc_block *b, swarf_gc_state *st, swarf_gc_exec *ex,
-                    swarf_gc_fault *f) {
+                    swarf_error *f) {
   int cubic = b->motion == 50, n = cubic ? 3 : 2, k, status = check(b, st, cubic, f);
   double s = swarf_gc_scale(st), end[SWARF_NAXES], start[SWARF_NAXES], px[4], py[4], ij[2];
   if (status != SWARF_OK) return status;

@@ -163,8 +163,9 @@ int main(int argc, char **argv) {
           ".SH SYNOPSIS\n.nf\n.B #include <swarf/swarf.h>\n.PP\n"
           "cc prog.c $(pkg\\-config \\-\\-cflags \\-\\-libs swarf)\n.fi\n"
           ".SH DESCRIPTION\nEvery call that can fail returns a\n.B swarf_status\n"
-          "and fills the caller's\n.B swarf_error\n(status, file, line, column, word, "
-          "message; may be NULL). Handles are opaque: made by *_new, released by *_free "
+          "and one that makes something fills the caller's\n.B swarf_error\n(status, file, "
+          "line, column, word, message; may be NULL); a simulation handle keeps its own "
+          "(swarf_sim_error). Handles are opaque: made by *_new, released by *_free "
           "(NULL is fine). The calls by header, each with its header's own words:\n",
           argv[2]);
   for (int i = 3; i < argc; i++) {

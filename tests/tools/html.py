@@ -15,6 +15,13 @@ disk with no network. Checked against what the test knows independently:
     header of the PLY the page embeds, data-lines equal to the number of
     program lines with moves that `swarf parse` lists;
   - the alarm list links the rapid's line; no console error;
+  - the deviation legend's scale: -4, -1, 0, 1, 4 tolerances (half a voxel);
+  - used as a person would (the page's #check=X,Y,Z mode clicks the canvas
+    where a world point appears, then the first alarm's link): a click on
+    the slot's floor names line 4 (the G1 that cut it; the slider goes
+    there), one on the untouched top names none; the alarm's link moves the
+    slider to line 7, where the tool (one piece: no shank or holder given)
+    stands at the rapid's end point X15 Y3 Z-1; the chart has ink;
   - a screenshot shows the part (pixels off the background) and the excess
     colour (saturated red, from the design comparison).
 SKIPPED (77) without chromium.
@@ -98,6 +105,23 @@ try:
           "data-lines %s = swarf parse's %d lines with moves" % (attrs.get("lines"), want_lines))
     check(re.search(r'<a href="#">line 7: rapid', dom) is not None,
           "the alarm list links the rapid at line 7")
+    scale = re.findall(r'<span style="left:[0-9.]+%?">([^<]*)</span>', dom)
+    check(scale == ["-0.5 gouge", "-0.125", "0", "0.125", "0.5 excess"] and 'id="legend"' in dom,
+          "the deviation legend: %s" % scale)
+
+    def used(point):
+        out = subprocess.run([chromium] + FLAGS + ["--dump-dom", "file://%s#check=%s" % (page, point)],
+                             capture_output=True, text=True, timeout=120).stdout
+        b = re.search(r"<body([^>]*)>", out)
+        return dict(re.findall(r'data-(\w+)="([^"]*)"', b.group(1))) if b else {}
+    floor = used("15,11.5,-2;25,17,0")
+    check(floor.get("pick") == "4;0" and floor.get("pickshown") == "4",
+          "a click on the slot's floor names line 4 and shows it, one on the untouched top "
+          "none: %s" % floor)
+    check(floor.get("alarm") == "7" and floor.get("tool") == "1" and
+          floor.get("toolat") == "15.000,3.000,-1.000",
+          "the alarm's link shows line 7, the tool at X15 Y3 Z-1: %s" % floor)
+    check(int(floor.get("chart", "0")) > 200, "the chart has ink: %s pixels" % floor.get("chart"))
     console = [l for l in open(log, errors="replace") if "CONSOLE" in l or "Uncaught" in l]
     check(not [l for l in console if "rror" in l or "Uncaught" in l],
           "no console error (%s)" % console[:3])

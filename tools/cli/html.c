@@ -223,8 +223,10 @@ static void legend(FILE *f, const swarf_html_page *pg) {
   const double t = pg->tolerance;
   if (pg->design == NULL) return;
   fprintf(f,
-          "<h2>Deviation from the design (mm)</h2><div class=\"bar\"></div><div class=\"scale\">"
-          "<span>%.3g gouge</span><span>%.3g</span><span>0</span><span>%.3g</span><span>%.3g "
+          "<h2>Deviation from the design (mm)</h2><div class=\"bar\" id=\"legend\"></div>"
+          "<div class=\"scale\"><span style=\"left:0\">%.3g gouge</span>"
+          "<span style=\"left:37.5%%\">%.3g</span><span style=\"left:50%%\">0</span>"
+          "<span style=\"left:62.5%%\">%.3g</span><span style=\"left:100%%\">%.3g "
           "excess</span></div>",
           -4 * t, -t, t, 4 * t);
 }

@@ -243,5 +243,38 @@
   })();
   document.body.dataset.triangles = String(ply.nf);
   document.body.dataset.lines = String(lines.length);
+  selfCheck();
   document.body.dataset.ready = "1";
+
+  /* With #check=X,Y,Z[;X,Y,Z...] in the address (the tests), the page is
+   * used as a person would use it and says on <body> what it showed: a click
+   * on the part where each world point appears (data-pick: the lines named,
+   * 0 for none, joined by ';'; data-pickshown: the slider's line after the
+   * first), a click on the first alarm's link (data-alarm: the slider's line
+   * after it), the tool drawn there (data-tool: its pieces, data-toolat:
+   * where, mm) and the chart's inked pixels (data-chart). */
+  function selfCheck() {
+    const m = /^#check=([-0-9.,;]+)$/.exec(location.hash);
+    if (!m) return;
+    const body = document.body.dataset, cv = renderer.domElement, box = cv.getBoundingClientRect();
+    const picked = [];
+    frame();
+    for (const point of m[1].split(";")) {
+      const q = new THREE.Vector3(...point.split(",").map(Number)).project(camera);
+      $("pick").textContent = "";
+      cv.dispatchEvent(new MouseEvent("click", { bubbles: true, clientX: box.left + ((q.x + 1) / 2) * box.width,
+        clientY: box.top + ((1 - q.y) / 2) * box.height }));
+      picked.push(($("pick").textContent.match(/line (\d+)/) || [0, "0"])[1]);
+      if (picked.length === 1) body.pickshown = String(lines[+slider.value]);
+    }
+    body.pick = picked.join(";");
+    const link = list.querySelector("a");
+    if (link) link.click(), (body.alarm = String(lines[+slider.value]));
+    body.tool = String(toolGroup.children.length);
+    body.toolat = [toolGroup.position.x, toolGroup.position.y, toolGroup.position.z].map((v) => v.toFixed(3)).join(",");
+    const c = $("chart"), px = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let inked = 0;
+    for (let i = 0; i < px.length; i += 4) inked += px[i] + px[i + 1] + px[i + 2] < 700 ? 1 : 0;
+    body.chart = String(inked);
+  }
 })();

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* engine.h -- the envelope core (fast path, double precision).
  *
  * Role: cutters of revolution given by their support function, the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* engine_private.h -- the engine's insides, shared by its source files only.
  *
  *   cutter.c        cutters: support function, surface points, exact sdf.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* arc.c -- G2/G3 geometry: centre, sweep and helix of an arc, LinuxCNC's way.
  *
  * Follows rs274ngc's convert_arc and interp_arc.cc (arc_data_ijk,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* block.c -- the words of one line, read into a block.
  *
  * Reads every token the lexer gives: each letter may appear once (G and M

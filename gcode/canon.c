@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* canon.c -- the canonical calls one block makes, held until it commits.
  *
  * A block's calls go into an out list (owned by the parser, reused from one

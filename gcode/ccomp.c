@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* ccomp.c -- cutter radius compensation (G40, G41, G42, G41.1, G42.1), as
  * LinuxCNC 2.9's interpreter does it.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* ccomp.h -- what the files of cutter radius compensation share (ccomp.c:
  * on, off and refusals; ccomp_queue.c: the held move; ccomp_line.c and
  * ccomp_arc.c: the compensated path of lines and arcs). Not used elsewhere.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* ccomp_arc.c -- the compensated path of G2 and G3 under cutter compensation:
  * the entry arc, corners before an arc, the arc offset along its radius
  * (see ccomp.c for LinuxCNC's rules, ccomp.h for the plane coordinates).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* ccomp_line.c -- the compensated path of G0 and G1 under cutter compensation:
  * the entry move, corners before a line (convex: an arc; concave: the
  * held move ends where the offset paths cross)

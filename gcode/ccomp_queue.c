@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* ccomp_queue.c -- cutter compensation's held move: LinuxCNC holds a move back
  * until the next one says where it ends, then moves its end and lets it go
  * (see ccomp.c for LinuxCNC's rules, ccomp.h for the plane coordinates).

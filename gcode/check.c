@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* check.c -- a block against the modal state, before anything is executed.
  *
  * Decides which motion the block makes (LinuxCNC's enhance_block: the motion

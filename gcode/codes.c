@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* codes.c -- the G and M codes LinuxCNC knows, with their modal groups.
  *
  * Codes are integers in tenths (G91.1 -> 911). User M codes M100-M199 and

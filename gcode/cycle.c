@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cycle.c -- canned cycles G73, G81-G89 expanded into moves, LinuxCNC's way.
  *
  * In the active plane (G17: position X Y, drill along Z; G18: Z X along Y;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* dialect.c -- what differs between LinuxCNC, Fanuc, Haas and grbl, and the
  * parser's switches (dialect, block delete, subroutine path, notes).
  *

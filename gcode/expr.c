@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* expr.c -- values of words: numbers, #parameters, [expressions], functions.
  *
  * LinuxCNC's read_real_value and read_real_expression, over the lexer's

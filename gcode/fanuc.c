@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fanuc.c -- Fanuc and Haas program structure: program numbers, M98/M99
  * subprograms, Haas M97 local subprograms, G65 macro calls, GOTO, IF and
  * WHILE ... DO / END, and `#i = expression` without brackets.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fault.c -- the error record of the G-code front end, and the table of its
  * error identities (errors.def).
  *

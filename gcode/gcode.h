@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* gcode.h -- the G-code front end: a streaming RS274/NGC interpreter.
  *
  * Role: turn program text (LinuxCNC dialect) into canonical moves, each with

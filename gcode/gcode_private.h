@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* gcode_private.h -- the G-code front end's insides, shared by its files only.
  *
  * The pipeline, one line at a time (parse, check, commit, as grbl does):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* interp.c -- the modal state, and the execution of one checked block.
  *
  * swarf_gc_execute runs a block on a copy of the state that the caller

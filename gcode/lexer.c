@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* lexer.c -- one line of program text -> tokens, each with its column.
  *
  * Follows LinuxCNC's reading: blanks (space, tab, CR) mean nothing outside

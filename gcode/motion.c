@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* motion.c -- G0, G1, G2, G3 (with G53), and the dispatch to canned cycles.
  *
  * End points are program coordinates in mm: axis words in the active unit,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* offsets.c -- work systems, G92/G52, G10, G28/G30 and tool length offsets.
  *
  * The state keeps every offset in mm; a change of offset keeps the tool

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* oword.c -- O-word subroutines, loops and conditionals.
  *
  * Lines stream in one at a time. An ordinary line outside any construct

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* params.c -- numbered, named and computed parameters.
  *
  * Numbered parameters #1..#5601 are plain doubles, except the ranges that

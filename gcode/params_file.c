@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* params_file.c -- LinuxCNC's parameter file (the machine's .var file).
  *
  * One parameter a line, "NUMBER VALUE" ("5221\t10.000000"), as LinuxCNC

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* parser.c -- the streaming front: bytes -> lines -> blocks -> moves.
  *
  * The parser owns its state, its error and one partial line (the bytes after

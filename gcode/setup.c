@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* setup.c -- the machine a program runs on: its length unit, parameters
  * (offsets, homes) and where the controlled point is at the start.
  *

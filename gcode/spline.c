@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* spline.c -- G5 (cubic) and G5.1 (quadratic) splines as short lines.
  *
  * LinuxCNC's G5 X Y I J P Q is the cubic Bezier from the current point P0

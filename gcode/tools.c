@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* tools.c -- the tool table of `swarf parse --tools` (swarf_gcode_parser_load_tools).
  *
  * LinuxCNC's format (src/emc/tooldata): one tool a line, `T1 P1 Z0.511

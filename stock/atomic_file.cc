@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file atomic_file.cc
 /// @brief Atomic file output and the all-or-none output group (atomic_file.h,
 /// stock_output.h).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file atomic_file.h
 /// @brief Atomic file output: write <path>.tmp.<pid> in the same folder, sync
 /// it, then rename() it onto <path>. A failed write never leaves a partial file.

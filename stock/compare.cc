@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file compare.cc
 /// @brief The deviation of a stock from a design (swarf_stock_compare).
 ///

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file dense.cc
 /// @brief The stock as a dense array of signed distances and back (stock.h):
 /// for NumPy and other array code that wants the values on a box of voxel

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file io.cc
 /// @brief Files of the stock: reading a .vdb (untrusted input), writing a .vdb
 /// and a binary STL of the zero isosurface, each written atomically.

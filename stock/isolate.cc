@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file isolate.cc
 /// @brief Untrusted parsing in the reader program, run in a child process
 /// (see isolate.h): finding the program, running it, and its side of the pipe.

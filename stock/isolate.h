@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file isolate.h
 /// @brief Run untrusted parsing in another program: OpenVDB's reader is not
 /// hardened against corrupt files (a damaged .vdb can corrupt its heap), so

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file legend.cc
 /// @brief Deviation colours and the picture's legend (legend.h), with a
 /// built-in 5 x 7 pixel font for the few characters the legend writes.

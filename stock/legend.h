@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file legend.h
 /// @brief Deviation colours (for pictures and meshes) and the legend drawn
 /// into a picture, without OpenVDB.

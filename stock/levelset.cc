@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file levelset.cc
 /// @brief Stocks made from other shapes: a closed STL mesh (exact distances
 /// in the band, mesh_sdf.h), a .vdb grid of swarf or another tool,

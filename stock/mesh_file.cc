@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file mesh_file.cc
 /// @brief STL reading and checking, STL/OBJ/PLY writing (see mesh_file.h).
 #include "mesh_file.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file mesh_file.h
 /// @brief Triangle meshes as files, without OpenVDB: reading STL (binary or
 /// ASCII, untrusted input) into a welded mesh checked to bound a solid, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file mesh_sdf.cc
 /// @brief mesh_band (mesh_sdf.h): a closed mesh's exact signed distance in a
 /// narrow band, block by block.

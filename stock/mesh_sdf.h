@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file mesh_sdf.h
 /// @brief The narrow band of a closed triangle mesh's signed distance, made
 /// without OpenVDB's meshToVolume (mesh_sdf.cc): signs from winding numbers

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file mesh_tets.cc
 /// @brief The zero isosurface of the stock as a closed mesh (mesh_tets.h):
 /// marching tetrahedra on the lattice of voxel centres.

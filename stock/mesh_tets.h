@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file mesh_tets.h
 /// @brief The stock's zero isosurface as a closed triangle mesh (marching
 /// tetrahedra, mesh_tets.cc): every edge of the result is shared by exactly

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file placement.cc
 /// @brief Placements: parsing "tx=..,rz=.." and the rigid map (placement.h).
 #include "placement.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file placement.h
 /// @brief A stock's placement (stock.h, swarf_stock_placement) as a matrix,
 /// without OpenVDB: x' = R x + t, R = Rz Ry Rx, rotations by whole quarter

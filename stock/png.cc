@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file png.cc
 /// @brief A minimal PNG encoder (see png.h): signature, IHDR, IDAT (zlib), IEND,
 /// each chunk with its CRC-32 (zlib's crc32).

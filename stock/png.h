@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file png.h
 /// @brief A minimal PNG encoder (8-bit RGB, no interlace, filter 0 on every
 /// row, one zlib IDAT chunk): enough for the stock's pictures.

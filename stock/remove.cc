@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file remove.cc
 /// @brief Removal of volumes from the stock: stock = max(stock, -sdf), written
 /// directly into the stock's leaves, one leaf-aligned block of 8^3 voxels at a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file remove_blocks.cc
 /// @brief Passes 1 to 3 of a removal (remove.cc): the (block, cut) pairs,
 /// each block's action from its cuts' values at its centre, and the blocks

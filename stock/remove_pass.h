@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file remove_pass.h
 /// @brief What the files of the removal share (remove.cc: the passes in
 /// order and the entry points; remove_blocks.cc: which blocks the cuts meet

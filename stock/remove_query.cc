@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file remove_query.cc
 /// @brief Read-only questions about a cut against the stock, by the blocks
 /// and bounds of a removal (remove_pass.h): does it overlap the material

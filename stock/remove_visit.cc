@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file remove_visit.cc
 /// @brief Pass 4 of a removal (remove.cc): the voxels of one block, top down
 /// through its octants and cubes with their cuts' bounds (the plain visit),

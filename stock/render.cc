@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file render.cc
 /// @brief A PNG picture of the stock, ray traced with OpenVDB's LevelSetRayTracer.
 ///

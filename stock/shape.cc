@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file shape.cc
 /// @brief The narrow band of a new box or cylinder stock, filled directly
 /// (make_shape in stock.cc): the grid holds -w everywhere in the shape's

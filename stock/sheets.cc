@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file sheets.cc
 /// @brief Sheets of no thickness cleared: a cut that ends exactly on a stock
 /// face (stock.h, swarf_stock_clear_sheets).

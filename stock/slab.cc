@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file slab.cc
 /// @brief Slabs of a stock's index space (stock.h, "Slabs of the stock"): a
 /// region that removal and the queries keep to, a tally of the blocks removal

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file stock.cc
 /// @brief The stock handle: creation of a box or cylinder stock, queries (volume, bounds,
 /// samples, active voxels), the level-set check, and their C entry points.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stock.h -- the workpiece as an OpenVDB narrow-band level set (plain C API).
  *
  * Role: hold the remaining material as a float level-set grid named "stock"

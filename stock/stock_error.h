@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file stock_error.h
 /// @brief The module's internal error (a status and a message), without OpenVDB,
 /// for the stock/*.cc files that do not need OpenVDB.

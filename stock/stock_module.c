@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stock_module.c -- the `swarf` command's stock module loader (stock_module.h): every function
  * of stock.h and stock_output.h, each a call through the table of swarf_stock-VERSION.so,
  * which the first of them opens (once, whichever thread calls first). The module is, the

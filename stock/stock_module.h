@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stock_module.h -- the stock module as a shared object loaded on first use (plain C).
  *
  * Loading OpenVDB costs the dynamic loader ~60 ms of CPU at every start (its ~68,000 symbol

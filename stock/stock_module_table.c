@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stock_module_table.c -- the stock module's one export: its function table
  * (stock_module.h), built into swarf_stock-VERSION.so only. */
 #include "stock_module.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stock_output.h -- how the stock module's files reach the disk (plain C).
  *
  * Every file the stock module writes (.vdb, meshes, pictures, and the

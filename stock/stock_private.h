@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file stock_private.h
 /// @brief The swarf_stock handle and the helpers shared by the stock/*.cc files
 /// (the C++ behind stock.h). Only the stock module includes this header.

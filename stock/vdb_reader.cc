@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file vdb_reader.cc
 /// @brief swarf-vdb-read, the reader program of .vdb files (isolate.h): run by
 /// the stock module in a child process, never by hand.

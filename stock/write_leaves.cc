@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /// @file write_leaves.cc
 /// @brief The .vdb writer's leaf buffers on the stock's threads:
 /// a shallow copy of the stock's grid whose writeBuffers, the part of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* check.h -- the tests' tiny assertion kit (header only).
  *
  * CHECK(cond, ...) records a failure with a printf-style explanation and goes

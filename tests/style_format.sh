@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # style_format.sh SRC -- every C and C++ source of the tree laid out as
 # .clang-format says (clang-format 14, Debian 12's): a file that differs
 # fails the test with its name; `clang-format -i FILE` lays it out. SKIPPED

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* machine.c -- machine kinematics: the --machine description (the rigid
  * motion of the cutter for a canonical move is move_motion.c's).
  *

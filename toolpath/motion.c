@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* motion.c -- rigid motions of the cutter: the xyz machine's lines and
  * helices (t(alpha), U(alpha) = I: the tool tip follows the programmed
  * straight line or helix exactly, no chords) and the public dispatch to

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* move_motion.c -- canonical moves become rigid motions (move_motion.h).
  *
  * The xyz machine: t(alpha) follows the programmed straight line or helix

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* move_motion.h -- canonical moves of the G-code front end become rigid
  * motions of the cutter: the one place where toolpath meets gcode.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* pose_table.c -- per-thread tables of a motion's poses at evenly spaced
  * times (swarf_motion_pose_table, toolpath.h).
  *

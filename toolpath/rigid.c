@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* rigid.c -- rigid motions with rotation (RIGID kind, toolpath.h): pose,
  * velocities and tip bounds for machines with rotary axes.
  *

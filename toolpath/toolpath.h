@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* toolpath.h -- rigid motions of the cutter and the machines that make them.
  *
  * Role: a rigid motion

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* toolpath_private.h -- the toolpath module's insides, shared by its files only.
  *
  *   motion.c   xyz motions (lines, helices) and the public dispatch.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* file.c -- opening untrusted input files (swarf_file.h). */
 #include <errno.h>
 #include <fcntl.h>

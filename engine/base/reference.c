@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* reference.c -- the reference paths' switches (swarf_reference.h). */
 #include "swarf_reference.h"
 

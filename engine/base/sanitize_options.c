@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sanitize_options.c -- the sanitizers' defaults in a SWARF_SANITIZE build.
  *
  * Linked into every executable of such a build (swarf_target_options in the

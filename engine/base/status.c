@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* status.c -- names, messages and classes of swarf_status (status.def), and
  * the swarf_error record's helpers. */
 #include <stdarg.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* swarf_file.h -- opening untrusted input files (engine/base, plain C).
  *
  * Every reader of a user's file (programs, tool tables, tool libraries,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* swarf_reference.h -- the reference paths the tests compare the fast ones
  * with (engine/base, plain C).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* swarf_status.h -- the one status type of the project, and the error record.
  *
  * Role: every public function of libswarf that can fail returns a

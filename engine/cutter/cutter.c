@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cutter.c -- cutters of revolution: validation of flat/ball/bull, support
  * function, surface points x_h(n) and the exact signed distance of any
  * cutter (closed forms for flat/ball/bull, the profile's pieces otherwise).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cutter_body.c -- bodies of revolution piece by piece (engine.h): hulls of
  * circles, frustums and QSS pieces, validated, with the cutter's bounds.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cutter_family.c -- the named cutter families (engine.h, swarf_cutter_make):
  * each family's numbers checked (the message names the parameter by its
  * letter in a tool spec and says why) and turned into hull pieces.

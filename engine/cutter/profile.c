@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* profile.c -- the profile of a body of revolution in the (r, z) half-plane:
  * a hull piece's outline built from its circles, and the exact 2-D signed
  * distance of a piece (hull or QSS) with its gradient.

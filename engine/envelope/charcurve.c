@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* charcurve.c -- characteristic curves of a moving body of revolution at one
  * time step: closed polylines, one per component, sampled so that the chord
  * error of the surface points stays under a tolerance.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* charcutter.c -- the branch points of a cutter's characteristic curve (the
  * roots of Fact 2's Delta for flat, ball and bull-nose profiles), certified
  * in double-double arithmetic.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* charpoly.c -- real roots of a small double-precision polynomial on an
  * interval, for the fast path's branch points of a QSS (Delta(z) is a
  * quartic): the critical points (roots of the derivative, recursively)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* charqss.c -- the fast path for the full revolution form of eq. 12,
  * h = a (x^2 + y^2) + b z^2 + c x + d y + e z + f: the linear part c x + d y
  * moves the body by p = (c, d, 0), so its characteristic curve is that of

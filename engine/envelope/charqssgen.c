@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* charqssgen.c -- the characteristic curve of a moving GENERAL QSS,
  * h(n) = n^T Q n + b . n + c (paper eq. 10-11, Theorem 1: a spherical
  * quartic), as closed polylines with a chord error under a tolerance.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* charqssgen_sweep.c -- the sweep that finds the topology of a general QSS's
  * characteristic curve f = n^T M n + L . n = 0 on the unit sphere.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* charslice.c -- the per-slice closed form of the characteristic curve of a
  * body of revolution (shared/docs/ENVELOPE.md, Fact 2) and its branch points.
  *

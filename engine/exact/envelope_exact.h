@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* envelope_exact.h -- the exact path of the envelope core (GMP/FLINT/arb).
  *
  * Role: the paper's characteristic curves in exact arithmetic, for rational

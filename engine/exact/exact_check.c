@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_check.c -- points of the exact characteristic curve and the check
  * of Theorem 2's back-projection as polynomial identities.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_delta.c -- the z-slice quartic Delta(z) of ENVELOPE.md Fact 2 over Q
  * and its real roots in [-1, 1], isolated with certified arb enclosures: they
  * fix the number of components of the characteristic curve and where its

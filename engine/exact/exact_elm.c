@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_elm.c -- the Enhanced Levin's method of the paper's section 4 in
  * Q(sqrt r): the point P of Lemma 1 on a rational slice z0, the planar cubic
  * of the stereographic projection from P (eq. 14: the resultant of the two

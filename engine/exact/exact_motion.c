@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_motion.c -- rational rigid motions: rotation by alpha about an axis
  * through the origin (rational direction w with rational length) at unit
  * angular speed, and t(alpha) = alpha tdot, evaluated exactly at rational

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_private.h -- the exact path's insides, shared by its files only.
  *
  *   exact_qr.c      Q(sqrt r) numbers.

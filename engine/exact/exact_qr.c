@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_qr.c -- arithmetic in Q(sqrt r) and polynomials over it.
  *
  * An element is a pair (a, b) of rationals meaning a + b sqrt(r); r is the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_qrpoly.c -- polynomials over Q(sqrt r): A(s) + B(s) sqrt(r).
  *
  * A pair of FLINT rational polynomials; products fold sqrt(r)^2 = r. The

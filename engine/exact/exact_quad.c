@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_quad.c -- rational quadratic polynomials in n = (x, y, z): QSS
  * support functions (eq. 12 and general ones), their surface points
  * x_h(n) (eq. 1-2) as polynomials, convexity, and the characteristic

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exact_report.c -- the exact envelope's lifecycle (init/clear), the
  * top-level compute that names the case, and the text report that prints
  * every intermediate result for checking against the paper.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep.c -- the volume swept by a cutter over one move: choice of the
  * evaluator, bounds, dispatch, and the move's characteristic curves.
  *

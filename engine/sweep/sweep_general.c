@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_general.c -- the swept volume of a cutter with a non-convex QSS
  * piece (Example 2's spool: dished ends, a concave waist, sharp rims) under
  * any motion. Its sdf is neither convex nor semiconvex (the evolute of the

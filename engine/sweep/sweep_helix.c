@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_helix.c -- swept volumes of arcs and helices.
  *
  * arc, ring: a planar arc about a vertical axis (the cutter's own axis

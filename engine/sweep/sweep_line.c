@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_line.c -- swept volumes of straight moves, in closed form.
  *
  * The cutter is C + B(R) with C the cylinder {r <= a, z in [R, L - R]}, so

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_profile.c -- swept volumes of profile cutters (every cutter but the
  * flat/ball/bull closed forms): a union of convex pieces, each swept on its
  * own, the sdf the minimum over the pieces (exact outside; inside the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_rigid.c -- the volume swept by a cutter under a rigid motion with
  * rotation (RIGID motions of rotary machines, toolpath.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_rigid_ball.c -- the volume swept by a ball end mill under a rigid
  * motion with rotation, built from the characteristic circles at the time
  * steps: per point a local refinement certified by convexity

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_rigid_setup.c -- per-move constants of a rigid sweep (sweep_rigid.c):
  * bounds of the speeds |v|, |omega| and of their derivatives, the number of
  * time steps, and the swept volume's bounding box.

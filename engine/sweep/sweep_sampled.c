@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sweep_sampled.c -- the swept volume of any helix the closed forms do not
  * cover: rise != 0, or an axis not parallel to the cutter's (G18/G19 arcs).
  *

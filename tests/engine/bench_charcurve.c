@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* bench_charcurve.c -- time per characteristic curve, fast and exact, for QSS
  * and the standard cutters, beside a baseline in the same run: the naive
  * method of sampling f on a latitude-longitude grid of the Gauss sphere

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* bench_sweep.c -- time swarf_sweep_sdf per move kind over a grid of points
  * around a typical move (3.175 mm ball unless named, 1 mm of tip path), next
  * to the brute-force baseline: the minimum over 1001 cutter instances (1 um

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* exactkit.h -- helpers for the exact-path tests (header only): rationals
  * from small integers, random rational QSS of revolution and motions with
  * a fixed seed, rational points of the unit sphere.

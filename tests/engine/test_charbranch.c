@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_charbranch.c -- branch points of flat, ball and bull-nose cutters
  * (charcutter.c) on motions built to have pairs of branch points closer than
  * 1e-3 ... 1e-12, checked against an independent exact reference.

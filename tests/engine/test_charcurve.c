@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_charcurve.c -- characteristic curves against independent truths:
  * the paper's Example 2 (ENVELOPE.md Fact 3: branch points, one component,
  * the slice z0 = 1/2 and its point P of eq. 20, the surface points of eq. 4);

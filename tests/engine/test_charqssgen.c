@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_charqssgen.c -- the fast characteristic curve of a GENERAL QSS
  * (swarf_char_curve_compute_qss_general) against independent references:
  *   1. random general QSS and motions: every point satisfies f = g = 0 and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_cutter.c -- cutters against independent truths: validation; x_h(n) on
  * the surface with outward normal n (numerical gradient of the sdf); h(n)
  * equal to the maximum of x . n over sampled surface points; the ball's

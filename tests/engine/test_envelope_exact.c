@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_envelope_exact.c -- the exact path against the paper's printed
  * numbers (Examples 1 and 2) and exact properties on random rational
  * inputs (fixed seed): slice points satisfy f = g = 0 exactly, the ELM

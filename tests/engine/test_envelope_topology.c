@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_envelope_topology.c -- the fast path (double precision, engine.h)
  * certified by the exact path (envelope_exact.h) across thousands of random
  * rational QSS of revolution and motions (fixed seed): same number of

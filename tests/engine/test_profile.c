@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_profile.c -- cutters of revolution from a profile (engine.h: families,
  * bodies, QSS pieces) against an independent truth: the outline of each
  * family written here from its drawing (lines, and arcs sampled every 2e-4

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_sweep.c -- swept volumes of single moves.
  *
  * 1. Closed forms against analytic solids written here: the ball slot is a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_sweep_ball.c -- the ball end mill's rotary path (sweep_rigid_ball.c:
  * characteristic circles at the time steps, a refinement certified by
  * convexity) against two independent values at random points:

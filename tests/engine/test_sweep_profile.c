@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_sweep_profile.c -- swept volumes of profile cutters (every named
  * family, unions of pieces, QSS) on every kind of move, against an
  * independent truth: the minimum over many cutter instances of the cutter's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_sweep_qss.c -- the rigid sweep (sweep_rigid.c) of a body that is not
  * a cutter: the paper's convex QSS of revolution h(N) = N_x^2 + N_y^2 +
  * 3/2 N_z^2 on the paper's Example 2 motion (ENVELOPE.md, Fact 3: U(alpha) =

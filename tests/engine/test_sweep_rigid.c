@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_sweep_rigid.c -- swept volumes under rotation (sweep_rigid.c) against
  * an independent truth: the exact cutter sdf minimised over poses 100 times
  * finer than the production time steps (plus golden-section polish), at

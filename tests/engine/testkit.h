@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* testkit.h -- helpers shared by the engine tests and the benchmark (header
  * only): a seeded random generator, small vector helpers, moves built through
  * the toolpath module, and the brute-force swept-volume sdf (a dense minimum

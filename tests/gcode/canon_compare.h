@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* canon_compare.h -- helpers of the gcode tests (header only): collect the
  * canonical calls swarf prints (its canon listener) and compare the motion
  * calls (STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, DWELL, STRAIGHT_PROBE,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* collect.h -- helpers of the gcode tests (header only): run a program held
  * in a string through a parser, keep its moves and its error, and evaluate
  * an arc move independently of the front end (Rodrigues' rotation).

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # crlf_canon.sh SWARF -- a CRLF program's `swarf parse --canon`: the CR ends
 # the line, so no call carries it (a `;` comment's text was printed with a raw
 # CR before its closing quote); the calls are those of the same program with

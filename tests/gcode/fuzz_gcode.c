@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fuzz_gcode.c -- the fuzz entry of the G-code front end.
  *
  * LLVMFuzzerTestOneInput runs the input through a parser twice: whole, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fuzz_smoke.c -- a plain driver for the fuzz entry (no libFuzzer needed).
  *
  * Usage: fuzz_smoke [-n mutations] [-t seconds] [-k] [-o optional-dir]... <dir-or-file>...

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_arcs.c -- G2/G3 in the three planes, centre and radius formats, both
  * signs of R, helices, P turns, G90.1, G91, G20, full circles.
  *

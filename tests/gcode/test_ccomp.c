@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_ccomp.c -- cutter radius compensation against LinuxCNC, on programs
  * of our own (tests/gcode/ccomp/: <case>.ngc, <case>.expected made from it
  * by rs274 with make_expected.sh and tools.tbl; random-sessions.ngc comes from

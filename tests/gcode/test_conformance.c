@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_conformance.c -- swarf's moves against LinuxCNC's own canonical output.
  *
  * For each real CAM file this version supports, the motion calls that

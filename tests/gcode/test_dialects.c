@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_dialects.c -- Fanuc, Haas and grbl programs against their manuals.
  *
  * Each program is written in its controller's style (an Autodesk-style

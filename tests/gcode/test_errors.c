@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_errors.c -- bad input: each error with its identity (errors.def: a
  * SWARF_GCODE_E_* code, matched instead of message text) and status at its
  * exact line and column (the offending word or character), the word filled

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_lcnc.c -- the corners of the LinuxCNC dialect against rs274, on
  * programs of our own (tests/gcode/lcnc/: <case>.ngc, and <case>.expected
  * made from it by rs274 with make_expected.sh, tools.tbl, lcnc.ini):

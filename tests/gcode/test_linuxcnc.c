@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_linuxcnc.c -- every upstream LinuxCNC interpreter case, and every
  * program LinuxCNC rejects, against swarf.
  *

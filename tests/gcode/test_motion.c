@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_motion.c -- straight moves and the dialect around them: modal motion,
  * G90/G91, G20, comments, spacing, CRLF, %, N, block delete, program end,
  * tools, spindle, dwell, and streaming in arbitrary pieces. Expected values

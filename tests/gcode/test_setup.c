@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_setup.c -- the machine's setup (gcode.h): start position, parameters
  * and LinuxCNC's parameter file, the machine's length unit, the first units
  * word. Expected machine positions are computed by hand from LinuxCNC's

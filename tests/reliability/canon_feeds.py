@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """canon_feeds.py SWARF PROGRAM EXPECTED TOOLS: G93 F0 against LinuxCNC's rs274.
 
 EXPECTED is `rs274 -t TOOLS -g PROGRAM` (made once by hand with Debian's

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # expect.sh STATUS PATTERN CMD...: a reproducer of ../shared/reliability as a
 # test. Runs CMD and passes when it exits with STATUS and its output (stdout
 # and stderr) matches the extended regular expression PATTERN. The hang

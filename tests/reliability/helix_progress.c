@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* helix_progress.c -- a helix of 10,000 turns about a horizontal axis (G18 or
  * G19, inputs/arc_p10000_g18.ngc, _g19.ngc) through the simulation handle:
  * it finishes (ctest's TIMEOUT is the hang limit, not a benchmark), progress

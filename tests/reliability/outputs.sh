@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # outputs.sh SWARF P10000: the output rules of ../shared/reliability
 # (README "Outputs"), run in a scratch folder (as root in CI: a rename onto a
 # device, FIFO or symlink would succeed there). P10000 is the 10,000-turn

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # round2.sh SWARF [CASE...] -- the hardening reproducers (round
 # 2), one function a case, each made of its own inputs in a scratch folder.
 # Prints one line a case, FIXED or PRESENT, and a count. With CASEs it runs

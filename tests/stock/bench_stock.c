@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* bench_stock.c -- removal throughput of the stock (not a ctest).
  *
  * A 3.175 mm ball (radius 1.5875 mm) sweeps a 2D zig-zag of N = 5000 moves of

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """check_vdb.py -- cross-check a .vdb written by swarf with pyopenvdb.
 
 Usage: /usr/bin/python3 check_vdb.py FILE.vdb

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 // fuzz_stock.cc -- the fuzz entry of the stock's untrusted readers: STL meshes
 // (as stocks and designs), .vdb files read as stocks (placed, resampled), and
 // placement specifications.

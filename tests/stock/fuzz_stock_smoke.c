@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fuzz_stock_smoke.c -- a plain driver for the stock fuzz entry (fuzz_stock.cc),
  * no libFuzzer needed: it builds seeds (binary and ASCII STL boxes, damaged
  * ones, a .vdb swarf wrote, under each of the placement/resampling choices,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* shapes.h -- analytic shapes for the stock tests and benchmark (header only).
  *
  * Exact signed distances (mm, < 0 inside) of an axis-aligned box, a ball and a

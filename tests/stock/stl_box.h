@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stl_box.h -- boxes as STL files for the stock tests (header only): the 12
  * triangles of an axis-aligned box, outward, written binary or ASCII, and
  * damaged on purpose (a triangle left out, one doubled, one flipped). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_box.c -- a box stock against the analytic box signed distance.
  *
  * Truth: the exact box SDF (outside: distance to the box; inside: minus the

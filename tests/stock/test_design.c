@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_design.c -- comparison with a design, gouges per move, measured removal.
  *
  * Stock: the box [0.05,9.95]^2 x [-4.95,0.05] at 0.1 mm (faces between voxel

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_fuzz_vdb.c -- reading damaged .vdb files never crashes.
  *
  * A valid file is written, then 200 damaged copies (deterministic seed):

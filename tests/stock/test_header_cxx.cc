@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 // test_header_cxx.cc -- stock.h compiles as C++ and links from C++ (extern "C").
 #include "stock.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_io.c -- .vdb write and read back, refused files, atomic writes.
  *
  * Usage: test_stock_io OUT.vdb -- also leaves OUT.vdb and OUT.vdb.txt (grid

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_isolation.c -- reading a .vdb with the reader program in a child
  * process, finding that program, and turning the child off.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_overlap.c -- swarf_stock_overlaps: does a volume reach into the
  * material deeper than a given depth? (what the simulator asks of a rapid).
  *

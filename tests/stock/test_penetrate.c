@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_penetrate.c -- swarf_stock_penetrates: does a volume enter the
  * material by more than a given thickness? (what the simulator asks of a
  * tool's shank and holder).

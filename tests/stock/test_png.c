@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_png.c -- the rendered picture is a valid PNG showing the stock.
  *
  * The file is decoded here independently: signature, chunk CRCs (zlib crc32),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_remove.c -- removal of volumes against analytic truth.
  *
  * Truth: after removing volumes S_1..S_n from the box B, every voxel holds

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_slab_build.c -- a box or cylinder stock built in one part of its
  * index space (swarf_stock_new_box_slab, swarf_stock_new_cylinder_slab)
  * against the whole build.

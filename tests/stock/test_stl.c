@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_stl.c -- binary STL of the zero isosurface: closed, outward, right volume.
  *
  * Truth: a closed oriented surface has every undirected edge in exactly two

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_stockio.c -- stocks from files and placed for a setup (stock.h).
  *
  *  - an STL box (binary and ASCII) = the box stock of the same corners, voxel by

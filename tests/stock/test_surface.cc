@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_surface.cc -- a mesh's exact surface distance (mesh_sdf.h's
  * mesh_surface_distance, the designs' depths beyond their band) against
  * brute force over all its triangles.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_machine.c -- machine kinematics (machine.c, rigid.c) against values
  * computed here independently: the table rotation built from elementary
  * rotation matrices, the head machines' tip from the spherical coordinates

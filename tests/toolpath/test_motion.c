@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_motion.c -- the xyz machine's rigid motions against hand-computed values:
  * line and helix positions, velocities by finite differences, bounds against
  * dense sampling; the per-thread pose tables against the motions' poses. */

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # alarms.sh SWARF -- rapid moves that cut into material raise located alarms.
 # The program below cuts a slot with G1, then: a G0 that runs on past the end
 # of the slot into uncut stock (line 5: alarm), a G0 retract up through the

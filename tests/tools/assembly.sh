@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # assembly.sh SWARF SOURCE_DIR -- tool assemblies on the command line: the
 # warnings of shank, holder and fixture collisions at their lines, the
 # summary's counts, --fail-on collision (exit 4, outputs still written), tool

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MPL-2.0
 # cli_envelope.sh -- `swarf envelope` against the paper's Example 2 (eq. 19, 20,
 # 22 and ENVELOPE.md's Delta and branch points), its CSV against the curve's
 # equations (f = 0, |n| = 1, Z = 2z^3 - 3z on this surface), and its errors.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # cli_errors.sh SWARF -- bad input to `swarf simulate`: each case must exit 2,
 # say where the problem is (FILE:LINE:COL or the flag), and leave no output.
 set -u

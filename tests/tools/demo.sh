@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # demo.sh SWARF FIXTURES -- the bundled demo end to end: it runs, writes the
 # three files, and the .vdb reloads (in swarf and, when present, in Debian's
 # pyopenvdb, an independent reader) with the active voxel count and voxel size

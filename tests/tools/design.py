@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """design.py SWARF -- `swarf simulate --design FILE.stl`: gouges at known
 lines with known depths, none on a program that stays on the design, and the
 summary's gouge and excess against analytic values. Designs are STL meshes

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """design_cache.py SWARF -- an STL design's band kept between runs
 (--design-cache, swarf_sim_read_design_cached):
 

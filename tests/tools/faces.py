@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """faces.py SWARF -- cuts that end exactly on a stock face are exact: a box's
 faces on the lattice hold 0 at their voxel centres, and a cut through them
 used to leave a sheet of no thickness counted as half a voxel (4948.8 instead

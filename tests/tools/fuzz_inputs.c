@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fuzz_inputs.c -- the fuzz entry of the small readers of user input.
  *
  * The first byte picks the reader, the rest is its input:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fuzz_modbus.c -- the fuzz entry for the Modbus request handler
  * (tools/modbus_request.c, and libmodbus's modbus_reply behind it).
  *

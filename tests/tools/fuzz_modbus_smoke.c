@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* fuzz_modbus_smoke.c -- a plain driver for the Modbus fuzz entry
  * (fuzz_modbus.c), no libFuzzer needed: it runs the entry on well-formed
  * requests of every function code (TCP and RTU, good and bad addresses,

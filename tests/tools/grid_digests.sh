@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MPL-2.0
 # grid_digests.sh SWARF SRC REAL -- the grids of a few whole programs are the
 # ones recorded in tests/tools/grid_digests.txt (SHA-256 of the .vdb after its
 # 57-byte header, which holds a random UUID), with one thread and with two.

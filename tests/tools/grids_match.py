@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """grids_match.py A.vdb B.vdb LABEL [--bits] -- two runs of one program give
 the same stock: the same number of active voxels (more than 10,000, so the
 runs did cut) and, over the union of their active boxes, values within

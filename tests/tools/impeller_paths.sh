@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # impeller_paths.sh -- one removal path against another on the first 600 lines
 # of the LinuxCNC impeller (5-axis rotary sweeps, xyzac-trt, certified to
 # 1e-6 mm): the program is milled once as swarf mills it and once with ENV=1,

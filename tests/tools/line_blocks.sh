@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # line_blocks.sh -- the removal's fast paths for 3-axis moves (stock/remove.cc:
 # per-octant and per-cube summaries, a cube's cuts deepest first, the
 # supporting planes of straight moves' convex sweeps, swarf_sweep_support)

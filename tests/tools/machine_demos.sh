@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # machine_demos.sh -- the demo programs of the xyzab-tdr, xyzbc-hh and xyzbc-ht
 # machines end to end at a coarse voxel (fixtures/SOURCES.md says where each
 # comes from), with the removed volume checked against what the program must

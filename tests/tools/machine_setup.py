@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """machine_setup.py SWARF -- the machine's setup in `swarf simulate`:
 
 - start position: a program whose origin is inside the stock (CAMotics

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MPL-2.0
 # man_options.sh SWARF MANPAGE SRC -- the command's options, its --help and its
 # man page agree:
 #   - every option `swarf help COMMAND` names is in swarf.1 (made from them);

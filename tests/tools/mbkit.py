@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """mbkit.py -- helpers shared by the Modbus tests of `swarf simulate`.
 
 Starts swarf with a --modbus option on a port it picks itself (port 0; the

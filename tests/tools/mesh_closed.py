@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """mesh_closed.py SWARF REAL: --mesh STL files are closed at every voxel size.
 
 Simulates real programs of ../shared/conformance/real (and a box with slots

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """modbus_churn.py SWARF FIXTURES -- the TCP status server's client table under
 connection churn (tools/doc/modbus.md: who is closed when the table
 is full). 64 polite pollers (32 at 2 Hz, 32 at 1 Hz, raw sockets, one

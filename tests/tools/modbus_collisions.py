@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """modbus_collisions.py SWARF -- collisions reach Modbus: after a run with a
 holder that enters the material twice and a cutter that enters a fixture
 twice, pymodbus reads register 10 (all alarms: 4 collisions + 1 rapid that

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """modbus_commands.py SWARF FIXTURES -- with --modbus-commands, a client
 pauses, resumes and aborts a running simulation through holding register 64:
 while paused no move is done (the heartbeat still beats), after resume moves

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # modbus_options.sh SWARF -- bad --modbus options: each must exit 2 before
 # any work, name the flag and say what to give; --help documents them.
 set -u

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """modbus_push.py SWARF FIXTURES -- push mode into a pymodbus server playing
 the controller: swarf writes the status block into holding registers
 100..163 of unit 5 every 0.2 s while the demo runs (state 1 seen, progress

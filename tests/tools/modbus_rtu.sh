@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # modbus_rtu.sh SWARF FIXTURES -- the status map over Modbus RTU, on a
 # pseudo-terminal pair made by socat (one end is swarf's serial line, the
 # other mbpoll's): mbpoll -m rtu follows the running demo (state 1, progress

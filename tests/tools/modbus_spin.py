@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """modbus_spin.py SWARF -- the Modbus servers never spin.
 
 - TCP out of descriptors: swarf runs under a limit of 48 open files, and 80

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """modbus_stress.py SWARF FIXTURES -- the TCP status server under abuse while
 the demo runs: 32 clients poll at once, one sends garbage (and reconnects
 each time it is dropped), one connects and never sends nor reads, one floods

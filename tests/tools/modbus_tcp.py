@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """modbus_tcp.py SWARF FIXTURES -- real clients follow a running simulation
 over Modbus TCP: pymodbus and mbpoll poll the documented map while the demo
 runs; progress and moves only grow; the final state shows 1000 per-mille, the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # offsets.sh SWARF -- the simulator cuts where LinuxCNC's motion controller
 # would put the tool tip: the same slot written plainly, with G43 H1 (the
 # simulator's tool table has length offset 0 for every cutter: it follows the

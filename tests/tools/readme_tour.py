@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """readme_tour.py SRC SWARF PREFIX WORK -- the README's tour runs as written.
 
 Every indented block of README.md that starts with `build/tools/swarf` is run

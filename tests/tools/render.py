@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """render.py SWARF -- `swarf render --view NAME` and `--design`: the pictures
 read back with a PNG decoder written here (Python's zlib; no imaging library)
 and checked against the part's known geometry.

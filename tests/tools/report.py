@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """report.py SWARF -- `swarf simulate --report FILE.json`, read back with
 Python's json module (an independent reader):
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # rotary_demos.sh -- the LinuxCNC 5-axis demos and the UGS 4th-axis wrap end to
 # end at a coarse voxel, plus the rotary options' error messages.
 #   rotary_demos.sh SWARF REAL_DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # shape_fill.sh -- a new box or cylinder stock's band filled directly
 # (stock/shape.cc) against the same band made by removing the shape's outside
 # through the removal (SWARF_SHAPE_REMOVE=1, how it was built before): the

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """stock_check.py -- independent readers and makers for tests/tools/stock_io.sh.
 
   box-stl PATH XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX [good|open|nonmanifold|flipped|empty] [ascii]

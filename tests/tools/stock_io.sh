@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # stock_io.sh SWARF PYTHON SOURCE_DIR -- stocks from files and the next setup,
 # end to end on the command line, read back by an independent
 # reader (stock_check.py: pyopenvdb, numpy):

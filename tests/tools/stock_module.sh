@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # stock_module.sh SWARF SOURCE_DIR -- the `swarf` command loads the stock module (OpenVDB) on
 # first use only (stock/stock_module.h):
 #   - the command does not link OpenVDB (readelf: no libopenvdb, libtbb among its NEEDED);

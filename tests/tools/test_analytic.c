@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_analytic.c -- end-to-end simulations against analytic swept volumes.
  *
  * A straight slot, a full circular groove and a helix of two and one of

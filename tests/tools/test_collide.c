@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_collide.c -- collisions of shanks, holders and fixtures, end to end
  * through the driver (G-code text -> motions -> sweeps -> stock), with the
  * alarm callback.

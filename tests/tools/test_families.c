@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_families.c -- every named cutter family end to end (G-code text ->
  * parser -> motions -> sweeps -> stock), against the exact signed distance
  * of the box minus the swept volume computed here, independently of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_machines.c -- the 5-axis machines xyzab-tdr, xyzbc-hh and xyzbc-ht end
  * to end (G-code text -> parser -> machine kinematics -> rigid sweeps ->
  * OpenVDB stock) against an analytic shape: in joint mode, a ball held still

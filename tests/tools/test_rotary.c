@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_rotary.c -- rotary programs end to end (G-code text -> parser ->
  * machine kinematics -> rigid sweeps -> OpenVDB stock) against a truth
  * stock built here: the same initial stock with the volume of the exact

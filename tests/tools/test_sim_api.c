@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_sim_api.c -- the simulation handle's contract (swarf_sim.h).
  *
  * Streaming: a program fed in random splits gives the grid of one feed, bit

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_sim_setup.c -- the driver's machine setup (swarf_sim_config: start,
  * offsets file, g54, units) and the workpiece frame (G54's, rotation
  * included).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* test_tooltable.c -- LinuxCNC tool tables (--tool-table) and tool
  * libraries (--tool-library) read into the simulation's tool table.
  *

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # vdb_write.sh -- the .vdb writer's leaves compressed on the stock's threads
 # (stock/write_leaves.cc) against OpenVDB's own serial loop
 # (SWARF_VDB_SERIAL_WRITE=1): the files must be the same byte for byte but

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """verifykit.py -- helpers of the verification tests (machine setup, design
 comparison, report): run `swarf simulate`, read its JSON report with Python's
 own json module, read its grid with pyopenvdb, write designs as STL.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stock_diff.c -- `stock_diff REFERENCE.vdb OTHER.vdb`: how far a stock grid
  * is from a reference one of the same voxel (tools/bench/bench_rotary compares
  * stamped runs with the swept one).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* stream_copy.c -- the machine's memory bandwidth, as STREAM's Copy kernel
  * measures it: a[i] = b[i] over arrays far larger than the caches, on every
  * core, best of several rounds; bytes counted as STREAM does (read + write).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli.h -- the subcommands of the `swarf` executable.
  *
  * Each takes argv with argv[0] = the command's name and returns the process

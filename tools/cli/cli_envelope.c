@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli_envelope.c -- `swarf envelope`: the characteristic curve of a moving
  * QSS of revolution (paper eq. 12), or of any cutter (--tool), at one instant, by the fast path
  * (engine.h) or, with --exact, by the exact path (envelope_exact.h), which

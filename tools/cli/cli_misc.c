@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli_misc.c -- `swarf parse`, `swarf info`, `swarf render` and `swarf help`.
  *
  * Small commands around the simulator: check and list a program's moves,

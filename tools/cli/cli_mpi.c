@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli_mpi.c -- OpenMPI behind swarf_sim_comm (cli_mpi.h). Compiled with
  * SWARF_MPI (CMake's FindMPI found OpenMPI); without it, one process.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli_mpi.h -- `swarf simulate` on several processes (mpirun, srun): OpenMPI
  * behind the driver's swarf_sim_comm (swarf_sim.h).
  *

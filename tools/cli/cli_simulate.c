@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli_simulate.c -- `swarf simulate`: options, the run, outputs and summary.
  *
  * Every option is checked before any work starts (so a typo costs nothing),

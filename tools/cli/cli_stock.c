@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli_stock.c -- stocks from files, their placement, outputs by format and
  * `swarf compare` (cli_stock.h). */
 #include "cli_stock.h"

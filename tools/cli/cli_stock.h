@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* cli_stock.h -- the stock side of the command line: stocks from files
  * (`--stock stl:FILE`, `--stock vdb:FILE`), their placement for a setup
  * (`--stock-transform`), outputs by format (--mesh .stl/.obj/.ply, --image

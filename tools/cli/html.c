@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* html.c -- `swarf simulate --html` (html.h): the moves collected, the mesh,
  * the data and the page written into memory. */
 #define _GNU_SOURCE

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* html.h -- `swarf simulate --html FILE.html`: the run as one page that
  * opens from disk with no network (three.js inlined at build time): the
  * remaining stock as a mesh (coarsened to stay under ~500k triangles),

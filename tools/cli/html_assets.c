@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* html_assets.c -- the files the --html page inlines, embedded at build
  * time (NUL-terminated): the page's template and viewer (tools/cli/html/)
  * and Debian's three.js with its OrbitControls (libjs-three), paths given by

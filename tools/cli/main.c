@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* main.c -- the `swarf` command: subcommands, options, progress, summary.
  *
  * Exit status: 0 success, 1 internal failure (I/O, memory), 2 bad input

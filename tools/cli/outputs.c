@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* outputs.c -- the command line's checks of output paths, before any work.
  *
  * An output path must name a file swarf may write: not empty, not ending

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* progress.c -- a one-line progress bar on stderr for long runs.
  *
  * Drawn only when stderr is a terminal (never into pipes or logs), at most

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* report.c -- the JSON report of a run (see report.h).
  *
  * Entries are kept per (line, tool) in an array with an open-addressing

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* report.h -- `swarf simulate --report FILE.json`: what a run did, as JSON.
  *
  * Role: a client of the driver (swarf_sim.h). It collects what the driver's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # swarf_man.cmake -- writes the man page swarf.1 from the command's own help:
 # `swarf --help` and `swarf help COMMAND` for every command it lists, so the
 # page says what the program does, word for word.

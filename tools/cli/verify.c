@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* verify.c -- `swarf simulate`'s setup, design and report options (verify.h).
  *
  * Options are checked as they are read (the flag named in every message);

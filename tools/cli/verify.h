@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* verify.h -- `swarf simulate`'s verification options: the machine's setup
  * (--start, --g54, --offsets, --units), the design (--design, --tolerance,
  * --fail-on gouge) and the JSON report (--report).

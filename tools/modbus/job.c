@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* job.c -- the status snapshot shared by the simulation and the status
  * services (see job.h). The handle owns its lock and its copy of the
  * snapshot; callers own the snapshots they pass in or read out.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* job.h -- the job's status snapshot, published by the simulation and read
  * by the status services (Modbus server, RTU server, push client).
  *

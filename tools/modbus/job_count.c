@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* job_count.c -- the pre-count of a program's motion moves, so that a
  * controller knows the total (registers 6-7) and the progress in per-mille
  * while the program streams through the simulation. It parses the file once

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* job_observe.c -- the simulation side of the status service: the
  * observer called from the simulation's progress callback after every move. It fills its own
  * snapshot and publishes it without waiting (job.h), refreshes the removed volume now and then (a

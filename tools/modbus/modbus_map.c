@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_map.c -- the Modbus register map: what each register of the status
  * block holds, computed from a status snapshot. tools/doc/modbus.md's table is the
  * contract; this file is its only implementation (servers and the push

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_private.h -- the pieces of the Modbus status service, shared by its
  * files (not used outside tools/modbus_*.c):
  *

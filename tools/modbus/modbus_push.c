@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_push.c -- push mode: swarf as a Modbus TCP client that writes the
  * status block (registers 0..63 of the map) into a controller's holding
  * registers at address A, every `interval` seconds, with FC 16.

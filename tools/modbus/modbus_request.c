@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_request.c -- one Modbus request in, one reply or exception out.
  *
  * Shared by the TCP and RTU servers. Reads (FC 01-04, 17) are answered by

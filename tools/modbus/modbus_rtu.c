@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_rtu.c -- the Modbus RTU status server on a serial line (RS-485).
  *
  * One thread owns the line: libmodbus frames the requests (3.5-character

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_service.c -- the --modbus options of `swarf simulate` and the life
  * of the status service around one run: open the endpoints, announce them,
  * install the observer, then publish the final state, linger and stop.

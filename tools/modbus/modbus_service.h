@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_service.h -- the Modbus status service of `swarf simulate`, as the
  * command line sees it: its options, and start/finish around the run.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_spec.c -- endpoint strings of the --modbus options:
  *
  *   tcp:[HOST:]PORT[,unit=N]    (server; HOST defaults to 127.0.0.1; push adds address=A)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* modbus_tcp.c -- the Modbus TCP status server: one thread, one select()
  * loop, at most SWARF_MB_MAX_CLIENTS clients.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* swarf_sim.h -- libswarf's simulation: a streaming handle from program text
  * (or rigid motions) to the remaining stock.
  *

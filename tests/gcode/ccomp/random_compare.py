@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MPL-2.0
 """random_compare.py -- random cutter compensation programs through rs274 and swarf.
 
 Writes random programs (G41.1/G42.1, G17 or G18, mm or inch, G0/G1 lines, R and

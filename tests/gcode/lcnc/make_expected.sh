@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # Regenerates each <case>.expected from LinuxCNC's stand-alone interpreter
 # (Debian's linuxcnc-uspace `rs274`), with tools.tbl as the tool table and
 # lcnc.ini (the subroutine path) as its INI; cases named *-bdel* run with

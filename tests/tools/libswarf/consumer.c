@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* consumer.c -- a program of someone else's, built against an installed
  * libswarf (with pkg-config or with CMake's find_package) to prove that the
  * installation is usable: headers under <swarf/>, the library, its link

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 // consumer_cxx.cc -- every public header of an installed libswarf compiles as
 // C++ (-std=c++17 -pedantic -Wall -Wextra -Werror) and links from C++ (the
 // declarations are extern "C").

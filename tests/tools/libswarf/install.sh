@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # install.sh BUILD_DIR SOURCE_DIR PREFIX CC CXX -- `cmake --install` into a
 # fresh PREFIX and use it as someone else would:
 #   - the layout (headers under include/swarf/, libswarf.so with its SONAME

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """test_python.py -- the Python module `swarf`, as installed, under /usr/bin/python3.
 
 Usage: /usr/bin/python3 test_python.py PREFIX WORKDIR

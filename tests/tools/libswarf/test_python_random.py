@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """test_python_random.py -- the Python module under random calls and arguments.
 
 Usage: /usr/bin/python3 test_python_random.py PREFIX WORKDIR [TRIALS [SEED]]

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """mpi_runs.py SWARF FIXTURES MPIRUN -- `swarf simulate` under mpirun.
 
 Each case runs one process (no launcher) and then `mpirun --oversubscribe -n

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """same_grid.py A.vdb B.vdb -- exit 0 when the two grids named "stock" are the
 same voxel for voxel: same background and transform, same active topology,
 same value at every active voxel and every inactive one a leaf stores

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MPL-2.0
 # slurm_real.sh SWARF FIXTURES -- `swarf simulate` under a real one-node Slurm
 # The test writes its own slurm.conf in a temporary folder, starts
 # munged, slurmctld and slurmd itself (ports chosen free on 127.0.0.1), then

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* assembly.c -- tool assemblies: the tool table's slots, the S and N fields
  * of --tool, --holder and --fixture specs, and the non-cutting bodies.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* assembly.h -- tool assemblies inside the driver (private to tools/sim).
  *
  * Role: the tool table of a config (slots by T number), the assembly fields

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* collide.c -- collisions: the tool's non-cutting parts (shank, holder)
  * entering the material, and any part (cutter included) entering a fixture.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* batch.c -- the simulation's batch of queued sweeps (sim_private.h).
  *
  * Each motion that can touch the material gets its swept volume (or, for

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* limits.c -- what a run may take, checked before any work.
  *
  * The arguments (voxel, band, batch), the size of the stock's grid against

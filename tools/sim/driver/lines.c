@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* lines.c -- per-line results of the simulation (swarf_line_result).
  *
  * Moves are summed into the open line; when a move of another line comes,

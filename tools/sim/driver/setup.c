@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* setup.c -- the machine a simulation runs on (sim_private.h): its length
  * unit, work offsets and start position, given to the parser before the
  * program runs; the workpiece frame the moves are brought into; the check

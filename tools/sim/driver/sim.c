@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sim.c -- the simulation handle (swarf_sim.h).
  *
  * The parser calls on_move for every canonical move; motions are queued with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* sim_private.h -- the simulation handle's insides, shared by sim.c (the
  * calls), batch.c (queued sweeps, removal passes, rapid alarms) and lines.c
  * (per-line results). Not installed.

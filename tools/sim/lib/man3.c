@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* man3.c -- writes libswarf's section-3 man pages from its public headers.
  *
  *   swarf-man3 OUTDIR VERSION HEADER...

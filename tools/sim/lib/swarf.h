@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* swarf.h -- libswarf, all of it: the one header an embedding program needs.
  *
  * Role: a CNC milling simulation engine as a library. A G-code program (or a

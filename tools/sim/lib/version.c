@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* version.c -- the library's version at run time (swarf_version.h). */
 #include "swarf_version.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* slab.c -- the simulation on several processes (swarf_sim_comm in
  * swarf_sim.h): slabs planned from the work a survey of the program
  * estimates, queries and measured effects combined across processes, the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* abi.c -- writes swarf/_abi.py, the Python module's view of libswarf's ABI.
  *
  * Role: the Python module (ctypes) must agree with the C headers on every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* design_cache.c -- a design's band kept between runs (swarf_sim.h,
  * swarf_sim_read_design_cached).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* library.c -- tool libraries (`--tool-library FILE`): full assemblies in
  * JSON, read with jansson.
  *

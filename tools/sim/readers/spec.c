@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* spec.c -- parsing of the command line's stock and tool specifications.
  *
  *   box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX        (mm)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* tooltable.c -- LinuxCNC tool tables (`--tool-table FILE`) into the
  * simulation's tool table.
  *

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """swarf: CNC milling simulation from Python, on libswarf.
 
 Plays a G-code program (RS274/NGC, LinuxCNC dialect) through the machine,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """swarf's exceptions and the conversion of a C swarf_error into one
 (the module's part of the one error convention: swarf_status + swarf_error)."""
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """libswarf through ctypes: the library, its structs and its functions.
 
 The layouts and signatures come from _abi.py, which a C program compiled

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MPL-2.0
 """html.py SWARF [REAL] -- `swarf simulate --html` opened in a real browser.
 
 With REAL (the corpus folder ../shared/conformance/real), the size check
@@ -21,7 +22,8 @@ disk with no network. Checked against what the test knows independently:
     the slot's floor names line 4 (the G1 that cut it; the slider goes
     there), one on the untouched top names none; the alarm's link moves the
     slider to line 7, where the tool (one piece: no shank or holder given)
-    stands at the rapid's end point X15 Y3 Z-1; the chart has ink;
+    stands at the rapid's end point X15 Y3 Z-1; the chart has ink; each
+    standard view's button turns the camera to look along its direction;
   - a screenshot shows the part (pixels off the background) and the excess
     colour (saturated red, from the design comparison).
 SKIPPED (77) without chromium.
@@ -122,6 +124,8 @@ try:
           floor.get("toolat") == "15.000,3.000,-1.000",
           "the alarm's link shows line 7, the tool at X15 Y3 Z-1: %s" % floor)
     check(int(floor.get("chart", "0")) > 200, "the chart has ink: %s pixels" % floor.get("chart"))
+    check(floor.get("views") == "iso,top,front,right,left",
+          "each view button looks along its direction: %s" % floor.get("views"))
     console = [l for l in open(log, errors="replace") if "CONSOLE" in l or "Uncaught" in l]
     check(not [l for l in console if "rror" in l or "Uncaught" in l],
           "no console error (%s)" % console[:3])

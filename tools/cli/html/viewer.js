@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* viewer.js -- the page `swarf simulate --html` writes: the remaining stock
  * (coloured by deviation when there is a design), the toolpath with a slider
  * through the program's lines and the tool at the chosen line, a click on
@@ -252,7 +253,8 @@
    * 0 for none, joined by ';'; data-pickshown: the slider's line after the
    * first), a click on the first alarm's link (data-alarm: the slider's line
    * after it), the tool drawn there (data-tool: its pieces, data-toolat:
-   * where, mm) and the chart's inked pixels (data-chart). */
+   * where, mm), the chart's inked pixels (data-chart) and the view buttons
+   * whose click looks along their direction (data-views). */
   function selfCheck() {
     const m = /^#check=([-0-9.,;]+)$/.exec(location.hash);
     if (!m) return;
@@ -276,5 +278,12 @@
     let inked = 0;
     for (let i = 0; i < px.length; i += 4) inked += px[i] + px[i + 1] + px[i + 2] < 700 ? 1 : 0;
     body.chart = String(inked);
+    const seen = [], dir = new THREE.Vector3();
+    for (const bt of $("views").querySelectorAll("button")) {
+      bt.click();
+      dir.copy(camera.position).sub(controls.target).normalize();
+      if (dir.distanceTo(new THREE.Vector3(...views[bt.textContent]).normalize()) < 1e-6) seen.push(bt.textContent);
+    }
+    body.views = seen.join(",");
   }
 })();

@@ -100,6 +100,18 @@ bool block_penetrates(const Pass &p, const swarf_stock_cut *clear, size_t nclear
   return false;
 }
 
+/// Whether hit(origin) holds for some 8^3 block of the cut's bounds, in the
+/// stock's scan order (blocks x, y, z), stopping at the first.
+template <class Hit> bool any_block(Pass &p, const swarf_stock_cut &cut, Hit hit) {
+  Coord a, b;
+  if (!cut_blocks(p, cut, a, b)) return false;
+  for (int x = a.x(); x <= b.x(); x += 8)
+    for (int y = a.y(); y <= b.y(); y += 8)
+      for (int z = a.z(); z <= b.z(); z += 8)
+        if (hit(Coord(x, y, z))) return true;
+  return false;
+}
+
 } // namespace removal
 
 using namespace removal;
@@ -109,28 +121,18 @@ bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swar
                     size_t nclear, double depth, Vec3d &where) {
   Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}, {}};
   init_pass(p);
-  Coord a, b;
-  if (!cut_blocks(p, cut, a, b)) return false;
   ConstAcc acc(s.grid->constTree());
-  for (int x = a.x(); x <= b.x(); x += 8)
-    for (int y = a.y(); y <= b.y(); y += 8)
-      for (int z = a.z(); z <= b.z(); z += 8)
-        if (block_penetrates(p, clear, nclear, acc, Coord(x, y, z), depth, where)) return true;
-  return false;
+  return any_block(p, cut, [&](const Coord &o) {
+    return block_penetrates(p, clear, nclear, acc, o, depth, where);
+  });
 }
 
 /// True if the cut overlaps the material deeper than depth (see stock.h).
 bool cut_overlaps(const swarf_stock &s, const swarf_stock_cut &cut, double depth, Vec3d &where) {
   Pass p{const_cast<swarf_stock &>(s), &cut, s.voxel, s.background, 0.0, {}, {}, {}};
   init_pass(p);
-  Coord a, b;
-  if (!cut_blocks(p, cut, a, b)) return false;
   ConstAcc acc(s.grid->constTree());
-  for (int x = a.x(); x <= b.x(); x += 8)
-    for (int y = a.y(); y <= b.y(); y += 8)
-      for (int z = a.z(); z <= b.z(); z += 8)
-        if (block_overlap(p, acc, Coord(x, y, z), depth, where)) return true;
-  return false;
+  return any_block(p, cut, [&](const Coord &o) { return block_overlap(p, acc, o, depth, where); });
 }
 
 /// Deepest gouge of the cut into the design where the stock has material (see stock.h).

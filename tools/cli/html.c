@@ -101,7 +101,7 @@ static swarf_status mesh_bytes(const swarf_html_page *pg, char **out, size_t *le
   char buf[4096];
   int fd;
   if (dir == NULL || dir[0] == '\0' || strlen(dir) > 4000) dir = "/tmp";
-  snprintf(buf, sizeof buf, "%s/swarf-html-%s.ply", dir, "XXXXXX"); /* mkstemps' template */
+  snprintf(buf, sizeof buf, "%s/swarf-html-XXXXXX.ply", dir); /* mkstemps fills the X's */
   if (10.0 * surface > MESH_TRIANGLES) {
     const double v = swarf_stock_voxel(s) * sqrt(10.0 * surface / MESH_TRIANGLES);
     if ((st = swarf_stock_resample(s, v, 3, &coarse, err)) != SWARF_OK) return st;

@@ -79,27 +79,12 @@ double swarf_sweep_sdf_range(const swarf_sweep *s, const double p[3], double lo,
 }
 
 int swarf_sweep_support(const swarf_sweep *s, const double p[3], double *d, double g[3]) {
-  const swarf_motion *m = s->motion;
-  double alpha = 0.0, q[3], gi[3], di;
   int method = swarf_sweep_cdata(s)->method;
-  if (!(method == SWARF_SWEEP_SLOT || method == SWARF_SWEEP_RAMP ||
-        method == SWARF_SWEEP_RAMP_BALL || method == SWARF_SWEEP_PLUNGE)) {
-    *d = swarf_sweep_sdf(s, p, NULL);
-    return 0;
-  }
-  *d = swarf_sweep_sdf(s, p, &alpha);
-  if (!(*d > 0.0) || !(alpha >= 0.0 && alpha <= 1.0)) return 0;
-  /* The instance at alpha (a translate of the cutter: a straight move) must be
-   * a nearest one: then its gradient at p is the volume's. */
-  for (int k = 0; k < 3; k++)
-    q[k] = p[k] - (m->p0[k] + alpha * (m->p1[k] - m->p0[k]));
-  di = swarf_cutter_sdf_grad(s->cutter, q, gi);
-  /* within rounding: the gradient of an instance only nearly nearest could
-   * tilt the plane (by up to sqrt(2 err / d) radians) */
-  if (!(fabs(di - *d) <= 1e-13 * (1.0 + *d)) || !(*d >= 1e-6)) return 0;
-  for (int k = 0; k < 3; k++)
-    g[k] = gi[k];
-  return 1;
+  if (method == SWARF_SWEEP_SLOT || method == SWARF_SWEEP_RAMP || method == SWARF_SWEEP_RAMP_BALL ||
+      method == SWARF_SWEEP_PLUNGE)
+    return swarf_sweep_line_support(s, p, d, g);
+  *d = swarf_sweep_sdf(s, p, NULL);
+  return 0;
 }
 
 swarf_status swarf_sweep_char_curve(const swarf_sweep *s, double alpha, double tol,

@@ -129,7 +129,9 @@ static double ball_q(const ramp_point *rp, double u) {
   return dx * dx + rp->eta * rp->eta + dz * dz;
 }
 
-double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+/* The ball ramp's sdf at p (frame in rp), its nearest tip offset in *ubest. */
+static double ramp_ball_eval(const swarf_sweep *s, const double p[3], ramp_point *rp_out,
+                             double *ubest_out) {
   ramp_point rp;
   double cand[3], best = INFINITY, ubest = 0.0, w;
   ramp_frame(s, p, &rp);
@@ -144,8 +146,16 @@ double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double
       ubest = u;
     }
   }
-  if (alpha != NULL) *alpha = ubest / rp.U;
+  *rp_out = rp;
+  *ubest_out = ubest;
   return sqrt(best) - s->cutter->corner_radius;
+}
+
+double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
+  ramp_point rp;
+  double u, d = ramp_ball_eval(s, p, &rp, &u);
+  if (alpha != NULL) *alpha = u / rp.U;
+  return d;
 }
 
 /* Flat or bull ramp: is some instance's core within reach, i.e. does an
@@ -276,14 +286,103 @@ static double ramp_newton(const ramp_point *rp, double *ubest) {
   return best;
 }
 
+/* The flat or bull ramp's sdf at p (frame in rp), its nearest tip offset in *u. */
+static double ramp_eval(const swarf_sweep *s, const double p[3], ramp_point *rp, double *u) {
+  double d;
+  *u = 0.0;
+  ramp_frame(s, p, rp);
+  if (ramp_inside(rp))
+    d = ramp_depth(rp, u);
+  else
+    d = sqrt(ramp_newton(rp, u));
+  return d - s->cutter->corner_radius;
+}
+
 double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha) {
   ramp_point rp;
-  double u = 0.0, d;
-  ramp_frame(s, p, &rp);
-  if (ramp_inside(&rp))
-    d = ramp_depth(&rp, &u);
-  else
-    d = sqrt(ramp_newton(&rp, &u));
+  double u, d = ramp_eval(s, p, &rp, &u);
   if (alpha != NULL) *alpha = u / rp.U;
-  return d - s->cutter->corner_radius;
+  return d;
+}
+
+/* The unit normal of the cutter's core (radius a, height band) at a point
+ * outside it by dr radially and dz in height (either may be <= 0), with
+ * radial direction (cx, cy) (unit, or 0 on the axis) and height side sz (+-1),
+ * in g; returns the distance to the core. */
+static double core_normal(double dr, double dz, double cx, double cy, double sz, double g[3]) {
+  double gr = dr > 0.0 ? dr : 0.0, gz = dz > 0.0 ? dz : 0.0, dist = sqrt(gr * gr + gz * gz);
+  double inv = dist > 0.0 ? 1.0 / dist : 0.0;
+  g[0] = gr * cx * inv;
+  g[1] = gr * cy * inv;
+  g[2] = gz * sz * inv;
+  return dist;
+}
+
+/* The radial unit direction of (x, y), or 0 on the axis. */
+static void radial(double x, double y, double *cx, double *cy) {
+  double r = sqrt(x * x + y * y);
+  *cx = r > 0.0 ? x / r : 0.0;
+  *cy = r > 0.0 ? y / r : 0.0;
+}
+
+/* A ramp's frame normal (along, across, up) in world axes. */
+static void ramp_world(const swarf_sweep *s, double g[3]) {
+  const swarf_sweep_ramp *x = &swarf_sweep_cdata(s)->u.ramp;
+  double gxi = g[0], geta = g[1];
+  g[0] = gxi * x->e[0] - geta * x->e[1];
+  g[1] = gxi * x->e[1] + geta * x->e[0];
+}
+
+int swarf_sweep_line_support(const swarf_sweep *s, const double p[3], double *d, double g[3]) {
+  const swarf_cutter *c = s->cutter;
+  const double R = c->corner_radius, hh = 0.5 * c->length - R;
+  double cx, cy, dist, n[3];
+  switch (swarf_sweep_cdata(s)->method) {
+  case SWARF_SWEEP_SLOT: {
+    const swarf_sweep_slot *x = &swarf_sweep_cdata(s)->u.slot;
+    double wx = p[0] - x->p0[0], wy = p[1] - x->p0[1];
+    double t = clamp((wx * x->d[0] + wy * x->d[1]) * x->inv_len2, 0.0, 1.0);
+    double ex = wx - t * x->d[0], ey = wy - t * x->d[1], z = p[2] - x->p0[2];
+    double r = sqrt(ex * ex + ey * ey);
+    *d = swarf_cutter_sdf_rz(c, r, z); /* as swarf_sweep_slot_sdf */
+    if (!(*d >= 1e-6)) return 0;
+    radial(ex, ey, &cx, &cy);
+    dist = core_normal(r - swarf_cutter_core(c), fabs(z - 0.5 * c->length) - hh, cx, cy,
+                       z >= 0.5 * c->length ? 1.0 : -1.0, n);
+    break;
+  }
+  case SWARF_SWEEP_PLUNGE: {
+    const swarf_sweep_plunge *x = &swarf_sweep_cdata(s)->u.plunge;
+    double ex = p[0] - x->x, ey = p[1] - x->y;
+    *d = swarf_sweep_plunge_sdf(s, p, NULL);
+    if (!(*d >= 1e-6)) return 0;
+    radial(ex, ey, &cx, &cy);
+    dist = core_normal(sqrt(ex * ex + ey * ey) - swarf_cutter_core(c),
+                       fabs(p[2] - x->mid) - x->half, cx, cy, p[2] >= x->mid ? 1.0 : -1.0, n);
+    break;
+  }
+  case SWARF_SWEEP_RAMP:
+  case SWARF_SWEEP_RAMP_BALL: {
+    ramp_point rp;
+    double u;
+    *d = swarf_sweep_cdata(s)->method == SWARF_SWEEP_RAMP ? ramp_eval(s, p, &rp, &u)
+                                                          : ramp_ball_eval(s, p, &rp, &u);
+    if (!(*d >= 1e-6)) return 0;
+    double z = rp.zp - rp.k * u;
+    radial(rp.xi - u, rp.eta, &cx, &cy);
+    dist = core_normal(sqrt((u - rp.xi) * (u - rp.xi) + rp.eta * rp.eta) - rp.a, fabs(z) - rp.hh,
+                       cx, cy, z >= 0.0 ? 1.0 : -1.0, n);
+    ramp_world(s, n);
+    break;
+  }
+  default:
+    *d = swarf_sweep_sdf(s, p, NULL);
+    return 0;
+  }
+  /* within rounding: the normal of an instance only nearly nearest could
+   * tilt the plane (by up to sqrt(2 err / d) radians) */
+  if (!(dist > 0.0 && fabs(dist - R - *d) <= 1e-13 * (1.0 + *d))) return 0;
+  for (int k = 0; k < 3; k++)
+    g[k] = n[k];
+  return 1;
 }

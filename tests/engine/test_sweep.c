@@ -195,6 +195,56 @@ static void test_brute(const swarf_cutter *c, const char *cname, tk_rng *r) {
   }
 }
 
+/* ---- 2b. supporting planes of straight moves ------------------------------ */
+
+/* swarf_sweep_support on slots, plunges and ramps: its d is the sdf's, bit
+ * for bit; where it gives a plane, the normal is the sdf's gradient (central
+ * differences) and no point of the box around the move lies below the plane
+ * (the sweep is convex). */
+static void test_support(const swarf_cutter *c, const char *cname, tk_rng *r) {
+  for (int kind = K_SLOT; kind <= K_RAMP; kind++) {
+    char what[64];
+    int planes = 0, points = 0;
+    double worst_grad = 0.0, worst_below = 0.0;
+    snprintf(what, sizeof what, "%s %s", cname, kind_name[kind]);
+    for (int mv = 0; mv < 6; mv++) {
+      swarf_motion m = random_move(r, kind);
+      swarf_sweep s;
+      double lo[3], hi[3];
+      swarf_sweep_init(&s, c, &m);
+      swarf_sweep_bounds(&s, lo, hi);
+      for (int i = 0; i < 60; i++, points++) {
+        double p[3], d, g[3] = {0, 0, 0};
+        for (int k = 0; k < 3; k++)
+          p[k] = tk_uniform(r, lo[k] - 2.0, hi[k] + 2.0);
+        int has = swarf_sweep_support(&s, p, &d, g);
+        CHECK(d == swarf_sweep_sdf(&s, p, NULL), "%s: support's d %.17g is not the sdf's", what, d);
+        if (!has) continue;
+        planes++;
+        CHECK(d >= 1e-6 && fabs(tk_dot(g, g) - 1.0) <= 1e-12, "%s: d %.3g, |g|^2 %.15g", what, d,
+              tk_dot(g, g));
+        for (int k = 0; k < 3; k++) {
+          double a[3] = {p[0], p[1], p[2]}, b[3] = {p[0], p[1], p[2]}, h = 1e-6;
+          a[k] += h, b[k] -= h;
+          double fd = (swarf_sweep_sdf(&s, a, NULL) - swarf_sweep_sdf(&s, b, NULL)) / (2 * h);
+          worst_grad = fmax(worst_grad, fabs(fd - g[k]));
+        }
+        for (int j = 0; j < 50; j++) {
+          double q[3], e[3];
+          for (int k = 0; k < 3; k++)
+            q[k] = tk_uniform(r, lo[k] - 2.0, hi[k] + 2.0), e[k] = q[k] - p[k];
+          worst_below = fmax(worst_below, d + tk_dot(g, e) - swarf_sweep_sdf(&s, q, NULL));
+        }
+      }
+    }
+    CHECK(planes >= points / 4, "%s: planes at only %d of %d points", what, planes, points);
+    CHECK(worst_grad <= 1e-5, "%s: normal vs the sdf's gradient: %.2e", what, worst_grad);
+    CHECK(worst_below <= 1e-9, "%s: a point %.2e below the supporting plane", what, worst_below);
+    printf("%-16s support: planes at %3d of %3d points, max |g - grad| %.1e, max below %.1e\n",
+           what, planes, points, worst_grad, worst_below);
+  }
+}
+
 /* ---- 3. the sdf and the characteristic curves ------------------------------ */
 
 static double poly_dist_w(const swarf_char_curve *cc, const double p[3]) {
@@ -299,6 +349,8 @@ int main(void) {
   test_analytic();
   for (int i = 0; i < 3; i++)
     test_brute(&cs[i], names[i], &r);
+  for (int i = 0; i < 3; i++)
+    test_support(&cs[i], names[i], &r);
   for (int i = 0; i < 3; i++)
     test_envelope(&cs[i], names[i], &r);
   return check_done();

@@ -22,8 +22,11 @@
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -34,6 +37,7 @@
 #include "mesh_sdf.h"
 #include "placement.h"
 #include "stock_private.h"
+#include "surface_file.h"
 
 namespace swarf {
 namespace {
@@ -409,16 +413,36 @@ extern "C" swarf_status swarf_stock_read_design(const char *path, double voxel, 
   return swarf_stock_read_design_band(path, voxel, SWARF_STOCK_DESIGN_BAND, out, err);
 }
 
+namespace swarf {
+
+std::function<std::shared_ptr<MeshSurface>()> stl_surface_loader(const char *path, double voxel) {
+  check_path(path);
+  if (lower_extension(path) != "stl") throw Error(SWARF_ERR_ARG, "not a .stl file");
+  struct stat was;
+  if (stat(path, &was) != 0)
+    throw Error(SWARF_ERR_IO, std::string("cannot read ") + path + ": " + std::strerror(errno));
+  const std::string file(path);
+  return [file, voxel, was] {
+    struct stat now;
+    if (stat(file.c_str(), &now) != 0 || now.st_ino != was.st_ino || now.st_size != was.st_size ||
+        now.st_mtim.tv_sec != was.st_mtim.tv_sec || now.st_mtim.tv_nsec != was.st_mtim.tv_nsec)
+      throw Error(SWARF_ERR_IO,
+                  "the design " + file + " changed during the run: run again on the new one");
+    std::vector<Vec3s> world;
+    std::vector<Vec3I> tris;
+    load_stl(file.c_str(), nullptr, world, tris);
+    return mesh_surface(index_points(world, voxel), std::move(tris));
+  };
+}
+
+} // namespace swarf
+
 extern "C" swarf_status swarf_stock_design_surface(swarf_stock *design, const char *path,
                                                    swarf_error *err) {
   return swarf::guard(err, path, [&] {
     if (design == nullptr) throw Error(SWARF_ERR_ARG, "design is NULL");
-    swarf::check_path(path);
-    if (swarf::lower_extension(path) != "stl") throw Error(SWARF_ERR_ARG, "not a .stl file");
-    std::vector<openvdb::Vec3s> pts;
-    std::vector<openvdb::Vec3I> tris;
-    swarf::load_stl(path, nullptr, pts, tris);
-    design->surface = swarf::mesh_surface(swarf::index_points(pts, design->voxel), std::move(tris));
+    // read at the first depth beyond the band, if one comes
+    design->surface = swarf::mesh_surface_lazy(swarf::stl_surface_loader(path, design->voxel));
   });
 }
 

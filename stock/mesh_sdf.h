@@ -10,6 +10,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -24,6 +25,23 @@ struct MeshSurface;
 /// ordered for them at the first query (mesh_surface_distance).
 std::shared_ptr<MeshSurface> mesh_surface(std::vector<openvdb::Vec3s> points,
                                           std::vector<openvdb::Vec3I> triangles);
+
+/// A surface read only when the first query comes (most designs are never
+/// asked beyond their band): load gives it then (mesh_surface's or
+/// mesh_surface_ordered's); what it throws, that query and every later one
+/// throw.
+std::shared_ptr<MeshSurface> mesh_surface_lazy(std::function<std::shared_ptr<MeshSurface>()> load);
+
+/// m's triangles in the order its queries search them (read and ordered
+/// first if they are not yet): *count of them, 9 floats each (three corners
+/// in index space), valid while m lives.
+const float *mesh_surface_corners(MeshSurface &m, size_t *count);
+
+/// A surface of `count` triangles already in that order: fill writes them
+/// (9 floats each) into the storage it is given, and may throw. Its queries
+/// need no sort, and give what the original's give, bit for bit.
+std::shared_ptr<MeshSurface> mesh_surface_ordered(size_t count,
+                                                  const std::function<void(float *)> &fill);
 
 /// Exact distance (index units) from the index-space point p to the surface:
 /// triangles in chunks of 32 along a Morton curve (sorted at the first call,

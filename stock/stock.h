@@ -383,9 +383,26 @@ SWARF_API swarf_status swarf_stock_read_design_band(const char *path, double vox
 /* Gives `design` (read from a .vdb that swarf_stock_read_design_band made
  * from the STL at `path`, as the design cache keeps it) that STL's
  * triangles, which the reader keeps for exact distances beyond the band:
- * then it is the design that reader gives, value for value. */
+ * then it is the design that reader gives, value for value. The triangles
+ * are read at the first such distance asked for, if one is: the STL must
+ * not change until then (if it does, that query fails with SWARF_ERR_IO). */
 SWARF_API swarf_status swarf_stock_design_surface(swarf_stock *design, const char *path,
                                                   swarf_error *err);
+
+/* Writes the triangles of `design` (read from an STL: swarf_stock_read_design
+ * or swarf_stock_design_surface) to `path`, atomically, in the order its exact
+ * distances search them (sorting them now if no distance beyond the band was
+ * asked for yet), for swarf_stock_design_surface_cached: the design cache
+ * keeps them beside the band. SWARF_ERR_ARG for a design without triangles. */
+SWARF_API swarf_status swarf_stock_design_surface_save(const swarf_stock *design, const char *path,
+                                                       swarf_error *err);
+
+/* swarf_stock_design_surface, the triangles read from `cached` (what
+ * swarf_stock_design_surface_save wrote for that STL and voxel: no parsing,
+ * welding or sorting), at the first distance asked for. If `cached` cannot be
+ * read or is not such a file, it is removed and the STL is read instead. */
+SWARF_API swarf_status swarf_stock_design_surface_cached(swarf_stock *design, const char *cached,
+                                                         const char *stl, swarf_error *err);
 
 /* The band (voxels) a design read from a mesh at `voxel` mm needs to give
  * the same results as with SWARF_STOCK_DESIGN_BAND, used with `stock` (NULL:

@@ -8,7 +8,10 @@
 //      passes and is small is also read as a stock through the file API;
 //   1: .vdb bytes, written to a file and read with swarf_stock_read_vdb,
 //      placed or resampled as the second byte says;
-//   2: a --stock-transform string.
+//   2: a --stock-transform string;
+//   3: a design's triangles file (the design cache's .tri, surface_file.h),
+//      parsed for a 0.1 mm design; what passes, and the bytes after the
+//      header taken as triangles whatever the checksum says, are searched.
 // Every accepted stock is used as the simulator would (volume, check, a cut, a
 // comparison with itself, a mesh written). A refusal must come with a status
 // and a message; anything else (a crash, a sanitizer report, another
@@ -21,11 +24,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "mesh_file.h"
+#include "mesh_sdf.h"
 #include "stock.h"
 #include "stock_error.h"
+#include "surface_file.h"
 
 namespace {
 
@@ -136,19 +143,44 @@ void fuzz_placement(const uint8_t *data, size_t size) {
   refused(swarf_stock_placement_parse(text.c_str(), &p, &err), err);
 }
 
+/// Distances from a few points to a surface: no crash, no hang, whatever its
+/// floats (NaN, infinities, huge).
+void search(swarf::MeshSurface &m) {
+  for (double x : {-1.0, 0.5, 1e6})
+    (void)swarf::mesh_surface_distance(m, openvdb::Vec3d(x, 0.25, -x));
+}
+
+void fuzz_surface(const uint8_t *data, size_t size) {
+  const char *bytes = reinterpret_cast<const char *>(data);
+  try {
+    search(*swarf::parse_surface_file(bytes, size, 0.1));
+  } catch (const swarf::Error &e) {
+    if (e.what()[0] == '\0') std::abort(); // a refusal says why
+  }
+  // the bytes after the header as triangles, whatever the checksum says
+  if (size > 40 && size - 40 <= 36 * 4096) {
+    const size_t n = (size - 40) / 36;
+    search(
+        *swarf::mesh_surface_ordered(n, [&](float *dst) { std::memcpy(dst, bytes + 40, 36 * n); }));
+  }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (size < 1) return 0;
-  switch (data[0] % 3) {
+  switch (data[0] % 4) {
   case 0:
     fuzz_stl(data + 1, size - 1);
     break;
   case 1:
     fuzz_vdb(data + 1, size - 1);
     break;
-  default:
+  case 2:
     fuzz_placement(data + 1, size - 1);
+    break;
+  default:
+    fuzz_surface(data + 1, size - 1);
     break;
   }
   return 0;

@@ -79,6 +79,13 @@ static void make_seeds(void) {
   add_text("tx=1,ty=-2.5,tz=3,rx=180,ry=0,rz=90");
   add_text("rz=30");
   add_text("tx=1e308,rx=nan");
+  /* 3: a design's triangles in search order (the design cache's .tri) */
+  swarf_stock *d = NULL;
+  stl_box_write("stock_fuzz_seed.stl", lo, hi, 0, STL_GOOD);
+  if (swarf_stock_read_design("stock_fuzz_seed.stl", 0.1, &d, NULL) == SWARF_OK &&
+      swarf_stock_design_surface_save(d, "stock_fuzz_seed.tri", NULL) == SWARF_OK)
+    add_file(3, -1, "stock_fuzz_seed.tri");
+  swarf_stock_free(d);
 }
 
 static size_t mutate(const blob *b, uint8_t *out, size_t cap) {
@@ -144,7 +151,7 @@ int main(int argc, char **argv) {
   if (seed_dir) return write_seeds(seed_dir);
   clock_t start = clock();
   time_t wall = time(NULL);
-  long runs = 0, per_mode[3] = {0, 0, 0};
+  long runs = 0, per_mode[4] = {0, 0, 0, 0};
   for (int i = 0; i < nseeds; i++, runs++)
     LLVMFuzzerTestOneInput(seeds[i].data, seeds[i].size);
   size_t cap = 0;
@@ -156,12 +163,12 @@ int main(int argc, char **argv) {
     const blob *b = &seeds[next() % nseeds];
     size_t n = mutate(b, buf, cap);
     LLVMFuzzerTestOneInput(buf, n);
-    per_mode[b->data[0] % 3]++;
+    per_mode[b->data[0] % 4]++;
     runs++;
   }
-  printf("fuzz_stock_smoke: %ld inputs (%d seeds; mutations: %ld STL, %ld vdb, %ld placement) in "
-         "%.1f s CPU\n",
-         runs, nseeds, per_mode[0], per_mode[1], per_mode[2],
+  printf("fuzz_stock_smoke: %ld inputs (%d seeds; mutations: %ld STL, %ld vdb, %ld placement, "
+         "%ld triangle file) in %.1f s CPU\n",
+         runs, nseeds, per_mode[0], per_mode[1], per_mode[2], per_mode[3],
          (double)(clock() - start) / CLOCKS_PER_SEC);
   free(buf);
   for (int i = 0; i < nseeds; i++)

@@ -22,11 +22,20 @@
  *    (analytic), not gouge;
  *  - gouges only (no volumes): per cut the full measurement's gouges, bit for
  *    bit, on random capsules, with the design on the stock's lattice and off it;
- *  - a design elsewhere: SWARF_ERR_ARG.
+ *  - a design elsewhere: SWARF_ERR_ARG;
+ *  - a design's band read back from a .vdb with its STL's triangles
+ *    (swarf_stock_design_surface, as the design cache does), or with those
+ *    saved in search order (swarf_stock_design_surface_save and _cached):
+ *    the deviation beyond the band is the STL design's, field for field; a
+ *    damaged saved file is removed and the STL read; the triangles are read
+ *    at the first query, and an STL changed before it fails it with
+ *    SWARF_ERR_IO (never a silent mix of two designs).
  */
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "check.h"
 #include "shapes.h"
@@ -334,6 +343,86 @@ static void test_missing_and_elsewhere(void) {
   swarf_stock_free(s);
 }
 
+/* The design's band from design_band.vdb, with design_box.stl's triangles. */
+static swarf_stock *band_with_surface(void) {
+  swarf_stock *d = NULL;
+  swarf_error err;
+  CHECK(swarf_stock_read_design("design_band.vdb", V, &d, &err) == SWARF_OK, "band: %s",
+        err.message);
+  if (d == NULL) return NULL;
+  CHECK(swarf_stock_design_surface(d, "design_box.stl", &err) == SWARF_OK, "surface: %s",
+        err.message);
+  return d;
+}
+
+static void test_lazy_surface(void) {
+  const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, -1.45};
+  swarf_stock *s = stock_box(), *d = design_box(lo, hi), *b;
+  swarf_stock_deviation want, got;
+  swarf_error err;
+  if (s == NULL || d == NULL) return;
+  CHECK(swarf_stock_write_vdb(d, "design_band.vdb", &err) == SWARF_OK, "%s", err.message);
+  CHECK(swarf_stock_compare(s, d, NULL, T, &want, &err) == SWARF_OK, "%s", err.message);
+  b = band_with_surface();
+  if (b != NULL) {
+    CHECK(swarf_stock_compare(s, b, NULL, T, &got, &err) == SWARF_OK, "%s", err.message);
+    printf("band + lazy surface: largest excess %.6f (the STL design's %.6f), volume %.6f (%.6f)\n",
+           got.excess_height, want.excess_height, got.excess_volume, want.excess_volume);
+    CHECK(got.excess_height == want.excess_height && got.excess_volume == want.excess_volume &&
+              memcmp(got.excess_at, want.excess_at, sizeof got.excess_at) == 0 &&
+              isinf(got.reach) && got.excess_clamped == 0,
+          "the deviation of the band with its triangles is the STL design's");
+    CHECK_NEAR(got.excess_height, 1.5, 1e-4, "1.5 mm, beyond the band, on the triangles");
+  }
+  swarf_stock_free(b);
+  /* Its triangles saved in search order and read back (the design cache's
+   * .tri): the same deviation; a damaged file is removed and the STL read. */
+  CHECK(swarf_stock_design_surface_save(d, "design_band.tri", &err) == SWARF_OK, "save: %s",
+        err.message);
+  for (int damaged = 0; damaged < 2; damaged++) {
+    if (damaged) {
+      FILE *f = fopen("design_band.tri", "r+b");
+      CHECK(f != NULL && fseek(f, 60, SEEK_SET) == 0 && fputc(0x5a, f) != EOF, "damage");
+      if (f) fclose(f);
+    }
+    b = NULL;
+    CHECK(swarf_stock_read_design("design_band.vdb", V, &b, &err) == SWARF_OK, "%s", err.message);
+    CHECK(b && swarf_stock_design_surface_cached(b, "design_band.tri", "design_box.stl", &err) ==
+                   SWARF_OK,
+          "cached: %s", err.message);
+    if (b != NULL) {
+      CHECK(swarf_stock_compare(s, b, NULL, T, &got, &err) == SWARF_OK, "%s", err.message);
+      printf("band + %s .tri: largest excess %.6f, volume %.6f\n", damaged ? "damaged" : "saved",
+             got.excess_height, got.excess_volume);
+      CHECK(got.excess_height == want.excess_height && got.excess_volume == want.excess_volume &&
+                memcmp(got.excess_at, want.excess_at, sizeof got.excess_at) == 0,
+            "%s .tri: the STL design's deviation", damaged ? "a damaged" : "the saved");
+    }
+    struct stat st;
+    CHECK((stat("design_band.tri", &st) == 0) == !damaged, "the damaged .tri is removed");
+    swarf_stock_free(b);
+  }
+  /* The STL changes after the band was given its surface, before the first
+   * query beyond the band: that query fails, and says why. */
+  b = band_with_surface();
+  const struct timespec later[2] = {{0, UTIME_OMIT}, {1000000000, 0}};
+  CHECK(utimensat(AT_FDCWD, "design_box.stl", later, 0) == 0, "touch the STL");
+  if (b != NULL) {
+    const swarf_status st = swarf_stock_compare(s, b, NULL, T, &got, &err);
+    printf("STL changed before the first query: status %d, %s\n", (int)st, err.message);
+    CHECK(st == SWARF_ERR_IO && strstr(err.message, "changed during the run") != NULL,
+          "a changed STL fails the query: %d %s", (int)st, err.message);
+  }
+  swarf_stock_free(b);
+  swarf_stock_free(d);
+  b = NULL;
+  CHECK(swarf_stock_read_design("design_band.vdb", V, &b, &err) == SWARF_OK, "%s", err.message);
+  CHECK(b == NULL || swarf_stock_design_surface(b, "no_such_design.stl", &err) == SWARF_ERR_IO,
+        "a missing STL is refused at once");
+  swarf_stock_free(b);
+  swarf_stock_free(s);
+}
+
 int main(void) {
   swarf_stock *s = stock_box();
   const double lo[3] = {0.05, 0.05, -4.95}, hi[3] = {9.95, 9.95, -1.45};
@@ -349,5 +438,6 @@ int main(void) {
   test_cleared_blocks();
   test_gouges_only();
   test_missing_and_elsewhere();
+  test_lazy_surface();
   return check_done();
 }

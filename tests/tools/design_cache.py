@@ -9,7 +9,9 @@
 - the key is the design's bytes: a changed design is built anew, as is the
   same design at another voxel; --design-cache off neither reads nor writes;
 - a damaged cache entry is rebuilt, never trusted (the run's results stay
-  the cold run's); --design-cache-max bounds the folder, oldest out first;
+  the cold run's); the design's triangles are kept beside the band in
+  search order (KEY.tri) and read back; a damaged .tri is replaced by the
+  STL's reading (same results), then written anew; --design-cache-max bounds the folder, oldest out first;
 - the default folder is $XDG_CACHE_HOME/swarf/designs.
 """
 import glob
@@ -61,6 +63,22 @@ vk.check("from the design cache" not in cold[0].stdout and len(entries()) == 1,
 warm = run("warm", "--design-cache", cache)
 vk.check("its band from the design cache" in warm[0].stdout, "warm: the summary says so")
 same(cold, warm, "warm against cold")
+
+# the triangles beside the band (KEY.tri, 12 of them, in search order): a warm
+# run reads them back; a damaged file costs a reading of the STL (the same
+# results) and goes, and the next run writes it anew
+tri = entries()[0][:-4] + ".tri"
+vk.check(os.path.isfile(tri) and os.path.getsize(tri) == 40 + 36 * 12,
+         "cold: the triangles kept beside the band (%s)" % os.listdir(cache))
+with open(tri, "r+b") as f:
+    f.seek(50)
+    f.write(b"\xff" * 8)
+hurt = run("damaged triangles", "--design-cache", cache)
+same(cold, hurt, "damaged triangles against cold")
+vk.check(not os.path.exists(tri), "the damaged triangles are removed")
+run("after the damaged triangles", "--design-cache", cache)
+vk.check(os.path.isfile(tri) and os.path.getsize(tri) == 40 + 36 * 12,
+         "the triangles are written anew by the next run")
 off = run("off", "--design-cache", "off")
 vk.check("from the design cache" not in off[0].stdout, "off: not read from the cache")
 same(cold, off, "off against cold")

@@ -11,8 +11,11 @@
  * library's version. A hit is read back through the isolated .vdb reader
  * (stock.h), so a damaged or planted file costs a rebuild, never a crash;
  * the values are the ones written, bit for bit, and the STL's triangles are
- * read again for the exact distances beyond the band (a design read from a
- * mesh keeps them: swarf_stock_design_surface). Writing goes through a
+ * kept too, beside the band (KEY.tri), in the order the exact distances
+ * beyond the band search them: a warm run reads them back, when the first
+ * such distance is asked for, instead of parsing, welding and sorting the
+ * STL (swarf_stock_design_surface_cached; a damaged .tri costs a reading of
+ * the STL, and is written again by the next run). Writing goes through a
  * temporary renamed into place, so concurrent runs never see half a file;
  * then the oldest files go until the folder is within its bound. The cache
  * is best effort: any failure of it falls back to reading the design, and
@@ -139,7 +142,7 @@ static int older_first(const void *a, const void *b) {
   return (x->mtime > y->mtime) - (x->mtime < y->mtime);
 }
 
-/* The oldest .vdb files of the folder removed until it holds at most max. */
+/* The oldest .vdb and .tri files of the folder removed until it holds at most max. */
 static void cache_evict(const char *dir, long long max) {
   DIR *d = opendir(dir);
   entry *e = NULL;
@@ -151,7 +154,9 @@ static void cache_evict(const char *dir, long long max) {
   while ((de = readdir(d)) != NULL) {
     struct stat st;
     const size_t len = strlen(de->d_name);
-    if (len != KEY_HEX + 4 || strcmp(de->d_name + KEY_HEX, ".vdb")) continue;
+    if (len != KEY_HEX + 4 ||
+        (strcmp(de->d_name + KEY_HEX, ".vdb") && strcmp(de->d_name + KEY_HEX, ".tri")))
+      continue;
     if (snprintf(path, sizeof path, "%s/%s", dir, de->d_name) >= (int)sizeof path ||
         lstat(path, &st) != 0 || !S_ISREG(st.st_mode))
       continue;
@@ -175,15 +180,31 @@ static void cache_evict(const char *dir, long long max) {
   free(e);
 }
 
-/* The band written under its key (a temporary renamed into place). */
-static void cache_put(const char *dir, const char *file, const swarf_stock *s, long long max) {
+/* The band written under its key (a temporary renamed into place), and its
+ * triangles beside it (tri; written atomically). */
+static void cache_put(const char *dir, const char *file, const char *tri, const swarf_stock *s,
+                      long long max) {
   char tmp[4300];
   if (snprintf(tmp, sizeof tmp, "%s.tmp.%ld", file, (long)getpid()) >= (int)sizeof tmp) return;
   if (swarf_stock_write_vdb(s, tmp, NULL) != SWARF_OK || rename(tmp, file) != 0) {
     unlink(tmp);
     return;
   }
+  swarf_stock_design_surface_save(s, tri, NULL);
   cache_evict(dir, max);
+}
+
+/* A cached band's triangles: from tri if it is there, else from the STL at
+ * path, then written to tri for the next run. SWARF_OK or the STL's error. */
+static swarf_status cache_surface(swarf_stock *band, const char *tri, const char *path) {
+  struct stat st;
+  if (lstat(tri, &st) == 0 && S_ISREG(st.st_mode)) {
+    utimes(tri, NULL);
+    return swarf_stock_design_surface_cached(band, tri, path, NULL);
+  }
+  const swarf_status status = swarf_stock_design_surface(band, path, NULL);
+  if (status == SWARF_OK) swarf_stock_design_surface_save(band, tri, NULL);
+  return status;
 }
 
 static int is_vdb(const char *path) {
@@ -194,7 +215,7 @@ static int is_vdb(const char *path) {
 swarf_status swarf_sim_read_design_cached(const char *path, double voxel, int half_width,
                                           const swarf_design_cache *cache, swarf_stock **out,
                                           int *hit, swarf_error *err) {
-  char dir[4096], key[KEY_HEX + 1], file[4200];
+  char dir[4096], key[KEY_HEX + 1], file[4200], tri[4200];
   const long long max =
       cache != NULL && cache->max_bytes > 0 ? cache->max_bytes : DEFAULT_MAX_BYTES;
   if (hit != NULL) *hit = 0;
@@ -204,11 +225,11 @@ swarf_status swarf_sim_read_design_cached(const char *path, double voxel, int ha
   const int use = (cache == NULL || !cache->off) && !is_vdb(path) && voxel > 0 &&
                   design_key(path, voxel, half_width, key) == 0 &&
                   cache_dir(cache, dir, sizeof dir) == 0 &&
-                  snprintf(file, sizeof file, "%s/%s.vdb", dir, key) < (int)sizeof file;
+                  snprintf(file, sizeof file, "%s/%s.vdb", dir, key) < (int)sizeof file &&
+                  snprintf(tri, sizeof tri, "%s/%s.tri", dir, key) < (int)sizeof tri;
   if (use && (*out = cache_get(file, voxel, half_width)) != NULL) {
-    /* the triangles too, for exact distances beyond the band: the STL's
-     * reading without the band, which is what the cache saves */
-    if (swarf_stock_design_surface(*out, path, NULL) == SWARF_OK) {
+    /* the triangles too, for exact distances beyond the band */
+    if (cache_surface(*out, tri, path) == SWARF_OK) {
       if (hit != NULL) *hit = 1;
       return SWARF_OK;
     }
@@ -216,6 +237,6 @@ swarf_status swarf_sim_read_design_cached(const char *path, double voxel, int ha
     *out = NULL;
   }
   const swarf_status st = swarf_stock_read_design_band(path, voxel, half_width, out, err);
-  if (st == SWARF_OK && use) cache_put(dir, file, *out, max);
+  if (st == SWARF_OK && use) cache_put(dir, file, tri, *out, max);
   return st;
 }

@@ -193,6 +193,7 @@ void list_pairs(Pass &p, size_t ncuts) {
                     });
   if (ncuts > 1) sort_pairs(w.pairs, ncuts);
   w.centre_sdf.resize(w.pairs.size());
+  w.centre_plane.resize(w.pairs.size());
   if (p.measure) {
     w.removed.assign(w.pairs.size(), 0.0);
     w.gouge.assign(w.pairs.size(), 0.0);
@@ -268,7 +269,14 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   };
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    const double d = cut_value(p, cut, c, -p.reach - kMargin, p.reach + kMargin);
+    const swarf_stock_support_fn f = p.support ? p.support[w.pairs[i].cut] : nullptr;
+    // with a support function, the sdf and, outside the cut, its plane (the
+    // octants the plane keeps below their values are passed over)
+    double d, g[3] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
+    if (f == nullptr || f(cut.ctx, c.x(), c.y(), c.z(), &d, g) != 1) {
+      if (f == nullptr) d = cut_value(p, cut, c, -p.reach - kMargin, p.reach + kMargin);
+      g[0] = std::numeric_limits<double>::quiet_NaN();
+    }
     if (d > p.reach) continue; // untouched (a NaN is kept: its voxels decide)
     if (-d > p.reach && (p.measure == nullptr || (!p.measure->volumes && design_clear_here()))) {
       b.action = kClear; // (gouges only: none can be found in the block)
@@ -284,6 +292,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
     }
     w.pairs[b.begin + kept] = w.pairs[i];
     w.centre_sdf[b.begin + kept] = d;
+    w.centre_plane[b.begin + kept] = Vec3d(g[0], g[1], g[2]);
     kept++;
     if (-d > p.reach) break; // measured: it clears every voxel; later cuts find nothing
   }

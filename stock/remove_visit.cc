@@ -280,6 +280,15 @@ void visit_cube_cuts(const Pass &p, const Block &b, OctOrder &oct, int x0, int y
   }
 }
 
+/// The lowest of g.(q - centre) over a 4^3 octant's voxels q, whose offsets
+/// from the centre are lo[a] to lo[a] + 3 voxels per axis.
+inline double plane_low(const Vec3d &g, const double lo[3], double voxel) {
+  double s = 0.0;
+  for (int a = 0; a < 3; a++)
+    s += std::min(g[a] * lo[a], g[a] * (lo[a] + 3.0));
+  return voxel * s;
+}
+
 /// Pass 4 for the 4^3 octant at (x0, y0, z0) and the block's cuts: each cut
 /// whose bound from the block centre (its summary) may raise a voxel of the
 /// octant has its sdf taken at the octant's centre, with its supporting plane
@@ -304,8 +313,21 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
                                   (((y0 >> 1) + ((k >> 1) & 1)) << 2) | ((z0 >> 1) + (k & 1))]);
   uint32_t n = 0;
   const int octant = ((x0 >> 2) << 2) | ((y0 >> 2) << 1) | (z0 >> 2);
+  // the octant's lowest value below the band (its voxels are not yet raised:
+  // the summaries of its cubes hold their starting values)
+  double mlo = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 8; k++)
+    mlo = std::min(mlo, bv.mlo[(((x0 >> 1) + (k >> 2)) << 4) | (((y0 >> 1) + ((k >> 1) & 1)) << 2) |
+                               ((z0 >> 1) + (k & 1))]);
+  // the octant's voxels' offsets from the block's centre, per axis (voxels)
+  const double lo[3] = {x0 - 3.5, y0 - 3.5, z0 - 3.5};
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
-    if (w.centre_sdf[i] + omin >= kMargin) { // a NaN sdf: visited
+    // the bound from the block's centre, or its supporting plane there
+    const Vec3d &g = w.centre_plane[i];
+    const bool below =
+        w.centre_sdf[i] + omin >= kMargin || // a NaN sdf: visited
+        (!std::isnan(g[0]) && w.centre_sdf[i] + plane_low(g, lo, p.voxel) + mlo >= kMargin);
+    if (below) {
       if (bv.planes != nullptr) bv.planes->at(octant, i - b.begin).state = OctantPlanes::kOut;
       continue;
     }

@@ -60,6 +60,9 @@ struct Block {
 struct RemoveScratch {
   std::vector<BlockCut> pairs;
   std::vector<double> centre_sdf; ///< sdf (mm) at the block centre, one per pair
+  /// Per pair, where the cut has a supporting plane at the block centre
+  /// (swarf_stock_support_fn): its unit normal; else a NaN first component.
+  std::vector<openvdb::Vec3d> centre_plane;
   std::vector<Block> blocks;
   std::vector<uint32_t> visit; ///< blocks whose voxels are visited
   /// Per visited block that was a tile: its leaf, made by the visit and put

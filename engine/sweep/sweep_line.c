@@ -203,14 +203,17 @@ static int ramp_cross(const ramp_point *rp, double c0, double c1, double u[2]) {
 static double ramp_depth(const ramp_point *rp, double *ubest) {
   double cand[8], best = INFINITY, uz = rp->zp / rp->k;
   int n = 0;
-  /* Where a piece's own minimum lies on the move and that piece dominates
-   * there, it is the minimum (the other piece only adds): the radial one at
-   * xi (r = |eta|), the height one at zp / k (-hh). */
-  if (rp->xi >= 0.0 && rp->xi <= rp->U) {
-    double m = ramp_m(rp, rp->xi);
-    if (m == fabs(rp->eta) - rp->a) {
-      *ubest = rp->xi;
-      return m;
+  /* Where a piece's minimum over the move dominates there, it is the minimum
+   * (the other piece only adds): the radial one at xi clamped to the move (r
+   * grows away from it, in floating point too: the rounding is monotone; on
+   * a short move most points inside lie beyond an end), the height one at
+   * zp / k (-hh). */
+  {
+    const double ur = clamp(rp->xi, 0.0, rp->U), dx = ur - rp->xi;
+    const double rad = sqrt(dx * dx + rp->eta * rp->eta) - rp->a;
+    if (rad >= fabs(rp->zp - rp->k * ur) - rp->hh) {
+      *ubest = ur;
+      return rad;
     }
   }
   if (uz >= 0.0 && uz <= rp->U) {

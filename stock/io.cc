@@ -88,6 +88,8 @@ constexpr long long kMaxExtentVoxels = 1LL << 20;
 constexpr openvdb::Index64 kMaxActiveTiles =
     4096; // a level set has none; OpenVDB walks them slowly
 
+} // namespace
+
 void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &path) {
   const size_t root = grid.tree().root().getTableSize();
   if (root > kMaxRootEntries)
@@ -118,6 +120,8 @@ void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &path) {
                                        " a stock may span (work would follow the extent)");
   }
 }
+
+namespace {
 
 openvdb::FloatGrid::Ptr read_grid_checked(const std::string &path);
 

@@ -78,6 +78,15 @@ SWARF_API swarf_status swarf_stock_new_cylinder_slab(int axis, double radius, do
  * grid back: a crash, hang or runaway allocation there is an error here. */
 SWARF_API swarf_status swarf_stock_read(const char *path, swarf_stock **out, swarf_error *err);
 
+/* A stock from a band file that swarf_stock_write_band wrote: its grid,
+ * value for value, parsed here (no child, no OpenVDB parser: the design
+ * cache keeps a design's band so). SWARF_ERR_OPEN when it cannot be opened,
+ * SWARF_ERR_FORMAT for anything else: another magic or version, a size or
+ * checksum that does not match, a node out of range, a grid that
+ * swarf_stock_read would refuse. */
+SWARF_API swarf_status swarf_stock_read_band(const char *path, swarf_stock **out,
+                                             swarf_error *err);
+
 /* An embedding program that must not fork (or reads only files it wrote)
  * turns the child off with swarf_stock_set_read_isolation(0), or with the
  * environment variable SWARF_VDB_ISOLATE=0; the file is then read in the
@@ -246,6 +255,11 @@ SWARF_API swarf_status swarf_stock_check(const swarf_stock *s, swarf_error *err)
  * SWARF_ERR_IO when the file cannot be written (err->file is the path). */
 SWARF_API swarf_status swarf_stock_write_vdb(const swarf_stock *s, const char *path,
                                              swarf_error *err);
+/* swarf's own file of the stock's grid (its transform, band and every
+ * value; native byte order, for a cache on this machine): for
+ * swarf_stock_read_band. */
+SWARF_API swarf_status swarf_stock_write_band(const swarf_stock *s, const char *path,
+                                              swarf_error *err);
 /* Binary STL of the zero isosurface; *ntri (may be NULL) gets the triangle count. */
 SWARF_API swarf_status swarf_stock_write_stl(const swarf_stock *s, const char *path, size_t *ntri,
                                              swarf_error *err);

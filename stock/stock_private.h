@@ -205,6 +205,14 @@ void check_readable(const char *path);
 /// The float level set of a .vdb file ("stock", or the first), read in a
 /// child process (io.cc; untrusted input). Throws Error(FORMAT) otherwise.
 openvdb::FloatGrid::Ptr read_grid(const std::string &path);
+
+/// The bounds on a grid read as a stock (io.cc): its root table, active
+/// tiles, finite values and extent. Throws Error(FORMAT or LIMIT) naming `what`.
+void check_stock_grid(const openvdb::FloatGrid &grid, const std::string &what);
+
+/// A 64-bit checksum of the bytes of a file the design cache keeps
+/// (surface_file.cc): a damaged byte changes it.
+uint64_t file_checksum(const char *p, size_t len);
 /// True if the cut (checked) penetrates the material by more than depth (mm):
 /// a voxel centre inside both where the two depths add up to more (remove.cc).
 bool cut_penetrates(const swarf_stock &s, const swarf_stock_cut &cut, const swarf_stock_cut *clear,

@@ -43,10 +43,12 @@ struct Header {
 };
 static_assert(sizeof(Header) == 40, "packed header");
 
+} // namespace
+
 /// FNV-1a over 8-byte words, with a multiply-xorshift finish per word: a
 /// damaged byte changes it (not a defence against a crafted file, which can
 /// only make the distances wrong: the caller owns its cache folder).
-uint64_t checksum(const char *p, size_t len) {
+uint64_t file_checksum(const char *p, size_t len) {
   uint64_t h = 0xcbf29ce484222325ULL;
   size_t i = 0;
   for (; i + 8 <= len; i += 8) {
@@ -60,8 +62,6 @@ uint64_t checksum(const char *p, size_t len) {
   return h ^ len;
 }
 
-} // namespace
-
 void write_surface_file(const char *path, MeshSurface &m, double voxel) {
   size_t count = 0;
   const float *corners = mesh_surface_corners(m, &count);
@@ -73,7 +73,7 @@ void write_surface_file(const char *path, MeshSurface &m, double voxel) {
   h.floats = kFloats;
   h.count = count;
   h.voxel = voxel;
-  h.checksum = checksum(bytes, len);
+  h.checksum = file_checksum(bytes, len);
   write_atomic(path, [&](std::ostream &os) {
     os.write(reinterpret_cast<const char *>(&h), sizeof h);
     if (len > 0) os.write(bytes, std::streamsize(len));
@@ -94,7 +94,7 @@ void check_header(const Header &h, uint64_t body, double voxel) {
 }
 
 void check_sum(const Header &h, const float *corners) {
-  if (checksum(reinterpret_cast<const char *>(corners), h.count * kFloats * sizeof(float)) !=
+  if (file_checksum(reinterpret_cast<const char *>(corners), h.count * kFloats * sizeof(float)) !=
       h.checksum)
     throw Error(SWARF_ERR_FORMAT, "a surface file: damaged (its checksum does not match)");
 }

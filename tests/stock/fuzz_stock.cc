@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MPL-2.0 */
 // fuzz_stock.cc -- the fuzz entry of the stock's untrusted readers: STL meshes
-// (as stocks and designs), .vdb files read as stocks (placed, resampled), and
-// placement specifications.
+// (as stocks and designs), .vdb files read as stocks (placed, resampled),
+// placement specifications, and the design cache's own files.
 //
 // The first byte picks the reader, the rest is the input:
 //   0: STL bytes, parsed and checked in memory (mesh_file.h); a mesh that
@@ -11,7 +11,10 @@
 //   2: a --stock-transform string;
 //   3: a design's triangles file (the design cache's .tri, surface_file.h),
 //      parsed for a 0.1 mm design; what passes, and the bytes after the
-//      header taken as triangles whatever the checksum says, are searched.
+//      header taken as triangles whatever the checksum says, are searched;
+//   4: a band file (the design cache's .band, band_file.h), parsed as it is
+//      and again with its checksum made to match (so that mutations reach
+//      past it); what passes is used as a stock.
 // Every accepted stock is used as the simulator would (volume, check, a cut, a
 // comparison with itself, a mesh written). A refusal must come with a status
 // and a message; anything else (a crash, a sanitizer report, another
@@ -28,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "band_file.h"
 #include "mesh_file.h"
 #include "mesh_sdf.h"
 #include "stock.h"
@@ -165,11 +169,31 @@ void fuzz_surface(const uint8_t *data, size_t size) {
   }
 }
 
+void fuzz_band(const uint8_t *data, size_t size) {
+  std::string b(reinterpret_cast<const char *>(data), size);
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass == 1) { // resealed: the checksum (bytes 72-79) of the bytes after the header
+      if (b.size() < 80) return;
+      const uint64_t sum = swarf::file_checksum(b.data() + 80, b.size() - 80);
+      std::memcpy(&b[72], &sum, sizeof sum);
+    }
+    swarf_stock *s = nullptr;
+    try {
+      s = swarf::parse_band_file(b.data(), b.size());
+    } catch (const swarf::Error &e) {
+      if (e.what()[0] == '\0') std::abort(); // a refusal says why
+      continue;
+    }
+    exercise(s);
+    swarf_stock_free(s);
+  }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (size < 1) return 0;
-  switch (data[0] % 4) {
+  switch (data[0] % 5) {
   case 0:
     fuzz_stl(data + 1, size - 1);
     break;
@@ -179,8 +203,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   case 2:
     fuzz_placement(data + 1, size - 1);
     break;
-  default:
+  case 3:
     fuzz_surface(data + 1, size - 1);
+    break;
+  default:
+    fuzz_band(data + 1, size - 1);
     break;
   }
   return 0;

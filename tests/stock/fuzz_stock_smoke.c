@@ -2,9 +2,9 @@
 /* fuzz_stock_smoke.c -- a plain driver for the stock fuzz entry (fuzz_stock.cc),
  * no libFuzzer needed: it builds seeds (binary and ASCII STL boxes, damaged
  * ones, a .vdb swarf wrote, under each of the placement/resampling choices,
- * placement strings), runs the entry on each, then on deterministic
- * mutations of them (byte flips, truncations, insertions, splices) until `-n`
- * inputs or `-t` seconds. A breach of the entry's checks aborts (and ASan/UBSan
+ * placement strings, a design's triangle file and a band file), runs the
+ * entry on each, then on deterministic mutations of them (byte flips, truncations, insertions,
+ * splices) until `-n` inputs or `-t` seconds. A breach of the entry's checks aborts (and ASan/UBSan
  * builds catch memory errors). Usage: fuzz_stock_smoke [-n N] [-t SECONDS] [-w DIR]
  * -w writes the seeds into DIR as files (seed-N) and stops: the libFuzzer
  * target's seeds in tests/stock/fuzz_stock_seeds were made so.
@@ -73,6 +73,7 @@ static void make_seeds(void) {
   swarf_stock_cut cut = capsule_cut(&c);
   swarf_stock_remove_batch(s, &cut, 1, NULL);
   swarf_stock_write_vdb(s, "stock_fuzz_seed.vdb", NULL);
+  swarf_stock_write_band(s, "stock_fuzz_seed.band", NULL);
   swarf_stock_free(s);
   for (int how = 0; how < 8; how += 3)
     add_file(1, how, "stock_fuzz_seed.vdb");
@@ -86,6 +87,8 @@ static void make_seeds(void) {
       swarf_stock_design_surface_save(d, "stock_fuzz_seed.tri", NULL) == SWARF_OK)
     add_file(3, -1, "stock_fuzz_seed.tri");
   swarf_stock_free(d);
+  /* 4: the band file of the cut box (the design cache's .band) */
+  add_file(4, -1, "stock_fuzz_seed.band");
 }
 
 static size_t mutate(const blob *b, uint8_t *out, size_t cap) {
@@ -151,7 +154,7 @@ int main(int argc, char **argv) {
   if (seed_dir) return write_seeds(seed_dir);
   clock_t start = clock();
   time_t wall = time(NULL);
-  long runs = 0, per_mode[4] = {0, 0, 0, 0};
+  long runs = 0, per_mode[5] = {0, 0, 0, 0, 0};
   for (int i = 0; i < nseeds; i++, runs++)
     LLVMFuzzerTestOneInput(seeds[i].data, seeds[i].size);
   size_t cap = 0;
@@ -163,12 +166,12 @@ int main(int argc, char **argv) {
     const blob *b = &seeds[next() % nseeds];
     size_t n = mutate(b, buf, cap);
     LLVMFuzzerTestOneInput(buf, n);
-    per_mode[b->data[0] % 4]++;
+    per_mode[b->data[0] % 5]++;
     runs++;
   }
   printf("fuzz_stock_smoke: %ld inputs (%d seeds; mutations: %ld STL, %ld vdb, %ld placement, "
-         "%ld triangle file) in %.1f s CPU\n",
-         runs, nseeds, per_mode[0], per_mode[1], per_mode[2], per_mode[3],
+         "%ld triangle file, %ld band file) in %.1f s CPU\n",
+         runs, nseeds, per_mode[0], per_mode[1], per_mode[2], per_mode[3], per_mode[4],
          (double)(clock() - start) / CLOCKS_PER_SEC);
   free(buf);
   for (int i = 0; i < nseeds; i++)

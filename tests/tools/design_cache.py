@@ -3,7 +3,8 @@
 """design_cache.py SWARF -- an STL design's band kept between runs
 (--design-cache, swarf_sim_read_design_cached):
 
-- the first run builds the band and keeps it in the cache folder (one .vdb);
+- the first run builds the band and keeps it in the cache folder (one
+  KEY.band, swarf's own band file, read back in-process);
   the second finds it (the summary says so) and gives the same warnings,
   deviation, report and grid, byte for byte after the .vdb's UUID;
 - the key is the design's bytes: a changed design is built anew, as is the
@@ -41,7 +42,7 @@ def run(tag, *extra, voxel="0.2"):
 
 
 def entries(folder=cache):
-    return sorted(glob.glob(os.path.join(folder, "*.vdb")))
+    return sorted(glob.glob(os.path.join(folder, "*.band")))
 
 
 def same(a, b, what):
@@ -67,7 +68,7 @@ same(cold, warm, "warm against cold")
 # the triangles beside the band (KEY.tri, 12 of them, in search order): a warm
 # run reads them back; a damaged file costs a reading of the STL (the same
 # results) and goes, and the next run writes it anew
-tri = entries()[0][:-4] + ".tri"
+tri = entries()[0][:-5] + ".tri"
 vk.check(os.path.isfile(tri) and os.path.getsize(tri) == 40 + 36 * 12,
          "cold: the triangles kept beside the band (%s)" % os.listdir(cache))
 with open(tri, "r+b") as f:

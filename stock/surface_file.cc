@@ -6,7 +6,7 @@
 /// STL: parsing, welding and checking it, and sorting the triangles along a
 /// Morton curve took 0.9 s CPU for bear's 1.36 M-triangle design.
 ///
-/// The file: a 40-byte header (the magic "swarfTRI", version 1, floats per
+/// The file: a 40-byte header (the magic "swarfTRI", version 2, floats per
 /// triangle 9, the count, the design's voxel, a 64-bit checksum of the
 /// triangles' bytes), then the triangles, native floats (a cache is local to
 /// its machine). A file that is not exactly that is refused: the caller reads
@@ -32,7 +32,7 @@ namespace swarf {
 namespace {
 
 constexpr char kMagic[8] = {'s', 'w', 'a', 'r', 'f', 'T', 'R', 'I'};
-constexpr uint32_t kVersion = 1, kFloats = 9;
+constexpr uint32_t kVersion = 2, kFloats = 9; // 2: the four-lane checksum
 
 struct Header {
   char magic[8];
@@ -45,20 +45,30 @@ static_assert(sizeof(Header) == 40, "packed header");
 
 } // namespace
 
-/// FNV-1a over 8-byte words, with a multiply-xorshift finish per word: a
-/// damaged byte changes it (not a defence against a crafted file, which can
-/// only make the distances wrong: the caller owns its cache folder).
+/// FNV-1a over 8-byte words, with a multiply-xorshift finish per word, in
+/// four lanes (32 bytes a step: the multiplies overlap, 4x the speed of one
+/// chain) folded into one: a damaged byte changes it (not a defence against
+/// a crafted file, which can only make the distances wrong: the caller owns
+/// its cache folder).
 uint64_t file_checksum(const char *p, size_t len) {
-  uint64_t h = 0xcbf29ce484222325ULL;
+  constexpr uint64_t kPrime = 0x100000001b3ULL;
+  uint64_t lane[4] = {0xcbf29ce484222325ULL, 0x9e3779b97f4a7c15ULL, 0xbf58476d1ce4e5b9ULL,
+                      0x94d049bb133111ebULL};
   size_t i = 0;
-  for (; i + 8 <= len; i += 8) {
-    uint64_t w;
-    std::memcpy(&w, p + i, 8);
-    h = (h ^ w) * 0x100000001b3ULL;
+  for (; i + 32 <= len; i += 32)
+    for (int k = 0; k < 4; k++) {
+      uint64_t w;
+      std::memcpy(&w, p + i + 8 * k, 8);
+      lane[k] = (lane[k] ^ w) * kPrime;
+      lane[k] ^= lane[k] >> 29;
+    }
+  uint64_t h = lane[0];
+  for (int k = 1; k < 4; k++) {
+    h = (h ^ lane[k]) * kPrime;
     h ^= h >> 29;
   }
   for (; i < len; i++)
-    h = (h ^ uint8_t(p[i])) * 0x100000001b3ULL;
+    h = (h ^ uint8_t(p[i])) * kPrime;
   return h ^ len;
 }
 

@@ -68,10 +68,39 @@ inline bool pair_less(const BlockCut &a, const BlockCut &b) {
   return a.cut < b.cut;
 }
 
-/// The pairs in pair_less order. Where the blocks' span and the cuts fit in
-/// 16 bits each (always, in a simulation's batches), sorted as 64-bit keys
-/// (block offsets from the least block, then the cut): 2x faster than the
-/// comparison of the fields.
+/// The pairs (made cut by cut: list_pairs) in pair_less order by a counting
+/// sort on their block, when the blocks' box holds at most kSlots blocks: a
+/// histogram, its prefix sums, one scatter. Stable, so each block's cuts stay
+/// in the order made. False (nothing done) for a larger box.
+bool counting_sort(std::vector<BlockCut> &pairs, const int32_t lo[3], const int32_t hi[3]) {
+  constexpr uint64_t kSlots = uint64_t(1) << 20; // 4 MB of counts
+  const uint64_t ny = uint64_t(hi[1] - lo[1]) / 8 + 1, nz = uint64_t(hi[2] - lo[2]) / 8 + 1;
+  const uint64_t slots = (uint64_t(hi[0] - lo[0]) / 8 + 1) * ny * nz;
+  if (slots > kSlots || pairs.size() >= (uint64_t(1) << 32)) return false;
+  auto slot = [&](const BlockCut &q) {
+    return ((uint64_t(q.x - lo[0]) >> 3) * ny + (uint64_t(q.y - lo[1]) >> 3)) * nz +
+           (uint64_t(q.z - lo[2]) >> 3);
+  };
+  thread_local std::vector<uint32_t> count; // this thread's buffers
+  thread_local std::vector<BlockCut> sorted;
+  count.assign(slots + 1, 0);
+  for (const BlockCut &q : pairs)
+    count[slot(q) + 1]++;
+  for (uint64_t i = 0; i < slots; i++)
+    count[i + 1] += count[i];
+  sorted.resize(pairs.size());
+  for (const BlockCut &q : pairs)
+    sorted[count[slot(q)]++] = q;
+  pairs.swap(sorted);
+  return true;
+}
+
+/// The pairs (made cut by cut) in pair_less order. Where the blocks' span and
+/// the cuts fit in 16 bits each (always, in a simulation's batches): by a
+/// counting sort on the block (counting_sort; the tiger at 0.5 mm spent 5 %
+/// of its time in a comparison sort), or, for a box of more blocks, sorted as
+/// 64-bit keys (block offsets from the least block, then the cut): 2x faster
+/// than the comparison of the fields.
 void sort_pairs(std::vector<BlockCut> &pairs, size_t ncuts) {
   struct Span {
     int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
@@ -104,6 +133,7 @@ void sort_pairs(std::vector<BlockCut> &pairs, size_t ncuts) {
     tbb::parallel_sort(pairs.begin(), pairs.end(), pair_less);
     return;
   }
+  if (counting_sort(pairs, lo, hi)) return;
   thread_local std::vector<uint64_t> keys_v; // this thread's buffer
   keys_v.resize(pairs.size());
   uint64_t *const keys = keys_v.data(); // the workers see the caller's buffer through it

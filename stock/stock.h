@@ -84,8 +84,7 @@ SWARF_API swarf_status swarf_stock_read(const char *path, swarf_stock **out, swa
  * SWARF_ERR_FORMAT for anything else: another magic or version, a size or
  * checksum that does not match, a node out of range, a grid that
  * swarf_stock_read would refuse. */
-SWARF_API swarf_status swarf_stock_read_band(const char *path, swarf_stock **out,
-                                             swarf_error *err);
+SWARF_API swarf_status swarf_stock_read_band(const char *path, swarf_stock **out, swarf_error *err);
 
 /* An embedding program that must not fork (or reads only files it wrote)
  * turns the child off with swarf_stock_set_read_isolation(0), or with the

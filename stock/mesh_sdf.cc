@@ -502,28 +502,36 @@ uint64_t spread3(uint64_t v) {
 
 constexpr size_t kChunk = 32;
 
-/// Anonymous memory mapped and filled in one call (MAP_POPULATE): a large
-/// buffer without a page fault per page, which on a paravirtualized machine
-/// cost 0.2 s for the 49 MB of a 1.36 M-triangle design's triangles.
+/// Anonymous memory on transparent huge pages where the kernel gives them,
+/// faulted in by one call: a large buffer without a page fault per page,
+/// which on a paravirtualized machine cost 0.2 s for the 49 MB of a
+/// 1.36 M-triangle design's triangles (0.08 s with MAP_POPULATE alone). The
+/// mapping is 2 MB larger than asked, so that a 2 MB-aligned start exists.
 struct Region {
-  void *p = nullptr;
-  size_t bytes = 0;
+  void *p = nullptr;    ///< the buffer (2 MB-aligned)
+  void *base = nullptr; ///< the mapping
+  size_t bytes = 0;     ///< the mapping's length
   Region() = default;
   Region(const Region &) = delete;
   Region &operator=(const Region &) = delete;
-  void swap(Region &o) { std::swap(p, o.p), std::swap(bytes, o.bytes); }
+  void swap(Region &o) { std::swap(p, o.p), std::swap(base, o.base), std::swap(bytes, o.bytes); }
   ~Region() {
-    if (p != nullptr) ::munmap(p, bytes);
+    if (base != nullptr) ::munmap(base, bytes);
   }
   void map(size_t n) {
+    constexpr size_t kHuge = size_t(2) << 20;
+    constexpr int kPopulateWrite = 23; // MADV_POPULATE_WRITE (Linux 5.14)
     if (n == 0) return;
-    p = ::mmap(nullptr, n, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1,
-               0);
-    if (p == MAP_FAILED) {
-      p = nullptr;
+    const size_t len = n + kHuge;
+    base = ::mmap(nullptr, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (base == MAP_FAILED) {
+      base = nullptr;
       throw std::bad_alloc();
     }
-    bytes = n;
+    bytes = len;
+    p = reinterpret_cast<void *>((reinterpret_cast<uintptr_t>(base) + kHuge - 1) & ~(kHuge - 1));
+    (void)::madvise(p, n, MADV_HUGEPAGE); // best effort, as is the population
+    (void)::madvise(p, n, kPopulateWrite);
   }
 };
 

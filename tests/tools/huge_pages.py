@@ -19,6 +19,8 @@ import subprocess
 import sys
 import tempfile
 
+from verifykit import check, done
+
 swarf = sys.argv[1]
 d = tempfile.mkdtemp(prefix="swarf_huge_pages_")
 script = os.path.join(d, "reader.sh")
@@ -27,16 +29,6 @@ with open(script, "w") as f:
 os.chmod(script, 0o755)
 with open(os.path.join(d, "x.vdb"), "w") as f:
     f.write("not read\n")
-failures = []
-passed = [0]
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what, flush=True)
-    if cond:
-        passed[0] += 1
-    else:
-        failures.append(what)
 
 
 def child_env(tag, **extra):
@@ -67,5 +59,4 @@ seen = child_env("caller's", GLIBC_TUNABLES="glibc.malloc.arena_max=2")
 check(seen.get("GLIBC_TUNABLES") == "glibc.malloc.arena_max=2",
       "a caller's GLIBC_TUNABLES is kept as it is (%s)" % seen.get("GLIBC_TUNABLES"))
 shutil.rmtree(d, ignore_errors=True)
-print("%d passed, %d failed" % (passed[0], len(failures)))
-sys.exit(1 if failures else 0)
+sys.exit(done())

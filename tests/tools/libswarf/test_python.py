@@ -385,7 +385,7 @@ def test_design():
     cache = path("design-cache")
     runs = [swarf.simulate(prog, stock="box:0,0,-5,20,10,0", tools="T1=flat,D4", voxel=0.25,
                            design=design, tolerance=0.05, design_cache=cache) for _ in range(2)]
-    kept = [f for f in os.listdir(cache) if f.endswith(".vdb")] if os.path.isdir(cache) else []
+    kept = [f for f in os.listdir(cache) if f.endswith(".band")] if os.path.isdir(cache) else []
     check(len(kept) == 1, "design_cache: one band kept in the folder: %s" % kept)
     for k, run in enumerate(runs):
         e = run.report.deviation

@@ -19,6 +19,7 @@ Truth:
 import json
 import math
 import os
+import shutil
 import struct
 import subprocess
 import sys
@@ -383,6 +384,7 @@ def test_design():
           "the same gouge lines as the CLI: %s" % gouges)
     # design_cache=: the band kept in the folder, found by the next run; the same comparison
     cache = path("design-cache")
+    shutil.rmtree(cache, ignore_errors=True)  # a folder left by an earlier run would count
     runs = [swarf.simulate(prog, stock="box:0,0,-5,20,10,0", tools="T1=flat,D4", voxel=0.25,
                            design=design, tolerance=0.05, design_cache=cache) for _ in range(2)]
     kept = [f for f in os.listdir(cache) if f.endswith(".band")] if os.path.isdir(cache) else []

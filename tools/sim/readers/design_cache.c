@@ -13,8 +13,8 @@
  * (swarf_stock_read_band: no child process, no OpenVDB parser, 0.3 s CPU
  * less than a .vdb for bear's design at 0.2 mm), so a damaged or planted
  * file costs a rebuild, never a crash; the values are the ones written, bit
- * for bit, and the STL's triangles are
- * kept too, beside the band (KEY.tri), in the order the exact distances
+ * for bit, and the STL's triangles are kept too, beside the band (KEY.tri),
+ * in the order the exact distances
  * beyond the band search them: a warm run reads them back, when the first
  * such distance is asked for, instead of parsing, welding and sorting the
  * STL (swarf_stock_design_surface_cached; a damaged .tri costs a reading of
@@ -183,16 +183,11 @@ static void cache_evict(const char *dir, long long max) {
   free(e);
 }
 
-/* The band written under its key (a temporary renamed into place), and its
- * triangles beside it (tri; written atomically). */
+/* The band written under its key and its triangles beside it (tri), each
+ * atomically by its writer (a temporary renamed into place). */
 static void cache_put(const char *dir, const char *file, const char *tri, const swarf_stock *s,
                       long long max) {
-  char tmp[4300];
-  if (snprintf(tmp, sizeof tmp, "%s.tmp.%ld", file, (long)getpid()) >= (int)sizeof tmp) return;
-  if (swarf_stock_write_band(s, tmp, NULL) != SWARF_OK || rename(tmp, file) != 0) {
-    unlink(tmp);
-    return;
-  }
+  if (swarf_stock_write_band(s, file, NULL) != SWARF_OK) return;
   swarf_stock_design_surface_save(s, tri, NULL);
   cache_evict(dir, max);
 }

@@ -488,8 +488,13 @@ struct CubeCuts {
     }
   };
   std::vector<Entry> list[64];
-  uint32_t next[64]; ///< the next pair to look at
-  double low[64];    ///< lowest starting value of the cube's changed voxels (+inf: none)
+  uint32_t next[64]; ///< the next pair to look at, an index into its octant's pairs
+  /// Per octant, once a cube of it asks: the pairs that may raise a voxel of
+  /// any of its cubes (the bound from the block's centre with the octant's
+  /// farthest cube and lowest value; the plain visit's verdict there).
+  std::vector<uint32_t> pairs[8];
+  bool listed[8];
+  double low[64]; ///< lowest starting value of the cube's changed voxels (+inf: none)
   OctantPlanes *planes = nullptr; ///< the plain visit's octant planes (null: none)
   static int octant_of(int c) { return ((c >> 5) << 2) | (((c >> 3) & 1) << 1) | ((c >> 1) & 1); }
   /// Whether the octant's findings keep every voxel of cube c at or below
@@ -512,23 +517,46 @@ struct CubeCuts {
     return block_point(p, b.origin, ((c >> 4) << 1) + 0.5, (((c >> 2) & 3) << 1) + 0.5,
                        ((c & 3) << 1) + 0.5);
   }
-  void reset(const Block &b) {
+  void reset() {
     for (int c = 0; c < 64; c++) {
       list[c].clear();
-      next[c] = b.begin;
+      next[c] = 0;
       low[c] = std::numeric_limits<double>::infinity();
     }
+    std::fill_n(listed, 8, false);
   }
-  /// Entry k of cube c's list, found if needed; false when there is none.
-  bool get(const Pass &p, const Block &b, int c, size_t k, Entry &e) {
+  /// The pairs of octant o (its cubes' low values known): those that pass
+  /// what get tests first with the bounds of all its cubes at once.
+  void list_octant(const Pass &p, const Block &b, int o) {
+    const RemoveScratch &w = p.s.scratch;
+    double r = 0.0, lo = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 8; k++) {
+      const int c = ((((o >> 2) << 1) | (k >> 2)) << 4) |
+                    (((((o >> 1) & 1) << 1) | ((k >> 1) & 1)) << 2) | (((o & 1) << 1) | (k & 1));
+      if (low[c] < lo) lo = low[c];
+      if (low[c] < std::numeric_limits<double>::infinity() && p.rcube[c] > r) r = p.rcube[c];
+    }
+    pairs[o].clear();
+    for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
+      // for each cube c: centre_sdf - rcube[c] + low[c] >= that (rounding is monotone)
+      if (w.centre_sdf[i] - r + lo >= kMargin) continue; // a NaN: looked at
+      if (planes != nullptr && planes->at(o, i - b.begin).state == OctantPlanes::kOut) continue;
+      pairs[o].push_back(i);
+    }
+    listed[o] = true;
+  }
+  /// Entry k of cube c's list, found if needed; null when there is none.
+  /// (Valid until the next call: the list may grow.)
+  Entry *get(const Pass &p, const Block &b, int c, size_t k) {
     const RemoveScratch &w = p.s.scratch;
     const double rv = 0.5 * std::sqrt(3.0) * p.voxel;
+    const int o = octant_of(c);
+    if (!listed[o]) list_octant(p, b, o);
     while (list[c].size() <= k) {
-      if (next[c] >= b.begin + b.count) return false;
-      const uint32_t i = next[c]++;
+      if (next[c] >= pairs[o].size()) return nullptr;
+      const uint32_t i = pairs[o][next[c]++];
       if (w.centre_sdf[i] - p.rcube[c] + low[c] >= kMargin) continue; // a NaN: looked at
-      if (planes != nullptr && octant_keeps_below(p, planes->at(octant_of(c), i - b.begin), c))
-        continue;
+      if (planes != nullptr && octant_keeps_below(p, planes->at(o, i - b.begin), c)) continue;
       const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
       const Vec3d q = centre(p, b, c);
       const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
@@ -537,8 +565,7 @@ struct CubeCuts {
       const bool ask = p.support != nullptr && p.support[w.pairs[i].cut] != nullptr && d > 0.0;
       list[c].push_back({i, d, ask ? -1 : 0, {0.0, 0.0, 0.0}});
     }
-    e = list[c][k];
-    return true;
+    return &list[c][k];
   }
   /// Entry k of cube c (found by get) with its supporting plane, asked for now
   /// if it was not yet (a voxel the Lipschitz bound could not decide).
@@ -567,6 +594,125 @@ struct VisitScratch {
 __attribute__((noinline)) VisitScratch &visit_scratch() {
   thread_local VisitScratch vs;
   return vs;
+}
+
+/// One voxel of a block's replay (visit_leaf_measured): its index and place,
+/// its value as the cuts are replayed in program order, the value where its
+/// replay ends, and its design value (NaN: asked when needed; dq_exact: made
+/// exact beyond the band, where it is).
+struct ReplayVoxel {
+  openvdb::Index n;
+  Coord l;
+  Vec3d q;
+  double v, end, dq;
+  bool dq_exact;
+};
+
+/// What a block's replay shares across its cubes.
+struct Replay {
+  const Pass &p;
+  const Block &b;
+  const float *data;   ///< the block's final values (the plain visit's)
+  const uint32_t *arg; ///< per voxel, the cut its final value came from
+  GridProbe *design;   ///< null: no gouge can be found in the block
+  double half, rv;     ///< half a voxel; a voxel's distance to its cube's centre
+  double tie;          ///< kTie voxels
+  double deep;         ///< the value beyond which nothing more is measured
+};
+
+/// The 2^3 cube of voxel n, index (x >> 1) << 4 | (y >> 1) << 2 | z >> 1.
+inline int cube_of(openvdb::Index n) {
+  return int(((n >> 7) << 4) | (((n >> 4) & 3) << 2) | ((n >> 1) & 3));
+}
+
+/// Whether place a comes before place b (x, then y, then z): within a block,
+/// the order of the voxels' indices.
+inline bool before(const Vec3d &a, const Vec3d &b) {
+  return a.x() != b.x() ? a.x() < b.x() : a.y() != b.y() ? a.y() < b.y() : a.z() < b.z();
+}
+
+/// One step of voxel x's replay: entry k of cube c's list, whose bounds from
+/// the block's and the cube's centres did not pass it over. Credits the cut
+/// with the inside fraction it removes and checks it for a gouge.
+void replay_step(const Replay &r, CubeCuts &cubes, int c, size_t k, ReplayVoxel &x) {
+  const Pass &p = r.p;
+  RemoveScratch &w = p.s.scratch;
+  const CubeCuts::Entry &e = cubes.list[c][k];
+  const double ed = e.d; // as read before its plane is asked for (which sets d again)
+  const uint32_t i = e.pair;
+  if (e.plane != 0) {
+    const CubeCuts::Entry &pe = cubes.with_plane(p, r.b, c, k);
+    if (pe.plane == 1 && pe.at(x.l, r.half) + x.v >= kMargin)
+      return; // nor by the cut's supporting plane at the cube's centre
+  }
+  const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
+  const double v = x.v;
+  double d, nv;
+  if (-ed - r.rv - kMargin >= r.deep) { // emptied, deeper than anything measured
+    d = r.deep, nv = r.deep;
+    w.removed[i] += inside_fraction(v, p.voxel);
+  } else if (w.pairs[i].cut == r.arg[x.n] && (cut.range == nullptr || p.plain) &&
+             !(r.design && v < 0.0)) {
+    // The cut the plain visit took the final value from (by the same sdf at
+    // the same point): its step ends there, unevaluated. (A gouge needs its
+    // sdf: evaluated below.)
+    d = nv = double(r.data[x.n]);
+    if (!(nv > v)) return;
+    w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+  } else {
+    d = -cut.sdf(cut.ctx, x.q.x(), x.q.y(), x.q.z());
+    nv = stored(d, p.bgf);
+    if (!(nv > v)) return;
+    w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
+  }
+  if (r.design && v < -r.tie && d > -r.tie) {
+    const swarf_stock &ds = *p.measure->design;
+    if (!x.dq_exact) {
+      if (std::isnan(x.dq)) x.dq = r.design->at(x.q);
+      // Beyond the band of a design read from a mesh: its exact depth.
+      if (ds.surface && x.dq <= -double(ds.background) * (1.0 - 1e-6))
+        x.dq = -surface_distance(ds, x.q);
+      x.dq_exact = true;
+    }
+    const double depth = gouge_depth(ds, x.dq, std::min(d, -v), p.voxel);
+    // the deepest, and of equal ones the first in voxel order (as a replay
+    // voxel by voxel finds them)
+    if (depth > p.measure->tolerance &&
+        (depth > w.gouge[i] || (depth == w.gouge[i] && before(x.q, w.gouge_at[i]))))
+      w.gouge[i] = depth, w.gouge_at[i] = x.q;
+  }
+  x.v = nv;
+}
+
+/// The replay of cube c's m voxels (in voxel order), entry by entry of the
+/// cube's list: an entry whose bound from the cube's centre keeps the lowest
+/// voxel still replayed where it is passes over all of them at once. Each
+/// voxel takes the same steps as when replayed alone.
+void replay_cube(const Replay &r, CubeCuts &cubes, int c, ReplayVoxel *vx, int m) {
+  const Pass &p = r.p;
+  const RemoveScratch &w = p.s.scratch;
+  const double bg = p.bgf, inf = std::numeric_limits<double>::infinity();
+  double vmin = inf; // the lowest value still replayed (+inf: none)
+  for (int j = 0; j < m; j++)
+    if (vx[j].v < vx[j].end) vmin = std::min(vmin, vx[j].v);
+  for (size_t k = 0; vmin < inf; k++) {
+    const CubeCuts::Entry *e = cubes.get(p, r.b, c, k);
+    if (e == nullptr) break;
+    if (e->d - r.rv + vmin >= kMargin) continue; // no voxel of the cube is raised
+    const uint32_t i = e->pair;
+    double lo = inf;
+    for (int j = 0; j < m; j++) {
+      ReplayVoxel &x = vx[j];
+      if (!(x.v < x.end)) continue;
+      // the bounds from the block's and the cube's centres (d as it is now:
+      // a voxel before this one may have asked for the plane)
+      if (may_raise(x.v, bg, w.centre_sdf[i], p.radius[x.n]) &&
+          !(cubes.list[c][k].d - r.rv + x.v >= kMargin))
+        replay_step(r, cubes, c, k, x);
+      if (x.v < x.end) lo = std::min(lo, x.v);
+    }
+    vmin = lo;
+  }
 }
 
 /// Pass 4, measured: the block's final values by the plain visit (the
@@ -610,7 +756,6 @@ __attribute__((noinline)) VisitScratch &visit_scratch() {
 /// own), so every gouge, depth and place is the full measurement's.
 void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design, ConstAcc *dacc,
                          VisitScratch &vs) {
-  RemoveScratch &w = p.s.scratch;
   const bool volumes = p.measure->volumes;
   const double far = volumes ? p.voxel : gouge_floor(p);
   if (design && dacc && design_far(p, *dacc, b.origin, far)) design = nullptr;
@@ -626,90 +771,63 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
   OctantPlanes &planes = vs.planes;
   planes.reset(b.count);
   visit_leaf(p, leaf, b, vs.oct, arg, &planes);
-  const double half = 0.5 * p.voxel, bg = p.bgf, rv = 0.5 * std::sqrt(3.0) * p.voxel;
-  const double tie = kTie * p.voxel;
-  const swarf_stock *ds = p.measure->design;
-  const double floor = design ? -p.voxel : -half, deep = design ? p.voxel : half;
+  Replay r{p,
+           b,
+           data,
+           arg,
+           design,
+           0.5 * p.voxel,
+           0.5 * std::sqrt(3.0) * p.voxel,
+           kTie * p.voxel,
+           design ? p.voxel : 0.5 * p.voxel};
+  const double floor = design ? -p.voxel : -r.half;
   CubeCuts &cubes = vs.cubes;
-  cubes.reset(b);
+  cubes.reset();
   cubes.planes = p.flat ? nullptr : &planes;
-  auto cube_of = [](openvdb::Index n) {
-    return int(((n >> 7) << 4) | (((n >> 4) & 3) << 2) | ((n >> 1) & 3)); // x>>1, y>>1, z>>1
-  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  uint16_t list[Leaf::SIZE]; // the voxels to replay
-  double dqs[Leaf::SIZE];    // gouges only: their design values (else NaN: asked when needed)
+  // the voxels to replay (in voxel order), then grouped by cube
+  ReplayVoxel vx[Leaf::SIZE];
+  uint16_t per_cube[65] = {0};
   size_t count = 0;
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     double dq = nan;
     if (volumes) { // the voxels whose fraction changed
-      if (!(data[n] > old[n] && old[n] < half && data[n] > -half)) continue;
+      if (!(data[n] > old[n] && old[n] < r.half && data[n] > -r.half)) continue;
     } else { // those that crossed from material to air where the design may be gouged
-      if (!(old[n] < -tie && data[n] > -tie)) continue;
+      if (!(old[n] < -r.tie && data[n] > -r.tie)) continue;
       const Coord l = Leaf::offsetToLocalCoord(n);
       dq = design->at(block_point(p, b.origin, l.x(), l.y(), l.z()));
       if (!(dq < far)) continue;
     }
-    double &lo = cubes.low[cube_of(n)];
+    const int c = cube_of(n);
+    double &lo = cubes.low[c];
     lo = std::min(lo, std::max(double(old[n]), floor));
-    dqs[count] = dq;
-    list[count++] = uint16_t(n);
-  }
-  for (size_t at = 0; at < count; at++) {
-    const openvdb::Index n = list[at];
-    const Coord l = Leaf::offsetToLocalCoord(n);
-    const int cube = cube_of(n);
-    const Vec3d q = block_point(p, b.origin, l.x(), l.y(), l.z());
-    double v = std::max(double(old[n]), floor), dq = dqs[at];
-    bool dq_exact = false; // dq made exact beyond the band, if it is
+    per_cube[c + 1]++;
+    ReplayVoxel &x = vx[count++];
+    x.n = n;
+    x.dq = dq;
+    x.v = std::max(double(old[n]), floor);
     // No cut raises the voxel beyond its final value (the maximum the plain
     // visit stored): the replay ends there, or where the voxel is empty; for
     // the gouges only, where it has no material left (a gouge needs some).
-    const double end = volumes ? std::min(half, double(data[n])) : 0.0;
-    CubeCuts::Entry e;
-    for (size_t k = 0; v < end && cubes.get(p, b, cube, k, e); k++) {
-      const uint32_t i = e.pair;
-      if (!may_raise(v, bg, w.centre_sdf[i], p.radius[n]) || e.d - rv + v >= kMargin)
-        continue; // the bounds from the block's and the cube's centres: no raise
-      if (e.plane != 0) {
-        const CubeCuts::Entry &pe = cubes.with_plane(p, b, cube, k);
-        if (pe.plane == 1 && pe.at(l, half) + v >= kMargin)
-          continue; // nor by the cut's supporting plane at the cube's centre
-      }
-      const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-      double d, nv;
-      if (-e.d - rv - kMargin >= deep) { // emptied, deeper than anything measured
-        d = deep, nv = deep;
-        w.removed[i] += inside_fraction(v, p.voxel);
-      } else if (w.pairs[i].cut == arg[n] && (cut.range == nullptr || p.plain) &&
-                 !(design && v < 0.0)) {
-        // The cut the plain visit took the final value from (by the same sdf
-        // at the same point): its step ends there, unevaluated. (A gouge
-        // needs its sdf: evaluated below.)
-        d = nv = double(data[n]);
-        if (!(nv > v)) continue;
-        w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
-      } else {
-        d = -cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-        nv = stored(d, p.bgf);
-        if (!(nv > v)) continue;
-        w.removed[i] += inside_fraction(v, p.voxel) - inside_fraction(nv, p.voxel);
-      }
-      if (design && v < -tie && d > -tie) {
-        if (!dq_exact) {
-          if (std::isnan(dq)) dq = design->at(q);
-          // Beyond the band of a design read from a mesh: its exact depth.
-          if (ds->surface && dq <= -double(ds->background) * (1.0 - 1e-6))
-            dq = -surface_distance(*ds, q);
-          dq_exact = true;
-        }
-        const double depth = gouge_depth(*ds, dq, std::min(d, -v), p.voxel);
-        if (depth > p.measure->tolerance && depth > w.gouge[i])
-          w.gouge[i] = depth, w.gouge_at[i] = q;
-      }
-      v = nv;
-    }
+    x.end = volumes ? std::min(r.half, double(data[n])) : 0.0;
   }
+  if (count == 0) return;
+  for (int c = 0; c < 64; c++)
+    per_cube[c + 1] += per_cube[c];
+  ReplayVoxel sorted[Leaf::SIZE];
+  uint16_t at[64];
+  std::copy(per_cube, per_cube + 64, at);
+  for (size_t j = 0; j < count; j++) {
+    ReplayVoxel &x = sorted[at[cube_of(vx[j].n)]++];
+    x = vx[j];
+    x.l = Leaf::offsetToLocalCoord(x.n);
+    x.q = block_point(p, b.origin, x.l.x(), x.l.y(), x.l.z());
+    x.dq_exact = false;
+  }
+  for (int c = 0; c < 64; c++)
+    if (per_cube[c + 1] > per_cube[c])
+      replay_cube(r, cubes, c, sorted + per_cube[c], per_cube[c + 1] - per_cube[c]);
 }
 
 /// Pass 4 for one block: its leaf (a tile's block in this thread's scratch

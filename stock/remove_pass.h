@@ -2,10 +2,11 @@
 /// @file remove_pass.h
 /// @brief What the files of the removal share (remove.cc: the passes in
 /// order and the entry points; remove_blocks.cc: which blocks the cuts meet
-/// and what becomes of them; remove_visit.cc: the voxels of a block, plain
-/// and measured; remove_query.cc: the read-only questions, overlap,
-/// penetration, gouge): a pass's frame and band, the margins of its
-/// hierarchical tests, and the steps each file gives the others.
+/// and what becomes of them; remove_visit.cc: the voxels of a block;
+/// remove_replay.cc: the same, measured; remove_query.cc: the read-only
+/// questions, overlap, penetration, gouge): a pass's frame and band, the
+/// margins of its hierarchical tests, and the steps each file gives the
+/// others.
 #ifndef SWARF_STOCK_REMOVE_PASS_H
 #define SWARF_STOCK_REMOVE_PASS_H
 
@@ -83,6 +84,47 @@ inline double gouge_depth(const swarf_stock &design, double dq, double r, double
   if (!design.surface && dq <= -bg * (1.0 - 1e-6)) return bg;
   return -dq + vouched_radius(r, voxel);
 }
+
+/// Measured: what the plain visit learnt of the block's cuts at each 4^3
+/// octant's centre, for the replay (visit_leaf_measured), per octant and pair
+/// (index - the block's first): whether the cut may raise a voxel of the
+/// octant at all (the block centre's bound), and its supporting plane there.
+struct OctantPlanes {
+  enum : uint8_t { kOut, kNoPlane, kPlane };
+  struct Entry {
+    uint8_t state; ///< kOut: no voxel of the octant can be raised (from the block's values)
+    double d;      ///< kPlane: sdf(q) >= d + g.(q - centre) for every q
+    double g[3];
+  };
+  std::vector<Entry> e;
+  uint32_t count = 0;
+  /// Room for n cuts; the octants' visits write every entry, so none is
+  /// cleared here.
+  void reset(uint32_t n) {
+    count = n;
+    if (e.size() < 8 * size_t(n)) e.resize(8 * size_t(n));
+  }
+  Entry &at(int octant, uint32_t k) { return e[size_t(octant) * count + k]; }
+};
+
+/// Whether voxel n (value m, at distance r from a point where the cut's sdf is
+/// d) may be raised by the cut: not already outside, and the Lipschitz bound
+/// d - r does not keep -sdf at or below m.
+inline bool may_raise(double m, double bg, double d, double r) {
+  return m < bg && !(d - r + m >= kMargin); // a NaN sdf: the voxels decide
+}
+
+/// A thread's scratch for the octants' visits (remove_visit.cc).
+struct OctScratch;
+/// Pass 4 for one leaf, plain: max over the cuts, clamp, band state; with
+/// arg, the cut each raised voxel's final value came from; with planes, what
+/// the octants learnt of the cuts (remove_visit.cc).
+void visit_leaf(const Pass &p, Leaf &leaf, Block &b, OctScratch &os, uint32_t *arg = nullptr,
+                OctantPlanes *planes = nullptr);
+/// Pass 4 for one leaf, measured: the plain visit, then the replay that
+/// credits each cut (remove_replay.cc).
+void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design, ConstAcc *dacc,
+                         OctScratch &os);
 
 /// A pass over the cuts: the per-voxel distances of its frame.
 void init_pass(Pass &p);

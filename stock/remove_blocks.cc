@@ -300,7 +300,7 @@ void classify(const Pass &p, ConstAcc &acc, Block &b, ConstAcc *dacc) {
   for (uint32_t i = b.begin; i < b.begin + b.count; i++) {
     const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
     const swarf_stock_support_fn f = p.support ? p.support[w.pairs[i].cut] : nullptr;
-    // with a support function, the sdf and, outside the cut, its plane (the
+    // with a support function, the sdf and, where it has one, its plane (the
     // octants the plane keeps below their values are passed over)
     double d, g[3] = {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
     if (f == nullptr || f(cut.ctx, c.x(), c.y(), c.z(), &d, g) != 1) {

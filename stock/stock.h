@@ -124,7 +124,8 @@ SWARF_API swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stoc
 
 /* An optional companion of a cut's sdf: the sdf at p = (x, y, z) in *d and,
  * when it returns 1, a unit vector g with sdf(q) >= *d + g.(q - p) for every
- * q (a supporting plane: the volume is convex and p outside it). */
+ * q (a supporting plane: the volume is convex, so its sdf is, and p may lie
+ * inside it or outside). */
 typedef int (*swarf_stock_support_fn)(const void *ctx, double x, double y, double z, double *d,
                                       double g[3]);
 

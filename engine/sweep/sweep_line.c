@@ -308,17 +308,33 @@ double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alp
   return d;
 }
 
-/* The unit normal of the cutter's core (radius a, height band) at a point
- * outside it by dr radially and dz in height (either may be <= 0), with
- * radial direction (cx, cy) (unit, or 0 on the axis) and height side sz (+-1),
- * in g; returns the distance to the core. */
-static double core_normal(double dr, double dz, double cx, double cy, double sz, double g[3]) {
-  double gr = dr > 0.0 ? dr : 0.0, gz = dz > 0.0 ? dz : 0.0, dist = sqrt(gr * gr + gz * gz);
-  double inv = dist > 0.0 ? 1.0 / dist : 0.0;
-  g[0] = gr * cx * inv;
-  g[1] = gr * cy * inv;
-  g[2] = gz * sz * inv;
-  return dist;
+/* A unit normal of the cutter's core (radius a, height band) at a point off
+ * it by dr radially and dz in height (as the sdf's box: outside where either
+ * is > 0, inside at depth -max(dr, dz) otherwise), with radial direction
+ * (cx, cy) (unit, or 0 on the axis) and height side sz (+-1), in g; returns
+ * the signed distance to the core, or NaN where the normal is not reliable.
+ * Outside: the normal at the nearest point (not within 1e-6 mm of the core,
+ * where rounding could tilt it). Inside: the gradient of the nearer side, a
+ * subgradient of the convex sdf there (either side at a tie); the radial one
+ * not within 1e-6 mm of the axis, the height one at mid-height the side sz
+ * (|.| at 0 has every slope in [-1, 1]). */
+static double core_normal(double dr, double dz, double a, double cx, double cy, double sz,
+                          double g[3]) {
+  if (dr > 0.0 || dz > 0.0) {
+    double gr = dr > 0.0 ? dr : 0.0, gz = dz > 0.0 ? dz : 0.0, dist = sqrt(gr * gr + gz * gz);
+    if (!(dist >= 1e-6)) return NAN;
+    g[0] = gr * cx / dist;
+    g[1] = gr * cy / dist;
+    g[2] = gz * sz / dist;
+    return dist;
+  }
+  if (dr >= dz) {
+    if (!(dr + a >= 1e-6)) return NAN;
+    g[0] = cx, g[1] = cy, g[2] = 0.0;
+    return dr;
+  }
+  g[0] = g[1] = 0.0, g[2] = sz;
+  return dz;
 }
 
 /* The radial unit direction of (x, y), or 0 on the axis. */
@@ -348,20 +364,19 @@ int swarf_sweep_line_support(const swarf_sweep *s, const double p[3], double *d,
     double ex = wx - t * x->d[0], ey = wy - t * x->d[1], z = p[2] - x->p0[2];
     double r = sqrt(ex * ex + ey * ey);
     *d = swarf_cutter_sdf_rz(c, r, z); /* as swarf_sweep_slot_sdf */
-    if (!(*d >= 1e-6)) return 0;
     radial(ex, ey, &cx, &cy);
-    dist = core_normal(r - swarf_cutter_core(c), fabs(z - 0.5 * c->length) - hh, cx, cy,
-                       z >= 0.5 * c->length ? 1.0 : -1.0, n);
+    dist = core_normal(r - swarf_cutter_core(c), fabs(z - 0.5 * c->length) - hh,
+                       swarf_cutter_core(c), cx, cy, z >= 0.5 * c->length ? 1.0 : -1.0, n);
     break;
   }
   case SWARF_SWEEP_PLUNGE: {
     const swarf_sweep_plunge *x = &swarf_sweep_cdata(s)->u.plunge;
     double ex = p[0] - x->x, ey = p[1] - x->y;
     *d = swarf_sweep_plunge_sdf(s, p, NULL);
-    if (!(*d >= 1e-6)) return 0;
     radial(ex, ey, &cx, &cy);
-    dist = core_normal(sqrt(ex * ex + ey * ey) - swarf_cutter_core(c),
-                       fabs(p[2] - x->mid) - x->half, cx, cy, p[2] >= x->mid ? 1.0 : -1.0, n);
+    dist =
+        core_normal(sqrt(ex * ex + ey * ey) - swarf_cutter_core(c), fabs(p[2] - x->mid) - x->half,
+                    swarf_cutter_core(c), cx, cy, p[2] >= x->mid ? 1.0 : -1.0, n);
     break;
   }
   case SWARF_SWEEP_RAMP:
@@ -370,11 +385,15 @@ int swarf_sweep_line_support(const swarf_sweep *s, const double p[3], double *d,
     double u;
     *d = swarf_sweep_cdata(s)->method == SWARF_SWEEP_RAMP ? ramp_eval(s, p, &rp, &u)
                                                           : ramp_ball_eval(s, p, &rp, &u);
-    if (!(*d >= 1e-6)) return 0;
-    double z = rp.zp - rp.k * u;
+    double z = rp.zp - rp.k * u, dr = sqrt((u - rp.xi) * (u - rp.xi) + rp.eta * rp.eta) - rp.a;
+    double dz = fabs(z) - rp.hh;
+    /* Inside the core the ramp's value is that of the instance at u (the
+     * deepest one), min over u of a convex function of (p, u): the gradient
+     * of its radial side bounds it only where moving u cannot lower that side
+     * (u = xi, or the end toward xi); its height side is not used. */
+    if (dr <= 0.0 && dz <= 0.0 && !(dr >= dz && u == clamp(rp.xi, 0.0, rp.U))) return 0;
     radial(rp.xi - u, rp.eta, &cx, &cy);
-    dist = core_normal(sqrt((u - rp.xi) * (u - rp.xi) + rp.eta * rp.eta) - rp.a, fabs(z) - rp.hh,
-                       cx, cy, z >= 0.0 ? 1.0 : -1.0, n);
+    dist = core_normal(dr, dz, rp.a, cx, cy, z >= 0.0 ? 1.0 : -1.0, n);
     ramp_world(s, n);
     break;
   }
@@ -382,9 +401,9 @@ int swarf_sweep_line_support(const swarf_sweep *s, const double p[3], double *d,
     *d = swarf_sweep_sdf(s, p, NULL);
     return 0;
   }
-  /* within rounding: the normal of an instance only nearly nearest could
-   * tilt the plane (by up to sqrt(2 err / d) radians) */
-  if (!(dist > 0.0 && fabs(dist - R - *d) <= 1e-13 * (1.0 + *d))) return 0;
+  /* within rounding: outside, the normal of an instance only nearly nearest
+   * could tilt the plane (by up to sqrt(2 err / dist) radians) */
+  if (!(fabs(dist - R - *d) <= 1e-13 * (1.0 + fabs(*d)))) return 0;
   for (int k = 0; k < 3; k++)
     g[k] = n[k];
   return 1;

@@ -147,8 +147,7 @@ struct CubeCuts {
       const Vec3d q = centre(p, b, c);
       const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
       if (d - rv + low[c] >= kMargin) continue;
-      // a plane only outside the cut (its support function's rule)
-      const bool ask = p.support != nullptr && p.support[w.pairs[i].cut] != nullptr && d > 0.0;
+      const bool ask = p.support != nullptr && p.support[w.pairs[i].cut] != nullptr;
       list[c].push_back({i, d, ask ? -1 : 0, {0.0, 0.0, 0.0}});
     }
     return &list[c][k];
@@ -319,10 +318,10 @@ void replay_cube(const Replay &r, CubeCuts &cubes, int c, ReplayVoxel *vx, int m
 /// needs no sdf at the cube's centre: 15.4 M -> 5.3 M such calls on bear.nc
 /// at 0.2 mm), and passes over
 /// those whose bound from the cube's centre keeps it where it is, or, for a
-/// cut with a supporting plane there (3-axis moves, the centre outside the
-/// cut), whose plane does (asked for at the first voxel of the cube the
-/// Lipschitz bound leaves undecided; bear.nc at 0.2 mm: 26.1 M -> 14.6 M
-/// replay sdf calls, of which 12.6 M raise the voxel); where the
+/// cut with a supporting plane there (3-axis moves), whose plane does (asked
+/// for at the first voxel of the cube the Lipschitz bound leaves undecided;
+/// bear.nc at 0.2 mm: 26.1 M -> 14.6 M replay sdf calls, of which 12.6 M
+/// raise the voxel, with planes outside the cuts only); where the
 /// cube's centre lies so deep in the cut that the voxel ends at or beyond S
 /// (half a voxel; a voxel with the design, where a depth also reads a
 /// voxel), it is emptied without evaluating the cut: its credit is its

@@ -380,9 +380,12 @@ SWARF_API double swarf_sweep_sdf_range(const swarf_sweep *s, const double p[3], 
 /* The sdf at p (*d) and, when it returns 1, a supporting plane there: a unit
  * vector g with sdf(q) >= *d + g.(q - p) for every q. Given where the volume
  * is convex (a straight move of a flat, ball or bull end mill: the fast
- * cutters) and p lies outside it: g is then the gradient, the direction from
- * the nearest point of the volume (on the nearest instance) to p. Otherwise
- * returns 0 and leaves g alone. For the removal's per-voxel bounds. */
+ * cutters), so that its sdf is convex inside and out: outside the cutter's
+ * core g is the gradient, the direction from the nearest point of the core
+ * (on the nearest instance) to p; inside it, the gradient of the core's
+ * nearer side (radial or height) where that is a subgradient of the sdf.
+ * Otherwise returns 0 and leaves g alone. For the removal's per-voxel
+ * bounds. */
 SWARF_API int swarf_sweep_support(const swarf_sweep *s, const double p[3], double *d, double g[3]);
 
 /* The characteristic curve of the sweep at time alpha in [0, 1]: the cutter

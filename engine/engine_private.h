@@ -389,10 +389,11 @@ double swarf_sweep_slot_sdf(const swarf_sweep *s, const double p[3], double *alp
 double swarf_sweep_plunge_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ramp_ball_sdf(const swarf_sweep *s, const double p[3], double *alpha);
 double swarf_sweep_ramp_sdf(const swarf_sweep *s, const double p[3], double *alpha);
-/* A straight move's sdf at p in *d and, where p lies outside by at least
- * 1e-6 mm, the sweep's supporting plane there: returns 1 with its unit
- * normal in g, the gradient of the nearest instance at p in closed form
- * (swarf_sweep_support for the line methods); else 0. */
+/* A straight move's sdf at p in *d and, where it has one in closed form, the
+ * sweep's supporting plane there (swarf_sweep_support for the line methods):
+ * returns 1 with its unit normal in g, from the core of the nearest
+ * instance; outside the core (by at least 1e-6 mm) its normal there, inside
+ * the gradient of its nearer side; else 0. */
 int swarf_sweep_line_support(const swarf_sweep *s, const double p[3], double *d, double g[3]);
 
 void swarf_sweep_helix_init(swarf_sweep *s);

@@ -179,12 +179,17 @@ void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, i
 /// Whether the supporting plane of cut o at the centre of the octant holding
 /// the 2^3 cube at (x0, y0, z0) keeps every voxel of the cube at or below its
 /// value (o.d + o.g.(voxel - centre) is a lower bound of the sdf: may_raise
-/// false for each voxel).
+/// false for each voxel): at once when the plane's least value over the cube
+/// does so for the cube's lowest value, else voxel by voxel.
 inline bool plane_keeps_below(const Pass &p, const BlockValues &bv, const CutAt &o, int x0, int y0,
                               int z0) {
   const double bg = p.bgf, v = p.voxel;
   // the cube's first voxel's offset from the octant's centre, in voxels
   const double ox = (x0 & 3) - 1.5, oy = (y0 & 3) - 1.5, oz = (z0 & 3) - 1.5;
+  const double least = o.d + v * (std::min(o.g[0] * ox, o.g[0] * (ox + 1.0)) +
+                                  std::min(o.g[1] * oy, o.g[1] * (oy + 1.0)) +
+                                  std::min(o.g[2] * oz, o.g[2] * (oz + 1.0)));
+  if (least + bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] >= kMargin) return true;
   for (int x = 0; x < 2; x++)
     for (int y = 0; y < 2; y++)
       for (int z = 0; z < 2; z++) {

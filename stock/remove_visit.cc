@@ -4,7 +4,6 @@
 /// through its octants and cubes with their cuts' bounds (the plain visit;
 /// remove_replay.cc replays it cut by cut when the removal is measured).
 #include <algorithm>
-#include <cstring>
 #include <limits>
 #include <utility>
 

@@ -323,9 +323,10 @@ static double core_normal(double dr, double dz, double a, double cx, double cy, 
   if (dr > 0.0 || dz > 0.0) {
     double gr = dr > 0.0 ? dr : 0.0, gz = dz > 0.0 ? dz : 0.0, dist = sqrt(gr * gr + gz * gz);
     if (!(dist >= 1e-6)) return NAN;
-    g[0] = gr * cx / dist;
-    g[1] = gr * cy / dist;
-    g[2] = gz * sz / dist;
+    double inv = 1.0 / dist;
+    g[0] = gr * cx * inv;
+    g[1] = gr * cy * inv;
+    g[2] = gz * sz * inv;
     return dist;
   }
   if (dr >= dz) {

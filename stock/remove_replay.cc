@@ -367,12 +367,14 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
   cubes.reset();
   cubes.planes = p.flat ? nullptr : &planes;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  // the voxels to replay (in voxel order), then grouped by cube
-  ReplayVoxel vx[Leaf::SIZE];
-  uint16_t per_cube[65] = {0};
-  size_t count = 0;
+  // the voxels to replay, with their design values (gouges only; else NaN:
+  // asked when needed), and each cube's lowest starting value
+  bool take[Leaf::SIZE];
+  double dqs[Leaf::SIZE];
+  uint8_t taken[64] = {0};
   for (openvdb::Index n = 0; n < Leaf::SIZE; n++) {
     double dq = nan;
+    take[n] = false;
     if (volumes) { // the voxels whose fraction changed
       if (!(data[n] > old[n] && old[n] < r.half && data[n] > -r.half)) continue;
     } else { // those that crossed from material to air where the design may be gouged
@@ -381,35 +383,38 @@ void visit_leaf_measured(const Pass &p, Leaf &leaf, Block &b, GridProbe *design,
       dq = design->at(block_point(p, b.origin, l.x(), l.y(), l.z()));
       if (!(dq < far)) continue;
     }
-    const int c = cube_of(n);
-    double &lo = cubes.low[c];
+    take[n] = true;
+    dqs[n] = dq;
+    taken[cube_of(n)]++;
+    double &lo = cubes.low[cube_of(n)];
     lo = std::min(lo, std::max(double(old[n]), floor));
-    per_cube[c + 1]++;
-    ReplayVoxel &x = vx[count++];
-    x.n = n;
-    x.dq = dq;
-    x.v = std::max(double(old[n]), floor);
-    // No cut raises the voxel beyond its final value (the maximum the plain
-    // visit stored): the replay ends there, or where the voxel is empty; for
-    // the gouges only, where it has no material left (a gouge needs some).
-    x.end = volumes ? std::min(r.half, double(data[n])) : 0.0;
   }
-  if (count == 0) return;
-  for (int c = 0; c < 64; c++)
-    per_cube[c + 1] += per_cube[c];
-  ReplayVoxel sorted[Leaf::SIZE];
-  uint16_t at[64];
-  std::copy(per_cube, per_cube + 64, at);
-  for (size_t j = 0; j < count; j++) {
-    ReplayVoxel &x = sorted[at[cube_of(vx[j].n)]++];
-    x = vx[j];
-    x.l = Leaf::offsetToLocalCoord(x.n);
-    x.q = block_point(p, b.origin, x.l.x(), x.l.y(), x.l.z());
-    x.dq_exact = false;
+  // cube by cube, each cube's voxels in voxel order
+  for (int c = 0; c < 64; c++) {
+    if (taken[c] == 0) continue;
+    ReplayVoxel vx[8];
+    int m = 0;
+    const int x0 = (c >> 4) << 1, y0 = ((c >> 2) & 3) << 1, z0 = (c & 3) << 1;
+    for (int x = x0; x < x0 + 2; x++)
+      for (int y = y0; y < y0 + 2; y++)
+        for (int z = z0; z < z0 + 2; z++) {
+          const openvdb::Index n = (x << 6) | (y << 3) | z;
+          if (!take[n]) continue;
+          ReplayVoxel &v = vx[m++];
+          v.n = n;
+          v.l = Coord(x, y, z);
+          v.q = block_point(p, b.origin, x, y, z);
+          v.v = std::max(double(old[n]), floor);
+          // No cut raises the voxel beyond its final value (the maximum the
+          // plain visit stored): the replay ends there, or where the voxel is
+          // empty; for the gouges only, where it has no material left (a
+          // gouge needs some).
+          v.end = volumes ? std::min(r.half, double(data[n])) : 0.0;
+          v.dq = dqs[n];
+          v.dq_exact = false;
+        }
+    replay_cube(r, cubes, c, vx, m);
   }
-  for (int c = 0; c < 64; c++)
-    if (per_cube[c + 1] > per_cube[c])
-      replay_cube(r, cubes, c, sorted + per_cube[c], per_cube[c + 1] - per_cube[c]);
 }
 
 } // namespace removal

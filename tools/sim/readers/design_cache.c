@@ -14,12 +14,12 @@
  * less than a .vdb for bear's design at 0.2 mm), so a damaged or planted
  * file costs a rebuild, never a crash; the values are the ones written, bit
  * for bit, and the STL's triangles are kept too, beside the band (KEY.tri),
- * in the order the exact distances
- * beyond the band search them: a warm run reads them back, when the first
- * such distance is asked for, instead of parsing, welding and sorting the
- * STL (swarf_stock_design_surface_cached; a damaged .tri costs a reading of
- * the STL, and is written again by the next run). Writing goes through a
- * temporary renamed into place, so concurrent runs never see half a file;
+ * in the order the exact distances beyond the band search them: a warm run
+ * reads them back, when the first such distance is asked for, instead of
+ * parsing, welding and sorting the STL (swarf_stock_design_surface_cached; a
+ * damaged .tri costs a reading of the STL, and is written again by the next
+ * run). Each file's writer goes through a temporary renamed into place, so
+ * concurrent runs never see half a file;
  * then the oldest files go until the folder is within its bound. The cache
  * is best effort: any failure of it falls back to reading the design, and
  * only the design's own errors are reported.

@@ -193,18 +193,21 @@ static void test_on_characteristic(void) {
 
 /* swarf_sweep_sdf_range's contract against swarf_sweep_sdf (certified to
  * 1e-6 mm) on a short 5-axis move like the impeller's (0.4 mm, 3 and 5
- * degrees, ball D4 L30, 0.2 mm voxels): for windows (lo, hi) below, around
- * and above each point's value: within 2e-6 mm of the sdf inside the window;
- * at most lo (and not below the sdf) under it; at least hi above it. */
-static void test_range(void) {
+ * degrees, D4 L30, 0.2 mm voxels), for a ball, a flat and a bull nose: for
+ * windows (lo, hi) below, around and above each point's value (up to 3 mm
+ * off, where the bound from the move's two ends alone decides): within 2e-6 mm
+ * of the sdf inside the window; at most lo (and not below the sdf) under it;
+ * at least hi above it. */
+static void test_range_cutter(const char *name, swarf_cutter_shape fam, double corner) {
   swarf_cutter c;
   swarf_sweep s;
   const double s6[6] = {10.2, -3.1, 25.0, 20, 0, 40}, e6[6] = {10.5, -2.9, 24.8, 23, 0, 45};
+  static const double off[7] = {-3.0, -0.3, -0.05, 0.0, 0.05, 0.3, 3.0};
   swarf_motion m = make("xyzac-trt", s6, e6);
   tk_rng r = {0x2545f4914f6cdd1dull};
   double worst = 0.0;
-  int n = 0;
-  swarf_cutter_init(&c, SWARF_CUTTER_BALL, 4.0, 0, 30.0, NULL);
+  int n = 0, above = 0;
+  swarf_cutter_init(&c, fam, 4.0, corner, 30.0, NULL);
   swarf_sweep_init_voxel(&s, &c, &m, 0.2);
   for (int i = 0; i < 400; i++) {
     double p[3], d;
@@ -212,24 +215,32 @@ static void test_range(void) {
     for (int k = 0; k < 3; k++)
       p[k] += tk_uniform(&r, -0.6, 0.6);
     d = swarf_sweep_sdf(&s, p, NULL);
-    for (int w = 0; w < 5; w++) {
-      const double off[5] = {-0.3, -0.05, 0.0, 0.05, 0.3};
+    for (int w = 0; w < 7; w++) {
       double lo = d + off[w] - 0.1, hi = d + off[w] + 0.1;
       double v = swarf_sweep_sdf_range(&s, p, lo, hi);
       if (d >= lo && d < hi) {
         worst = fmax(worst, fabs(v - d));
-        CHECK(fabs(v - d) <= 2e-6, "range in window: %.9g vs sdf %.9g", v, d);
+        CHECK(fabs(v - d) <= 2e-6, "%s: range in window: %.9g vs sdf %.9g", name, v, d);
         n++;
       } else if (d < lo) {
-        CHECK(v <= lo + 2e-6 && v >= d - 2e-6, "range below lo %g: %.9g (sdf %.9g)", lo, v, d);
+        CHECK(v <= lo + 2e-6 && v >= d - 2e-6, "%s: range below lo %g: %.9g (sdf %.9g)", name, lo,
+              v, d);
       } else {
-        CHECK(v >= hi - 2e-6, "range above hi %g: %.9g (sdf %.9g)", hi, v, d);
+        CHECK(v >= hi - 2e-6, "%s: range above hi %g: %.9g (sdf %.9g)", name, hi, v, d);
+        above++;
       }
     }
   }
-  printf("range search vs full search: %d values in their window, max difference %.2e mm\n", n,
-         worst);
-  CHECK(n > 400, "windows holding the value: %d", n);
+  printf("%s: range search vs full search: %d values in their window, max difference %.2e mm, "
+         "%d above\n",
+         name, n, worst, above);
+  CHECK(n > 400, "%s: windows holding the value: %d", name, n);
+}
+
+static void test_range(void) {
+  test_range_cutter("ball", SWARF_CUTTER_BALL, 0.0);
+  test_range_cutter("flat", SWARF_CUTTER_FLAT, 0.0);
+  test_range_cutter("bull", SWARF_CUTTER_BULL, 0.5);
 }
 
 int main(void) {

@@ -238,13 +238,14 @@ static rsample rstep(rctx *h, const swarf_pose *table, int i, int n) {
   return table ? rsample_at(h, (double)i / n, &table[i]) : reval(h, (double)i / n);
 }
 
-/* Coarse intervals (every S-th step, S ~ sqrt(n)) sorted by lower bound. */
+/* Coarse intervals (every S-th step, S ~ sqrt(n)) sorted by lower bound (the steps
+ * marked in have are in smp already). */
 static int rcoarse(rctx *h, const swarf_pose *table, int n, int S, rsample *smp, char *have,
                    int *order, double *lbc) {
   int nc = (n + S - 1) / S;
   for (int j = 0; j <= nc; j++) {
     int i = j * S < n ? j * S : n;
-    smp[i] = rstep(h, table, i, n), have[i] = 1;
+    if (!have[i]) smp[i] = rstep(h, table, i, n), have[i] = 1;
   }
   for (int j = 0; j < nc; j++) {
     int i0 = j * S, i1 = (j + 1) * S < n ? (j + 1) * S : n, k;
@@ -259,16 +260,18 @@ static int rcoarse(rctx *h, const swarf_pose *table, int n, int S, rsample *smp,
 
 /* Step 1: the samples at the time steps, evaluated only in the coarse
  * intervals whose lower bound is below the best value so far (most promising
- * first; the others cannot hold a lower value). Compacts the samples, in
+ * first; the others cannot hold a lower value); ends: smp[0] and smp[n] hold
+ * the ends already (step 0). Compacts the samples, in
  * time order, to the front of smp and returns their number minus one; *lb
  * receives a lower bound of g over the whole move. */
-static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double *lb) {
+static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, int ends, double *lb) {
   char have[MAXN + 1];
   int order[MAXN], S = (int)sqrt((double)n), nc, m = 0;
   double lbc[MAXN];
   if (S < 1) S = 1;
   order[0] = 0, lbc[0] = INFINITY;
   memset(have, 0, (size_t)n + 1);
+  have[0] = have[n] = (char)ends;
   nc = rcoarse(h, table, n, S, smp, have, order, lbc);
   *lb = lbc[order[0]];
   if (*lb > swarf_sweep_cdata(h->s)->u.rigid.far) return -1;
@@ -283,13 +286,13 @@ static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, double 
   return m - 1;
 }
 
-/* The two ends alone: 1 when their lower bound over the whole move (rbound's, over [0, 1])
- * is at or above the value to beat, so that no sample can beat it and the search would end
- * with that value (most points of a rotary move's bounding box lie well clear of it; the
- * coarse steps would only confirm that). */
-static int rends_above(rctx *h, const swarf_pose *table, int n) {
-  rsample A = rstep(h, table, 0, n), B = rstep(h, table, n, n);
-  return h->best.g < INFINITY && rbound(h, &A, &B) >= h->best.g;
+/* The two ends alone, into smp[0] and smp[n]: 1 when their lower bound over the whole
+ * move (rbound's, over [0, 1]) is at or above the value to beat, so that no sample can beat
+ * it and the search would end with that value (most points of a rotary move's bounding box
+ * lie well clear of it; the coarse steps would only confirm that). */
+static int rends_above(rctx *h, const swarf_pose *table, int n, rsample *smp) {
+  smp[0] = rstep(h, table, 0, n), smp[n] = rstep(h, table, n, n);
+  return h->best.g < INFINITY && rbound(h, &smp[0], &smp[n]) >= h->best.g;
 }
 
 /* The search, pruned by upper (best value to beat) and stopped at floor; ends: the ends'
@@ -306,11 +309,11 @@ static double rsearch(const swarf_sweep *s, swarf_body_sdf_fn body, const void *
   n = swarf_sweep_cdata(s)->u.rigid.n;
   /* NULL when out of memory: poses computed */
   swarf_motion_pose_table_id(s->motion, n, swarf_sweep_cdata(s)->u.rigid.id, &table);
-  if (ends && rends_above(&h, table, n)) {
+  if (ends && rends_above(&h, table, n, smp)) {
     if (alpha != NULL) *alpha = h.best.a;
     return h.best.g;
   }
-  n = rsteps(&h, table, n, smp, &lb);
+  n = rsteps(&h, table, n, smp, ends, &lb);
   if (alpha != NULL) *alpha = h.best.a;
   if (n < 0) return fmin(lb, upper);
   h.evals = 0;

@@ -377,6 +377,17 @@ SWARF_API double swarf_sweep_sdf(const swarf_sweep *s, const double p[3], double
 SWARF_API double swarf_sweep_sdf_range(const swarf_sweep *s, const double p[3], double lo,
                                        double hi);
 
+/* swarf_sweep_sdf_range's value at p for the window (lo, hi) in *d and, when it
+ * returns 1 (the value then lies in the window), a plane below the sdf within r of p:
+ * sdf(q) >= *pd + g.(q - p) for every q with |q - p| <= r (*pd <= *d; |g| may pass 1). A
+ * swept volume under rotation is not convex, so no plane bounds it everywhere; near p
+ * one does where the time of p's nearest instance is certified unique: a ball end mill's
+ * rigid moves whose distance to p is convex in time over the whole move
+ * (sweep_rigid_ball.c). Otherwise returns 0 and leaves pd and g alone. For the removal's
+ * per-voxel bounds on rotary moves. */
+SWARF_API int swarf_sweep_range_plane(const swarf_sweep *s, const double p[3], double lo, double hi,
+                                      double r, double *d, double *pd, double g[3]);
+
 /* The sdf at p (*d) and, when it returns 1, a supporting plane there: a unit
  * vector g with sdf(q) >= *d + g.(q - p) for every q. Given where the volume
  * is convex (a straight move of a flat, ball or bull end mill: the fast

@@ -431,5 +431,12 @@ double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], doub
  * preconditions cannot be certified at p (then the caller searches). */
 int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, double hi,
                            double *value, double *alpha);
+/* swarf_sweep_rigid_ball with, where it returns 1, a plane below the sdf within r of p
+ * (swarf_sweep_range_plane); 0: the value alone; -1 as swarf_sweep_rigid_ball. */
+int swarf_sweep_rigid_ball_plane(const swarf_sweep *s, const double p[3], double lo, double hi,
+                                 double r, double *value, double *pd, double g[3]);
+/* swarf_sweep_range_plane for RIGID sweeps (sweep_rigid.c). */
+int swarf_sweep_rigid_range_plane(const swarf_sweep *s, const double p[3], double lo, double hi,
+                                  double r, double *d, double *pd, double g[3]);
 
 #endif

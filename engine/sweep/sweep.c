@@ -78,6 +78,14 @@ double swarf_sweep_sdf_range(const swarf_sweep *s, const double p[3], double lo,
   return swarf_sweep_sdf(s, p, NULL);
 }
 
+int swarf_sweep_range_plane(const swarf_sweep *s, const double p[3], double lo, double hi, double r,
+                            double *d, double *pd, double g[3]) {
+  if (swarf_sweep_cdata(s)->method == SWARF_SWEEP_RIGID)
+    return swarf_sweep_rigid_range_plane(s, p, lo, hi, r, d, pd, g);
+  *d = swarf_sweep_sdf(s, p, NULL);
+  return 0;
+}
+
 int swarf_sweep_support(const swarf_sweep *s, const double p[3], double *d, double g[3]) {
   int method = swarf_sweep_cdata(s)->method;
   if (method == SWARF_SWEEP_SLOT || method == SWARF_SWEEP_RAMP || method == SWARF_SWEEP_RAMP_BALL ||

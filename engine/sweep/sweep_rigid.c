@@ -335,6 +335,15 @@ double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], doub
                  NULL);
 }
 
+int swarf_sweep_rigid_range_plane(const swarf_sweep *s, const double p[3], double lo, double hi,
+                                  double r, double *d, double *pd, double g[3]) {
+  const int k = swarf_sweep_rigid_ball_plane(s, p, lo, hi, r, d, pd, g);
+  if (k >= 0) return k;
+  *d = rsearch(s, cutter_body, s->cutter, p, lo, hi + EPS, !swarf_sweep_cdata(s)->u.rigid.ball,
+               NULL);
+  return 0;
+}
+
 double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,
                                   const double p[3], double *alpha) {
   if (s == NULL || swarf_sweep_cdata(s)->method != SWARF_SWEEP_RIGID || body == NULL || p == NULL)

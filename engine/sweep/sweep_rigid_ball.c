@@ -50,7 +50,9 @@
  * minorants step by step, may still put the value at or above hi; otherwise (also: p above the top
  * of the axis segment at some time, a window of more than MAXW steps, no pose table, no
  * convergence) the answer is -1 and the caller runs the general search, so
- * exactness never rests on this path's assumptions. The window (lo, hi) is
+ * exactness never rests on this path's assumptions. Where the whole move's
+ * convexity gave the value, a plane below the sweep within a radius of p
+ * comes with it on request (ball_plane; swarf_sweep_range_plane). The window (lo, hi) is
  * swarf_sweep_rigid_sdf_range's: a value at or below lo (a genuine one, from
  * a pose) ends the work, and so does a lower bound at or above hi. Nothing
  * allocates; pure function of the sweep and p.
@@ -67,6 +69,7 @@
 
 typedef struct {
   double a, G, dG, h, f; /* time, squared distance to the axis segment, G', h, |d|^2 */
+  double e[3];           /* p less its nearest point of the axis segment (|e|^2 = G) */
   const swarf_pose *P;   /* a table's pose (shank_mu reads its v and omega), or NULL */
 } bsample;
 
@@ -105,12 +108,15 @@ static bsample bsample_at(const bctx *b, double a, const swarf_pose *P,
   r.h = k[0] * d[0] + k[1] * d[1] + k[2] * d[2];
   r.f = r.G = f;
   r.dG = -2.0 * (d[0] * cp[0] + d[1] * cp[1] + d[2] * cp[2]);
+  r.e[0] = d[0], r.e[1] = d[1], r.e[2] = d[2];
   if (r.h > 0.0) { /* the shank's segment (its top end: h >= seg) */
     double z = r.h < b->seg ? r.h : b->seg;
     double hp = kd[0] * d[0] + kd[1] * d[1] + kd[2] * d[2] - P->v[2];
     r.G = f - z * (2.0 * r.h - z);
     r.dG -= 2.0 * z * hp; /* z = h: G' = f' - 2 h h'; z = seg: the same (k . k' = 0) */
     if (r.G < 0.0) r.G = 0.0;
+    for (int i = 0; i < 3; i++)
+      r.e[i] -= z * k[i];
   }
   return r;
 }
@@ -155,7 +161,7 @@ static int table_step(const bctx *b, double a0, double a1, double x, bsample *M)
  * sample to TIGHT (B_VALUE), or it is at most lo (B_BELOW), or the bound is
  * at least hi (B_ABOVE: *v the bound). */
 static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B, double lo,
-                     double hi, double *v, double *at) {
+                     double hi, double *v, double *at, bsample *bs) {
   bsample best = A.G <= B.G ? A : B;
   double gA = A.dG, gB = B.dG;
   int side = 0;
@@ -164,7 +170,7 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
     swarf_pose P;
     swarf_pose_rates Pr;
     bsample M;
-    *at = best.a;
+    *at = best.a, *bs = best;
     if (vb <= lo || vb - lb <= TIGHT) {
       *v = vb;
       return vb <= lo ? B_BELOW : B_VALUE;
@@ -195,18 +201,19 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
   }
 }
 
-/* The minimum over the move from the steps smp[0..n] (G convex). */
+/* The minimum over the move from the steps smp[0..n] (G convex); *bs the sample it is
+ * the value of (B_VALUE). */
 static bkind bmin(const bctx *b, const swarf_motion *m, const bsample *smp, int n, double lo,
-                  double hi, double *v, double *at) {
+                  double hi, double *v, double *at, bsample *bs) {
   int i = 0;
   while (i <= n && smp[i].dG < 0.0)
     i++;
   if (i == 0 || i > n) { /* G' >= 0 at the start, or < 0 at the end: an end */
     const bsample *e = i == 0 ? &smp[0] : &smp[n];
-    *v = sqrt(e->G) - b->R, *at = e->a;
+    *v = sqrt(e->G) - b->R, *at = e->a, *bs = *e;
     return *v <= lo ? B_BELOW : B_VALUE;
   }
-  return brefine(b, m, smp[i - 1], smp[i], lo, hi, v, at);
+  return brefine(b, m, smp[i - 1], smp[i], lo, hi, v, at, bs);
 }
 
 /* Least |u + h w|^2 over h in [h0, h1] (2-D: the squared distance from the
@@ -357,7 +364,7 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
                      double *at) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
   int S = n <= COARSE ? 1 : (int)sqrt((double)n), nc = (n + S - 1) / S, jb, j0 = -1, j1 = -1;
-  bsample c[MAXC + 1], smp[MAXW + 1];
+  bsample c[MAXC + 1], smp[MAXW + 1], bs;
   double sq[MAXC + 1], lip = 0.5 * (x->cv + x->w * b->seg) * S / n;
   if (nc < 1 || nc > MAXC) return B_FAIL;
   jb = bcoarse(b, n, S, nc, c, sq);
@@ -370,26 +377,56 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
   j0 = j0 < jb ? j0 : jb, j1 = j1 > jb ? j1 : jb;
   if (S > 1) { /* convex over the coarse window: the refinement takes the steps it needs */
     b->mu = curvature(x, b, &c[j0], j1 - j0, (double)S / n);
-    if (b->mu > 0.0) return bmin(b, s->motion, &c[j0], j1 - j0, lo, hi, v, at);
+    if (b->mu > 0.0) return bmin(b, s->motion, &c[j0], j1 - j0, lo, hi, v, at, &bs);
   }
   j0 *= S, j1 = j1 * S < n ? j1 * S : n; /* now steps */
   if (j1 - j0 <= MAXW) {
     for (int i = j0; i <= j1; i++)
       smp[i - j0] = bstep(b, i);
     b->mu = curvature(x, b, smp, j1 - j0, 1.0 / n);
-    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at);
+    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at, &bs);
   }
   return bbounds(x, b, c, nc, (double)S / n, lo, hi, v, at);
 }
 
-int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, double hi,
-                           double *value, double *alpha) {
+/* A plane below the sweep's sdf within r of p, from the whole move's convexity (G'' >= mu
+ * over [0, 1] at p) and the sample bs the value came from, at time b: for q = p + delta,
+ * |delta| <= r, and every time a (t = a - b):
+ *   G_q(a) >= G_p(a) + 2 delta . e_p(a)   (the nearest point of a convex set: the segment)
+ *          >= G_b + G'_b t + mu t^2 / 2 + 2 delta . e_b - 2 r L |t|
+ *          >= G_b - (|G'_b| + 2 r L)^2 / (2 mu) + 2 delta . e_b,
+ * L >= |e_p'| the speed of p's nearest point of the segment, c + z k (z = clamp(h, 0, L -
+ * 2R)): cv, and where h may be positive W D + ck (|z'| <= |h'|) and W Z (Z >= z). So the
+ * sweep's sdf at q is at least sqrt(A + x) - R, A = G_b less that term, x = 2 delta . e_b
+ * in [-2 r E, 2 r E] (E = |e_b|), and the chord of the concave sqrt over that interval is
+ * the plane: (s- + s+) / 2 - R + delta . e_b (s+ - s-) / (2 r E). Rounding (1e-15
+ * relative) stays far below the removal's margin. 1 when given. */
+static int ball_plane(const swarf_sweep_rigid *x, const bctx *b, const bsample *ends,
+                      const bsample *bs, double r, double *pd, double g[3]) {
+  const double W = x->w, D = sqrt(max2(ends[0].f, ends[1].f)) + 0.5 * x->cv;
+  const double hhi = max2(ends[0].h, ends[1].h) + 0.5 * (W * D + x->ck); /* as curvature */
+  const double L = x->cv + (hhi > 0.0 ? W * D + x->ck + W * min2(hhi, b->seg) : 0.0);
+  const double E = sqrt(bs->G), k = fabs(bs->dG) + 2.0 * r * L;
+  const double A = bs->G - k * k / (2.0 * b->mu), lo2 = A - 2.0 * r * E;
+  if (!(r > 0.0) || !(E > 0.0) || !(lo2 > 0.0)) return 0;
+  const double sl = sqrt(lo2), sh = sqrt(A + 2.0 * r * E), sg = (sh - sl) / (2.0 * r * E);
+  *pd = 0.5 * (sl + sh) - b->R;
+  for (int i = 0; i < 3; i++)
+    g[i] = sg * bs->e[i];
+  return 1;
+}
+
+/* The ball's path at p for the window (lo, hi); with r > 0, a plane valid within r of p
+ * where the whole move's convexity gave the value (ball_plane). -1: not certified (the
+ * caller searches); 0: the value; 1: the value and the plane. */
+static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double hi, double r,
+                     double *value, double *alpha, double *pd, double g[3]) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
   const swarf_pose *table;
   const swarf_pose_rates *rates;
-  bsample smp[2];
+  bsample smp[2], bs;
   double v, at;
-  int n = x->n;
+  int n = x->n, plane = 0;
   bctx b;
   bkind kind;
   if (!x->ball || swarf_motion_pose_table_rates(s->motion, n, x->id, &table, &rates) != SWARF_OK)
@@ -400,11 +437,23 @@ int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, d
   smp[0] = bsample_at(&b, 0.0, &table[0], &rates[0]);
   smp[1] = bsample_at(&b, 1.0, &table[n], &rates[n]);
   kind = bends(x, &b, smp, lo, hi, &v, &at);
-  if (kind == B_FAIL && (b.mu = curvature(x, &b, smp, 1, 1.0)) > 0.0)
-    kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at);
+  if (kind == B_FAIL && (b.mu = curvature(x, &b, smp, 1, 1.0)) > 0.0) {
+    kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at, &bs);
+    if (kind == B_VALUE && r > 0.0) plane = ball_plane(x, &b, smp, &bs, r, pd, g);
+  }
   if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, n, lo, hi, &v, &at);
   if (kind == B_FAIL) return -1;
   *value = v;
   if (alpha != NULL) *alpha = at;
-  return 0;
+  return plane;
+}
+
+int swarf_sweep_rigid_ball(const swarf_sweep *s, const double p[3], double lo, double hi,
+                           double *value, double *alpha) {
+  return ball_eval(s, p, lo, hi, 0.0, value, alpha, NULL, NULL) < 0 ? -1 : 0;
+}
+
+int swarf_sweep_rigid_ball_plane(const swarf_sweep *s, const double p[3], double lo, double hi,
+                                 double r, double *value, double *pd, double g[3]) {
+  return ball_eval(s, p, lo, hi, r, value, NULL, pd, g);
 }

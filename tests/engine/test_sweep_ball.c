@@ -14,6 +14,12 @@
  * above the value: the lower bounds that end a call early must stay below
  * it) and the instant returned. Each case states how many points the path
  * certified itself (the rest fell back).
+ * The local planes (swarf_sweep_range_plane) at each point, for the radii the
+ * removal asks (a 2^3 cube's and a 4^3 octant's voxels from their centre):
+ * the value as the range's, and the sweep at points within the radius (the
+ * cube's corners and faces at that distance, and random ones inside) never
+ * below the plane; how often a plane is given, and how often it bounds a
+ * point better than the 1-Lipschitz bound d - |q - p| does.
  */
 #include <math.h>
 #include <stdio.h>
@@ -24,6 +30,8 @@
 #include "testkit.h"
 
 #define TOL 1.001e-6 /* the certified accuracy, mm */
+
+static int planes_given, planes_asked; /* over the impeller's moves (test_impeller) */
 
 static double body(const void *ctx, const double q[3], double grad[3]) {
   return swarf_cutter_sdf_grad((const swarf_cutter *)ctx, q, grad);
@@ -90,6 +98,51 @@ static void check_windows(const swarf_sweep *s, const double p[3], double d, con
   }
 }
 
+typedef struct {
+  int asked, given, probes, better;
+} plane_stats;
+
+/* The local planes at p (value d) for the cube's and the octant's radius. */
+static void check_planes(const swarf_sweep *s, const double p[3], double d, double voxel, tk_rng *r,
+                         const char *name, plane_stats *st) {
+  const double radii[2] = {0.5 * sqrt(3.0) * voxel, 1.5 * sqrt(3.0) * voxel};
+  for (int k = 0; k < 2; k++) {
+    double v, pd = NAN, g[3] = {NAN, NAN, NAN}, rad = radii[k];
+    const double lo = k ? -INFINITY : d - 0.5, hi = k ? INFINITY : d + 0.5;
+    int has = swarf_sweep_range_plane(s, p, lo, hi, rad, &v, &pd, g);
+    st->asked++;
+    CHECK(fabs(v - d) <= TOL, "%s: range_plane's value %.9g vs %.9g", name, v, d);
+    if (has != 1) continue;
+    st->given++;
+    CHECK(pd <= v && isfinite(g[0] + g[1] + g[2]), "%s: plane offset %.9g at most the value %.9g",
+          name, pd, v);
+    for (int j = 0; j < 24; j++) {
+      double u[3], q[3], dist;
+      if (j < 8) /* the corners of the cube inscribed in the sphere */
+        for (int a = 0; a < 3; a++)
+          u[a] = (j >> a & 1 ? 1.0 : -1.0) / sqrt(3.0);
+      else if (j < 14) /* its faces' directions */
+        for (int a = 0; a < 3; a++)
+          u[a] = a == (j - 8) / 2 ? ((j - 8) & 1 ? 1.0 : -1.0) : 0.0;
+      else { /* inside */
+        tk_unit(r, u);
+        dist = tk_uniform(r, 0.0, 1.0);
+        for (int a = 0; a < 3; a++)
+          u[a] *= dist;
+      }
+      for (int a = 0; a < 3; a++)
+        q[a] = p[a] + rad * u[a];
+      const double sq = swarf_sweep_sdf(s, q, NULL),
+                   off = rad * sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      const double plane = pd + rad * (g[0] * u[0] + g[1] * u[1] + g[2] * u[2]);
+      CHECK(sq >= plane - TOL, "%s: the sweep %.9g below its plane %.9g at %.3g mm (r %.3g)", name,
+            sq, plane, off, rad);
+      st->probes++;
+      if (plane > d - off) st->better++;
+    }
+  }
+}
+
 /* npts points of kind w about the move: the sweep (ball path where it
  * certifies, else the general search), the general search alone and the
  * path's own answer against the truth. Returns how many the path took. */
@@ -99,6 +152,7 @@ static int run(const char *name, const swarf_cutter *c, const swarf_motion *m, d
   tk_rng r = {0x9e3779b97f4a7c15ull * seed + 7};
   double worst = 0.0, worst_gen = 0.0;
   int n, took = 0;
+  plane_stats ps = {0, 0, 0, 0};
   swarf_sweep_init_voxel(&s, c, m, voxel);
   n = swarf_sweep_cdata(&s)->u.rigid.n;
   CHECK(swarf_sweep_cdata(&s)->method == SWARF_SWEEP_RIGID, "%s: rigid sweep", name);
@@ -120,6 +174,7 @@ static int run(const char *name, const swarf_cutter *c, const swarf_motion *m, d
       CHECK(fabs(vb - tr) <= TOL, "%s: ball path %.9g vs truth %.9g", name, vb, tr);
     }
     if (i % 4 == 0) check_windows(&s, p, tr, name);
+    check_planes(&s, p, tr, voxel, &r, name, &ps);
     /* a window closing just above the value: no lower bound may pass it */
     v = swarf_sweep_sdf_range(&s, p, tr - 1.0, tr + 1e-5);
     CHECK(fabs(v - tr) <= TOL, "%s: range just above the value: %.9g vs %.9g", name, v, tr);
@@ -127,6 +182,10 @@ static int run(const char *name, const swarf_cutter *c, const swarf_motion *m, d
   printf("%-34s %3d steps: %3d of %3d points by the ball path; max |sweep - truth| %.2e mm, "
          "|sweep - general| %.2e mm\n",
          name, n, took, npts, worst, worst_gen);
+  printf("%-34s local planes: %d of %d asked, better than the Lipschitz bound at %d of %d "
+         "points\n",
+         "", ps.given, ps.asked, ps.better, ps.probes);
+  planes_given += ps.given, planes_asked += ps.asked;
   return took;
 }
 
@@ -147,6 +206,8 @@ static void test_impeller(void) {
     took += run(name, &c, &m, 0.2, NEAR_SURFACE, 150, 11 + k);
   }
   CHECK(took > 500, "the ball path takes most impeller points (%d of 600)", took);
+  CHECK(planes_given > planes_asked / 4, "local planes at the impeller's points: %d of %d",
+        planes_given, planes_asked);
   /* a longer move (A 12, C 26 degrees; 55 steps): the ends rarely certify
    * it, the coarse steps (every 7th) mostly do, and the refinement takes the
    * table's steps before poses off it */

@@ -75,6 +75,19 @@ inline double cut_value(const Pass &p, const swarf_stock_cut &cut, const Vec3d &
   return cut.range(cut.ctx, qq, lo, hi);
 }
 
+/// cut_value at the centre q of voxels at most r away, with the plane the cut's
+/// range_plane function gives there when it has one: true when given, with
+/// sdf(voxel) >= pd + g.(voxel - q) for those voxels (stock.h).
+inline bool cut_value_plane(const Pass &p, const swarf_stock_cut &cut, const Vec3d &q, double lo,
+                            double hi, double r, double &d, double &pd, double g[3]) {
+  if (cut.range_plane == nullptr || cut.range == nullptr || p.plain || !(lo < hi)) {
+    d = cut_value(p, cut, q, lo, hi);
+    return false;
+  }
+  const double qq[3] = {q.x(), q.y(), q.z()};
+  return cut.range_plane(cut.ctx, qq, lo, hi, r, &d, &pd, g) == 1;
+}
+
 /// The depth of a gouge at a voxel whose design value is dq, with r mm of
 /// removed material vouched beyond its centre. A design without triangles
 /// (a .vdb) knows only its band: where dq is at the band's edge the gouge
@@ -93,7 +106,7 @@ struct OctantPlanes {
   enum : uint8_t { kOut, kNoPlane, kPlane };
   struct Entry {
     uint8_t state; ///< kOut: no voxel of the octant can be raised (from the block's values)
-    double d;      ///< kPlane: sdf(q) >= d + g.(q - centre) for every q
+    double d;      ///< kPlane: sdf(q) >= d + g.(q - centre) for every voxel q of the octant
     double g[3];
   };
   std::vector<Entry> e;

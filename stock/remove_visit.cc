@@ -95,7 +95,9 @@ void leaf_summaries(const Pass &p, BlockValues &bv) {
 struct CutAt {
   double d;
   const swarf_stock_cut *cut;
-  bool plane = false; ///< sdf(q) >= d + g.(q - centre) for every q
+  bool plane = false; ///< sdf(q) >= pd + g.(q - centre) for every voxel q it is asked for
+  double pd;          ///< the plane's value at the centre: d for a supporting plane, below
+                      ///< it for a local one (range_plane; the Lipschitz bound may be better)
   double g[3];
 };
 
@@ -154,13 +156,15 @@ void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, i
   const double h = 0.5 * p.voxel;
   const double gx = c.plane ? h * c.g[0] : 0.0, gy = c.plane ? h * c.g[1] : 0.0,
                gz = c.plane ? h * c.g[2] : 0.0, r = c.plane ? 0.0 : rv;
+  const double base = c.plane ? c.pd : c.d, lip = c.plane && c.pd < c.d ? c.d - rv : -HUGE_VAL;
   double mlo = std::numeric_limits<double>::infinity();
   for (int x = x0; x < x0 + 2; x++)
     for (int y = y0; y < y0 + 2; y++)
       for (int z = z0; z < z0 + 2; z++) {
         const openvdb::Index n = (x << 6) | (y << 3) | z;
         double &m = bv.m[n];
-        const double bound = c.d + (x > x0 ? gx : -gx) + (y > y0 ? gy : -gy) + (z > z0 ? gz : -gz);
+        const double bound =
+            std::max(base + (x > x0 ? gx : -gx) + (y > y0 ? gy : -gy) + (z > z0 ? gz : -gz), lip);
         if (may_raise(m, bg, bound, r)) {
           if (clear) {
             bv.raise(n, bg, c.cut - p.cuts);
@@ -177,7 +181,7 @@ void visit_cube(const Pass &p, const Block &b, const CutAt &c, int x0, int y0, i
 
 /// Whether the supporting plane of cut o at the centre of the octant holding
 /// the 2^3 cube at (x0, y0, z0) keeps every voxel of the cube at or below its
-/// value (o.d + o.g.(voxel - centre) is a lower bound of the sdf: may_raise
+/// value (o.pd + o.g.(voxel - centre) is a lower bound of the sdf: may_raise
 /// false for each voxel): at once when the plane's least value over the cube
 /// does so for the cube's lowest value, else voxel by voxel.
 inline bool plane_keeps_below(const Pass &p, const BlockValues &bv, const CutAt &o, int x0, int y0,
@@ -185,15 +189,15 @@ inline bool plane_keeps_below(const Pass &p, const BlockValues &bv, const CutAt 
   const double bg = p.bgf, v = p.voxel;
   // the cube's first voxel's offset from the octant's centre, in voxels
   const double ox = (x0 & 3) - 1.5, oy = (y0 & 3) - 1.5, oz = (z0 & 3) - 1.5;
-  const double least = o.d + v * (std::min(o.g[0] * ox, o.g[0] * (ox + 1.0)) +
-                                  std::min(o.g[1] * oy, o.g[1] * (oy + 1.0)) +
-                                  std::min(o.g[2] * oz, o.g[2] * (oz + 1.0)));
+  const double least = o.pd + v * (std::min(o.g[0] * ox, o.g[0] * (ox + 1.0)) +
+                                   std::min(o.g[1] * oy, o.g[1] * (oy + 1.0)) +
+                                   std::min(o.g[2] * oz, o.g[2] * (oz + 1.0)));
   if (least + bv.mlo[((x0 >> 1) << 4) | ((y0 >> 1) << 2) | (z0 >> 1)] >= kMargin) return true;
   for (int x = 0; x < 2; x++)
     for (int y = 0; y < 2; y++)
       for (int z = 0; z < 2; z++) {
         const double m = bv.m[((x0 + x) << 6) | ((y0 + y) << 3) | (z0 + z)];
-        const double bound = o.d + v * (o.g[0] * (ox + x) + o.g[1] * (oy + y) + o.g[2] * (oz + z));
+        const double bound = o.pd + v * (o.g[0] * (ox + x) + o.g[1] * (oy + y) + o.g[2] * (oz + z));
         if (m < bg && !(bound + m >= kMargin)) return false;
       }
   return true;
@@ -247,8 +251,12 @@ void visit_cube_cuts(const Pass &p, const Block &b, OctOrder &oct, int x0, int y
     CutAt k;
     const swarf_stock_support_fn f = p.support ? p.support[o.cut - p.cuts] : nullptr;
     k.cut = o.cut;
-    k.plane = f != nullptr && f(o.cut->ctx, c.x(), c.y(), c.z(), &k.d, k.g) == 1;
-    if (f == nullptr) k.d = cut_value(p, *o.cut, c, cube_lo, cube_hi);
+    if (f != nullptr) {
+      k.plane = f(o.cut->ctx, c.x(), c.y(), c.z(), &k.d, k.g) == 1;
+      k.pd = k.d;
+    } else {
+      k.plane = cut_value_plane(p, *o.cut, c, cube_lo, cube_hi, rv, k.d, k.pd, k.g);
+    }
     if (k.d - rv + bv.mlo[ci] >= kMargin) continue; // may_raise, for the lowest value: false
     visit_cube(p, b, k, x0, y0, z0, bv);
   }
@@ -279,6 +287,7 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
   // are resolved: at or above oct_hi no cube's summary lets it through; at or
   // below oct_lo it clears every cube it reaches (visit_cube_cuts).
   const double rcube = std::sqrt(3.0) * p.voxel, rv = 0.5 * std::sqrt(3.0) * p.voxel;
+  const double roct = 1.5 * std::sqrt(3.0) * p.voxel; // the centre's farthest voxel
   const double oct_lo = -double(p.bgf) - kMargin - rcube - rv;
   double oct_hi = -std::numeric_limits<double>::infinity();
   for (int k = 0; k < 8; k++)
@@ -309,12 +318,16 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
     const swarf_stock_support_fn f = p.support ? p.support[w.pairs[i].cut] : nullptr;
     CutAt &o = oct[n++];
     o.cut = &cut;
-    o.plane = f != nullptr && f(cut.ctx, c.x(), c.y(), c.z(), &o.d, o.g) == 1;
-    if (f == nullptr) o.d = cut_value(p, cut, c, oct_lo, oct_hi);
+    if (f != nullptr) {
+      o.plane = f(cut.ctx, c.x(), c.y(), c.z(), &o.d, o.g) == 1;
+      o.pd = o.d;
+    } else {
+      o.plane = cut_value_plane(p, cut, c, oct_lo, oct_hi, roct, o.d, o.pd, o.g);
+    }
     if (bv.planes != nullptr) {
       OctantPlanes::Entry &r = bv.planes->at(octant, i - b.begin);
       r.state = o.plane ? OctantPlanes::kPlane : OctantPlanes::kNoPlane;
-      r.d = o.d;
+      r.d = o.pd;
       std::copy(o.g, o.g + 3, r.g);
     }
   }

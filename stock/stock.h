@@ -108,16 +108,29 @@ SWARF_API swarf_status swarf_stock_remove(swarf_stock *s, const double lo[3], co
  * <= lo that is still >= the sdf; at or above hi any value >= hi. */
 typedef double (*swarf_stock_range_fn)(const void *ctx, const double p[3], double lo, double hi);
 
+/* An optional companion of a range function: its value at p for the window
+ * (lo, hi) in *d and, when it returns 1 (the value then lies in the window),
+ * a plane below the sdf within r of p: sdf(q) >= *pd + g.(q - p) for every q
+ * with |q - p| <= r (*pd <= *d). For volumes that are not convex (rotary
+ * sweeps) but have such planes near some points. */
+typedef int (*swarf_stock_range_plane_fn)(const void *ctx, const double p[3], double lo, double hi,
+                                          double r, double *d, double *pd, double g[3]);
+
 /* Remove a batch of volumes at once (one TBB pass over the union of their
  * bounds); equivalent to calling swarf_stock_remove for each. `range` may be
  * NULL (zero-initialise the struct); when set, the removal asks it instead of
  * sdf at the voxels, with hi the value that leaves the voxel as it is and lo
- * the depth that clears it (rotary sweeps prune their search by both). */
+ * the depth that clears it (rotary sweeps prune their search by both).
+ * `range_plane` (may be NULL; only with range) replaces range at the centres
+ * of 4^3 octants and 2^3 cubes, asked for a plane over their voxels (r their
+ * farthest voxel's distance): the removal then evaluates fewer voxels, and
+ * the result is the same. */
 typedef struct {
   double lo[3], hi[3];
   swarf_stock_sdf_fn sdf;
   const void *ctx;
   swarf_stock_range_fn range;
+  swarf_stock_range_plane_fn range_plane;
 } swarf_stock_cut;
 SWARF_API swarf_status swarf_stock_remove_batch(swarf_stock *s, const swarf_stock_cut *cuts,
                                                 size_t ncuts, swarf_error *err);

@@ -69,7 +69,6 @@
 
 typedef struct {
   double a, G, dG, h, f; /* time, squared distance to the axis segment, G', h, |d|^2 */
-  double e[3];           /* p less its nearest point of the axis segment (|e|^2 = G) */
   const swarf_pose *P;   /* a table's pose (shank_mu reads its v and omega), or NULL */
 } bsample;
 
@@ -108,15 +107,12 @@ static bsample bsample_at(const bctx *b, double a, const swarf_pose *P,
   r.h = k[0] * d[0] + k[1] * d[1] + k[2] * d[2];
   r.f = r.G = f;
   r.dG = -2.0 * (d[0] * cp[0] + d[1] * cp[1] + d[2] * cp[2]);
-  r.e[0] = d[0], r.e[1] = d[1], r.e[2] = d[2];
   if (r.h > 0.0) { /* the shank's segment (its top end: h >= seg) */
     double z = r.h < b->seg ? r.h : b->seg;
     double hp = kd[0] * d[0] + kd[1] * d[1] + kd[2] * d[2] - P->v[2];
     r.G = f - z * (2.0 * r.h - z);
     r.dG -= 2.0 * z * hp; /* z = h: G' = f' - 2 h h'; z = seg: the same (k . k' = 0) */
     if (r.G < 0.0) r.G = 0.0;
-    for (int i = 0; i < 3; i++)
-      r.e[i] -= z * k[i];
   }
   return r;
 }
@@ -159,9 +155,10 @@ static int table_step(const bctx *b, double a0, double a1, double x, bsample *M)
 /* The minimum over the move, its minimiser inside [A.a, B.a] (A.dG < 0 <
  * B.dG): Illinois regula falsi on G' until the minorants certify the best
  * sample to TIGHT (B_VALUE), or it is at most lo (B_BELOW), or the bound is
- * at least hi (B_ABOVE: *v the bound). */
+ * at least hi (B_ABOVE: *v the bound). With bs, the best sample there, its
+ * pose in *keep when it is off the table. */
 static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B, double lo,
-                     double hi, double *v, double *at, bsample *bs) {
+                     double hi, double *v, double *at, bsample *bs, swarf_pose *keep) {
   bsample best = A.G <= B.G ? A : B;
   double gA = A.dG, gB = B.dG;
   int side = 0;
@@ -170,9 +167,10 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
     swarf_pose P;
     swarf_pose_rates Pr;
     bsample M;
-    *at = best.a, *bs = best;
+    *at = best.a;
     if (vb <= lo || vb - lb <= TIGHT) {
       *v = vb;
+      if (bs != NULL) *bs = best;
       return vb <= lo ? B_BELOW : B_VALUE;
     }
     if (lb >= hi) {
@@ -188,7 +186,10 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
       M = bsample_at(b, x, &P, &Pr);
       M.P = NULL; /* P ends with this iteration */
     }
-    if (M.G < best.G) best = M;
+    if (M.G < best.G) {
+      best = M;
+      if (bs != NULL && M.P == NULL) *keep = P, best.P = keep;
+    }
     if (M.dG < 0.0) {
       A = M, gA = M.dG;
       if (side < 0) gB *= 0.5;
@@ -201,19 +202,20 @@ static bkind brefine(const bctx *b, const swarf_motion *m, bsample A, bsample B,
   }
 }
 
-/* The minimum over the move from the steps smp[0..n] (G convex); *bs the sample it is
- * the value of (B_VALUE). */
+/* The minimum over the move from the steps smp[0..n] (G convex); with bs, the sample
+ * the value is of (B_VALUE; its pose in *keep if off the table). */
 static bkind bmin(const bctx *b, const swarf_motion *m, const bsample *smp, int n, double lo,
-                  double hi, double *v, double *at, bsample *bs) {
+                  double hi, double *v, double *at, bsample *bs, swarf_pose *keep) {
   int i = 0;
   while (i <= n && smp[i].dG < 0.0)
     i++;
   if (i == 0 || i > n) { /* G' >= 0 at the start, or < 0 at the end: an end */
     const bsample *e = i == 0 ? &smp[0] : &smp[n];
-    *v = sqrt(e->G) - b->R, *at = e->a, *bs = *e;
+    *v = sqrt(e->G) - b->R, *at = e->a;
+    if (bs != NULL) *bs = *e;
     return *v <= lo ? B_BELOW : B_VALUE;
   }
-  return brefine(b, m, smp[i - 1], smp[i], lo, hi, v, at, bs);
+  return brefine(b, m, smp[i - 1], smp[i], lo, hi, v, at, bs, keep);
 }
 
 /* Least |u + h w|^2 over h in [h0, h1] (2-D: the squared distance from the
@@ -364,7 +366,7 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
                      double *at) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
   int S = n <= COARSE ? 1 : (int)sqrt((double)n), nc = (n + S - 1) / S, jb, j0 = -1, j1 = -1;
-  bsample c[MAXC + 1], smp[MAXW + 1], bs;
+  bsample c[MAXC + 1], smp[MAXW + 1];
   double sq[MAXC + 1], lip = 0.5 * (x->cv + x->w * b->seg) * S / n;
   if (nc < 1 || nc > MAXC) return B_FAIL;
   jb = bcoarse(b, n, S, nc, c, sq);
@@ -377,14 +379,14 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
   j0 = j0 < jb ? j0 : jb, j1 = j1 > jb ? j1 : jb;
   if (S > 1) { /* convex over the coarse window: the refinement takes the steps it needs */
     b->mu = curvature(x, b, &c[j0], j1 - j0, (double)S / n);
-    if (b->mu > 0.0) return bmin(b, s->motion, &c[j0], j1 - j0, lo, hi, v, at, &bs);
+    if (b->mu > 0.0) return bmin(b, s->motion, &c[j0], j1 - j0, lo, hi, v, at, NULL, NULL);
   }
   j0 *= S, j1 = j1 * S < n ? j1 * S : n; /* now steps */
   if (j1 - j0 <= MAXW) {
     for (int i = j0; i <= j1; i++)
       smp[i - j0] = bstep(b, i);
     b->mu = curvature(x, b, smp, j1 - j0, 1.0 / n);
-    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at, &bs);
+    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at, NULL, NULL);
   }
   return bbounds(x, b, c, nc, (double)S / n, lo, hi, v, at);
 }
@@ -394,25 +396,33 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
  * |delta| <= r, and every time a (t = a - b):
  *   G_q(a) >= G_p(a) + 2 delta . e_p(a)   (the nearest point of a convex set: the segment)
  *          >= G_b + G'_b t + mu t^2 / 2 + 2 delta . e_b - 2 r L |t|
- *          >= G_b - (|G'_b| + 2 r L)^2 / (2 mu) + 2 delta . e_b,
+ *          >= G_b - Q + 2 delta . e_b,
  * L >= |e_p'| the speed of p's nearest point of the segment, c + z k (z = clamp(h, 0, L -
- * 2R)): cv, and where h may be positive W D + ck (|z'| <= |h'|) and W Z (Z >= z). So the
- * sweep's sdf at q is at least sqrt(A + x) - R, A = G_b less that term, x = 2 delta . e_b
- * in [-2 r E, 2 r E] (E = |e_b|), and the chord of the concave sqrt over that interval is
- * the plane: (s- + s+) / 2 - R + delta . e_b (s+ - s-) / (2 r E). Rounding (1e-15
- * relative) stays far below the removal's margin. 1 when given. */
+ * 2R)): cv, and where h may be positive W D + ck (|z'| <= |h'|) and W Z (Z >= z); Q the
+ * larger of the least values of the quadratic in t on either side of b within [0, 1]:
+ * (2 r L -+ G'_b)^2 / (2 mu) where that is positive (at an end the value is often an end's,
+ * G' pointing out of the move: no loss on that side). So the sweep's sdf at q is at least
+ * sqrt(A + x) - R, A = G_b - Q, x = 2 delta . e_b in [-2 r E, 2 r E] (E = |e_b|), and the
+ * chord of the concave sqrt over that interval is the plane: (s- + s+) / 2 - R + delta .
+ * e_b (s+ - s-) / (2 r E). Rounding (1e-15 relative) stays far below the removal's margin.
+ * 1 when given. */
 static int ball_plane(const swarf_sweep_rigid *x, const bctx *b, const bsample *ends,
                       const bsample *bs, double r, double *pd, double g[3]) {
+  const double *U = bs->P->U, *t = bs->P->t, k3[3] = {U[2], U[5], U[8]};
+  const double z = bs->h <= 0.0 ? 0.0 : bs->h < b->seg ? bs->h : b->seg, zc = b->R + z;
+  const double e[3] = {b->p[0] - t[0] - zc * k3[0], b->p[1] - t[1] - zc * k3[1],
+                       b->p[2] - t[2] - zc * k3[2]}; /* p less its nearest axis point */
   const double W = x->w, D = sqrt(max2(ends[0].f, ends[1].f)) + 0.5 * x->cv;
   const double hhi = max2(ends[0].h, ends[1].h) + 0.5 * (W * D + x->ck); /* as curvature */
   const double L = x->cv + (hhi > 0.0 ? W * D + x->ck + W * min2(hhi, b->seg) : 0.0);
-  const double E = sqrt(bs->G), k = fabs(bs->dG) + 2.0 * r * L;
+  const double E = sqrt(bs->G), up = bs->a < 1.0 ? max2(2.0 * r * L - bs->dG, 0.0) : 0.0;
+  const double down = bs->a > 0.0 ? max2(2.0 * r * L + bs->dG, 0.0) : 0.0, k = max2(up, down);
   const double A = bs->G - k * k / (2.0 * b->mu), lo2 = A - 2.0 * r * E;
   if (!(r > 0.0) || !(E > 0.0) || !(lo2 > 0.0)) return 0;
   const double sl = sqrt(lo2), sh = sqrt(A + 2.0 * r * E), sg = (sh - sl) / (2.0 * r * E);
   *pd = 0.5 * (sl + sh) - b->R;
   for (int i = 0; i < 3; i++)
-    g[i] = sg * bs->e[i];
+    g[i] = sg * e[i];
   return 1;
 }
 
@@ -425,6 +435,7 @@ static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double 
   const swarf_pose *table;
   const swarf_pose_rates *rates;
   bsample smp[2], bs;
+  swarf_pose keep;
   double v, at;
   int n = x->n, plane = 0;
   bctx b;
@@ -438,7 +449,7 @@ static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double 
   smp[1] = bsample_at(&b, 1.0, &table[n], &rates[n]);
   kind = bends(x, &b, smp, lo, hi, &v, &at);
   if (kind == B_FAIL && (b.mu = curvature(x, &b, smp, 1, 1.0)) > 0.0) {
-    kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at, &bs);
+    kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at, r > 0.0 ? &bs : NULL, &keep);
     if (kind == B_VALUE && r > 0.0) plane = ball_plane(x, &b, smp, &bs, r, pd, g);
   }
   if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, n, lo, hi, &v, &at);

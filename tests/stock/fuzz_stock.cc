@@ -75,7 +75,7 @@ void exercise(swarf_stock *s) {
   swarf_stock *design = nullptr;
   refused(swarf_stock_place(s, &same, &design, &err), err);
   if (design == nullptr) return;
-  swarf_stock_cut cut = {{-0.7, -0.7, -0.7}, {0.7, 0.7, 0.7}, ball_sdf, nullptr, nullptr};
+  swarf_stock_cut cut = {{-0.7, -0.7, -0.7}, {0.7, 0.7, 0.7}, ball_sdf, nullptr, nullptr, nullptr};
   swarf_stock_deviation dev;
   refused(swarf_stock_compare(s, design, nullptr, 0.0, &dev, &err), err);
   double depth;

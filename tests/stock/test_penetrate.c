@@ -26,7 +26,7 @@ static int penetrates(const swarf_stock *s, const box_shape *b, double depth, do
   swarf_error err;
   int hit = -1;
   swarf_stock_cut cut = {
-      {b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b, NULL};
+      {b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}, box_cb, b, NULL, NULL};
   CHECK(swarf_stock_penetrates(s, &cut, NULL, 0, depth, &hit, where, &err) == SWARF_OK, "query: %s",
         err.message);
   return hit;
@@ -88,7 +88,7 @@ int main(void) {
   CHECK(penetrates(s, &inside, 0.0, where) == 0, "a body inside the pocket is not found");
   /* bad arguments */
   int hit;
-  swarf_stock_cut cut = {{0, 0, 0}, {1, 1, 1}, box_cb, &inside, NULL};
+  swarf_stock_cut cut = {{0, 0, 0}, {1, 1, 1}, box_cb, &inside, NULL, NULL};
   swarf_error err;
   CHECK(swarf_stock_penetrates(NULL, &cut, NULL, 0, 0.0, &hit, NULL, &err) == SWARF_ERR_ARG,
         "NULL stock refused");

@@ -132,8 +132,12 @@ static int penetrates_at(const part_check *pc, double lift, double where[3]) {
              0) {
     return -2;
   }
-  swarf_stock_cut cut = {
-      {ps.lo[0], ps.lo[1], ps.lo[2]}, {ps.hi[0], ps.hi[1], ps.hi[2]}, sweep_sdf, &ps.sweep, NULL};
+  swarf_stock_cut cut = {{ps.lo[0], ps.lo[1], ps.lo[2]},
+                         {ps.hi[0], ps.hi[1], ps.hi[2]},
+                         sweep_sdf,
+                         &ps.sweep,
+                         NULL,
+                         NULL};
   const double h = 0.5 * swarf_stock_voxel(pc->grid);
   if (swarf_stock_penetrates(pc->grid, &cut, pc->clear, (size_t)pc->nclear, h, &hit, where, &err) !=
       SWARF_OK) {

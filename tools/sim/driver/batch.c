@@ -23,6 +23,12 @@ static double sweep_range(const void *ctx, const double p[3], double lo, double 
   return swarf_sweep_sdf_range((const swarf_sweep *)ctx, p, lo, hi);
 }
 
+/* The range with a plane near p, where the sweep has one (stock.h). */
+static int sweep_range_plane(const void *ctx, const double p[3], double lo, double hi, double r,
+                             double *d, double *pd, double g[3]) {
+  return swarf_sweep_range_plane((const swarf_sweep *)ctx, p, lo, hi, r, d, pd, g);
+}
+
 /* The sweep's sdf with its supporting plane, where it has one (stock.h). */
 static int sweep_support(const void *ctx, double x, double y, double z, double *d, double g[3]) {
   const double p[3] = {x, y, z};
@@ -285,7 +291,8 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
   c->sdf = sweep_sdf;
   c->ctx = w;
   c->range = m->kind == SWARF_MOTION_RIGID ? sweep_range : NULL; /* rotary: pruned searches */
-  s->supports[s->n] = m->kind == SWARF_MOTION_RIGID ? NULL : sweep_support; /* 3-axis planes */
+  c->range_plane = m->kind == SWARF_MOTION_RIGID ? sweep_range_plane : NULL; /* and local planes */
+  s->supports[s->n] = m->kind == SWARF_MOTION_RIGID ? NULL : sweep_support;  /* 3-axis planes */
   /* shank, holder, fixtures: against the material as the move finds it */
   if (swarf_sim_collide_move(s, m, w, reach ? c : NULL) != 0) return 1;
   if (!reach) return 0;
@@ -294,6 +301,7 @@ int swarf_sim_batch_queue(swarf_sim *s, const swarf_motion *mv) {
     c->sdf = stamp_sdf;
     c->ctx = &s->stamps[s->n];
     c->range = NULL;
+    c->range_plane = NULL;
     s->supports[s->n] = NULL;
   }
   /* A rapid is checked against the material as it finds it. Removal only

@@ -7,7 +7,9 @@
  * rounded to float, is inside the band. Tolerances: voxel values 0.01 voxel
  * (observed ~1e-7); removed volume (difference of swarf_stock_volume before
  * and after) 0.5 % of the analytic ball / cap volume (observed < 0.1 %); results of different
- * orders and batchings must be bit-identical (max, float rounding and clamping commute).
+ * orders and batchings must be bit-identical (max, float rounding and clamping commute),
+ * and so must removals with and without a cut's local planes (range_plane), which must
+ * spare range calls (a plane raised by a tenth of the radius fails both checks).
  */
 #include <stdio.h>
 
@@ -212,6 +214,82 @@ static void batch_equals_single(void) {
   swarf_stock_free(batch);
 }
 
+/* A capsule's range function and its range_plane companion, counting their calls
+ * (threads: atomics). The plane is the supporting plane lowered by a tenth of the radius
+ * (a local plane: pd < d), given only where the value lies in the window. */
+static long range_calls, plane_calls;
+
+static double capsule_range(const void *ctx, const double p[3], double lo, double hi) {
+  (void)lo, (void)hi;
+  __atomic_fetch_add(&range_calls, 1, __ATOMIC_RELAXED);
+  return capsule_dist((const capsule_shape *)ctx, p[0], p[1], p[2]);
+}
+
+static int capsule_range_plane(const void *ctx, const double p[3], double lo, double hi, double r,
+                               double *d, double *pd, double g[3]) {
+  const capsule_shape *c = ctx;
+  double ab[3], ap[3], len2 = 0.0, t = 0.0, n = 0.0;
+  __atomic_fetch_add(&plane_calls, 1, __ATOMIC_RELAXED);
+  *d = capsule_dist(c, p[0], p[1], p[2]);
+  if (!(*d >= lo && *d < hi)) return 0;
+  for (int k = 0; k < 3; k++) {
+    ab[k] = c->b[k] - c->a[k], ap[k] = p[k] - c->a[k];
+    len2 += ab[k] * ab[k], t += ab[k] * ap[k];
+  }
+  t = len2 > 0.0 ? fmin(fmax(t / len2, 0.0), 1.0) : 0.0;
+  for (int k = 0; k < 3; k++)
+    g[k] = ap[k] - t * ab[k], n += g[k] * g[k];
+  if (!(n > 1e-12)) return 0; /* on the axis: no gradient */
+  for (int k = 0; k < 3; k++)
+    g[k] /= sqrt(n);
+  *pd = *d - 0.1 * r;
+  return 1;
+}
+
+/* range_plane (stock.h): the removal asks it at octant and cube centres and bounds their
+ * voxels by the plane, so it calls the range function at fewer voxels; the grid is the
+ * same bits as with the range function alone. */
+static void range_planes(void) {
+  enum { N = 300 };
+  static capsule_shape path[N];
+  static swarf_stock_cut cuts[N];
+  swarf_error err = {0};
+  long calls[2], planes[2];
+  swarf_stock *s[2] = {new_stock(), new_stock()};
+  if (!s[0] || !s[1]) return;
+  for (int i = 0; i < N; i++) {
+    int row = i / 30, col = i % 30;
+    double x0 = 1.0 + 0.25 * (row % 2 ? 30 - col : col), x1 = x0 + (row % 2 ? -0.25 : 0.25);
+    capsule_shape c = {{x0, 1.0 + 0.6 * row, 0.1}, {x1, 1.0 + 0.6 * row, -0.4}, 0.7};
+    path[i] = c;
+    cuts[i] = capsule_cut(&path[i]);
+    cuts[i].range = capsule_range;
+  }
+  for (int k = 0; k < 2; k++) {
+    range_calls = plane_calls = 0;
+    for (int i = 0; i < N; i++)
+      cuts[i].range_plane = k ? capsule_range_plane : NULL;
+    for (int i = 0; i < N; i += 64) {
+      size_t n = N - i < 64 ? (size_t)(N - i) : 64;
+      CHECK(swarf_stock_remove_batch(s[k], cuts + i, n, &err) == 0, "batch: %s", err.message);
+    }
+    calls[k] = range_calls, planes[k] = plane_calls;
+  }
+  printf("range_plane: range calls %ld without, %ld with (and %ld range_plane calls)\n", calls[0],
+         calls[1], planes[1]);
+  CHECK(planes[0] == 0 && planes[1] > 0, "range_plane asked only when given");
+  CHECK(calls[1] < 0.8 * (calls[0] - planes[1]), "the planes pass voxels over: %ld vs %ld",
+        calls[1], calls[0]);
+  CHECK(stock_differences(s[0], s[1]) == 0 && stock_differences(s[1], s[0]) == 0,
+        "with range_plane == without (bit-identical)");
+  nremoved = 0;
+  for (int i = 0; i < N; i++)
+    removed[nremoved++] = path[i];
+  check_whole_band(s[1], "zig-zag with local planes");
+  swarf_stock_free(s[0]);
+  swarf_stock_free(s[1]);
+}
+
 typedef struct {
   int calls, stop_at;
   double last;
@@ -328,6 +406,7 @@ int main(void) {
   random_removals();
   order_independence();
   batch_equals_single();
+  range_planes();
   ticks_within_a_pass();
   bad_arguments();
   remove_everything();

@@ -392,14 +392,14 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
 }
 
 /* A plane below the sweep's sdf within r of p, from the whole move's convexity (G'' >= mu
- * over [0, 1] at p) and the sample bs the value came from, at time b: for q = p + delta,
- * |delta| <= r, and every time a (t = a - b):
+ * over [0, 1] at p) and the sample bs the value came from, at time a_b: for q = p + delta,
+ * |delta| <= r, and every time a (t = a - a_b):
  *   G_q(a) >= G_p(a) + 2 delta . e_p(a)   (the nearest point of a convex set: the segment)
  *          >= G_b + G'_b t + mu t^2 / 2 + 2 delta . e_b - 2 r L |t|
  *          >= G_b - Q + 2 delta . e_b,
  * L >= |e_p'| the speed of p's nearest point of the segment, c + z k (z = clamp(h, 0, L -
  * 2R)): cv, and where h may be positive W D + ck (|z'| <= |h'|) and W Z (Z >= z); Q the
- * larger of the least values of the quadratic in t on either side of b within [0, 1]:
+ * larger of the least values of the quadratic in t on either side of a_b within [0, 1]:
  * (2 r L -+ G'_b)^2 / (2 mu) where that is positive (at an end the value is often an end's,
  * G' pointing out of the move: no loss on that side). So the sweep's sdf at q is at least
  * sqrt(A + x) - R, A = G_b - Q, x = 2 delta . e_b in [-2 r E, 2 r E] (E = |e_b|), and the

@@ -152,22 +152,23 @@ for c in simulate parse info render envelope; do
 done
 printf '%s\n' "$page" | grep -- "--stock box:" >/dev/null || fail "swarf.1 lacks simulate's options"
 synopsis=$(printf '%s\n' "$page" | sed -n '/^SYNOPSIS/,/^DESCRIPTION/p' | tr '\n' ' ')
-printf '%s\n' "$synopsis" | grep -- "--design" | grep -q -- "--report" ||
+printf '%s\n' "$synopsis" | grep -- "--design" | grep -- "--report" >/dev/null ||
   fail "swarf.1's synopsis lacks --design and --report"
-printf '%s\n' "$page" | grep -q "^ *4 *with --fail-on\|; 4 with" || fail "swarf.1 lacks exit status 4"
+printf '%s\n' "$page" | grep "^ *4 *with --fail-on\|; 4 with" >/dev/null ||
+  fail "swarf.1 lacks exit status 4"
 for c in simulate parse info render compare envelope; do
   m="$prefix/share/man/man1/swarf-$c.1"
   [ -f "$m" ] || fail "swarf-$c.1 not installed"
   warnings=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -ww -z "$m" 2>&1)
   [ -z "$warnings" ] || fail "swarf-$c.1: $warnings"
-  LC_ALL=C.UTF-8 groff -man -Tutf8 -P-cbou "$m" | grep -q "usage: swarf $c" ||
+  LC_ALL=C.UTF-8 groff -man -Tutf8 -P-cbou "$m" | grep "usage: swarf $c" >/dev/null ||
     fail "swarf-$c.1 lacks its usage"
 done
 # Section 3: libswarf.3 from the headers, and a page for every call the library exports.
 m3="$prefix/share/man/man3"
 warnings=$(LC_ALL=C.UTF-8 groff -man -Tutf8 -ww -z "$m3/libswarf.3" 2>&1)
 [ -z "$warnings" ] || fail "libswarf.3: $warnings"
-LC_ALL=C.UTF-8 groff -man -Tutf8 -P-cbou "$m3/libswarf.3" | grep -q "swarf_sim_config_new(void);" ||
+LC_ALL=C.UTF-8 groff -man -Tutf8 -P-cbou "$m3/libswarf.3" | grep "swarf_sim_config_new(void);" >/dev/null ||
   fail "libswarf.3 lacks swarf_sim_config_new"
 missing=""
 for sym in $(nm -D --defined-only "$libdir/libswarf.so" | awk '$2 == "T" && $3 ~ /^swarf_/ {print $3}'); do

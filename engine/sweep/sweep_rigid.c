@@ -260,8 +260,8 @@ static int rcoarse(rctx *h, const swarf_pose *table, int n, int S, rsample *smp,
 
 /* Step 1: the samples at the time steps, evaluated only in the coarse
  * intervals whose lower bound is below the best value so far (most promising
- * first; the others cannot hold a lower value); ends: smp[0] and smp[n] hold
- * the ends already (step 0). Compacts the samples, in
+ * first; the others cannot hold a lower value); with ends, smp[0] and smp[n]
+ * hold the ends already (step 0). Compacts the samples, in
  * time order, to the front of smp and returns their number minus one; *lb
  * receives a lower bound of g over the whole move. */
 static int rsteps(rctx *h, const swarf_pose *table, int n, rsample *smp, int ends, double *lb) {
@@ -327,21 +327,20 @@ double swarf_sweep_rigid_body_below(const swarf_sweep *s, swarf_body_sdf_fn body
   return rsearch(s, body, ctx, p, -INFINITY, upper, 1, alpha);
 }
 
-double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], double lo, double hi) {
-  double v;
-  if (swarf_sweep_rigid_ball(s, p, lo, hi, &v, NULL) == 0) return v;
-  /* a ball's path has tried its ends' bounds already */
-  return rsearch(s, cutter_body, s->cutter, p, lo, hi + EPS, !swarf_sweep_cdata(s)->u.rigid.ball,
-                 NULL);
-}
-
 int swarf_sweep_rigid_range_plane(const swarf_sweep *s, const double p[3], double lo, double hi,
                                   double r, double *d, double *pd, double g[3]) {
   const int k = swarf_sweep_rigid_ball_plane(s, p, lo, hi, r, d, pd, g);
   if (k >= 0) return k;
+  /* a ball's path has tried its ends' bounds already */
   *d = rsearch(s, cutter_body, s->cutter, p, lo, hi + EPS, !swarf_sweep_cdata(s)->u.rigid.ball,
                NULL);
   return 0;
+}
+
+double swarf_sweep_rigid_sdf_range(const swarf_sweep *s, const double p[3], double lo, double hi) {
+  double v, pd, g[3];
+  swarf_sweep_rigid_range_plane(s, p, lo, hi, 0.0, &v, &pd, g); /* r = 0: no plane */
+  return v;
 }
 
 double swarf_sweep_rigid_body_sdf(const swarf_sweep *s, swarf_body_sdf_fn body, const void *ctx,

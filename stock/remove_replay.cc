@@ -64,12 +64,14 @@ inline double gouge_floor(const Pass &p) {
 struct CubeCuts {
   struct Entry {
     uint32_t pair;
-    double d;  ///< the cut's sdf at the cube's centre
-    int plane; ///< 1: sdf(q) >= d + g.(q - centre) for every q; 0: none; -1: not asked yet
+    double d;  ///< the cut's sdf at the cube's centre (a range's value where the cut has one)
+    int plane; ///< 1: sdf(q) >= pd + g.(q - centre) for the cube's voxels q; 0: none; -1: not
+               ///< asked yet
+    double pd; ///< the plane's value at the centre (d for a supporting plane)
     double g[3];
     /// The plane's bound at the cube's voxel l (block-local; +-h from the centre per axis).
     double at(const Coord &l, double h) const {
-      return d + (l.x() & 1 ? h : -h) * g[0] + (l.y() & 1 ? h : -h) * g[1] +
+      return pd + (l.x() & 1 ? h : -h) * g[0] + (l.y() & 1 ? h : -h) * g[1] +
              (l.z() & 1 ? h : -h) * g[2];
     }
   };
@@ -145,10 +147,16 @@ struct CubeCuts {
       if (planes != nullptr && octant_keeps_below(p, planes->at(o, i - b.begin), c)) continue;
       const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
       const Vec3d q = centre(p, b, c);
-      const double d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
-      if (d - rv + low[c] >= kMargin) continue;
-      const bool ask = p.support != nullptr && p.support[w.pairs[i].cut] != nullptr;
-      list[c].push_back({i, d, ask ? -1 : 0, {0.0, 0.0, 0.0}});
+      // a cut with a range function resolves only values below what passes the cube over
+      // (rotary sweeps, with their local plane: only the voxels' steps credit the cut)
+      Entry e{i, 0.0, 0, 0.0, {0.0, 0.0, 0.0}};
+      if (cut.range_plane != nullptr && cut.range != nullptr && !p.plain)
+        e.plane = cut_value_plane(p, cut, q, -HUGE_VAL, kMargin + rv - low[c], rv, e.d, e.pd, e.g);
+      else
+        e.d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+      if (e.d - rv + low[c] >= kMargin) continue;
+      if (p.support != nullptr && p.support[w.pairs[i].cut] != nullptr) e.plane = -1;
+      list[c].push_back(e);
     }
     return &list[c][k];
   }
@@ -161,6 +169,7 @@ struct CubeCuts {
     const swarf_stock_cut &cut = p.cuts[w.pairs[e.pair].cut];
     const Vec3d q = centre(p, b, c);
     e.plane = p.support[w.pairs[e.pair].cut](cut.ctx, q.x(), q.y(), q.z(), &e.d, e.g) == 1;
+    e.pd = e.d;
     return e;
   }
 };

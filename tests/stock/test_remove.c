@@ -288,6 +288,23 @@ static void range_planes(void) {
   check_whole_band(s[1], "zig-zag with local planes");
   swarf_stock_free(s[0]);
   swarf_stock_free(s[1]);
+  /* measured (the replay reads the planes too): the same effects, cut by cut */
+  static swarf_stock_cut_effect fx[2][N];
+  swarf_stock *m[2] = {new_stock(), new_stock()};
+  if (!m[0] || !m[1]) return;
+  for (int k = 0; k < 2; k++) {
+    for (int i = 0; i < N; i++)
+      cuts[i].range_plane = k ? capsule_range_plane : NULL;
+    CHECK(swarf_stock_remove_batch_measured(m[k], cuts, N, NULL, 0.0, fx[k], &err) == 0,
+          "measured: %s", err.message);
+  }
+  int same = stock_differences(m[0], m[1]) == 0;
+  for (int i = 0; i < N; i++)
+    same = same && fx[0][i].removed == fx[1][i].removed &&
+           fx[0][i].removed_voxels == fx[1][i].removed_voxels;
+  CHECK(same, "measured with range_plane == without (grid and every cut's volume, bits)");
+  swarf_stock_free(m[0]);
+  swarf_stock_free(m[1]);
 }
 
 typedef struct {

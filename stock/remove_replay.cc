@@ -148,12 +148,10 @@ struct CubeCuts {
       const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
       const Vec3d q = centre(p, b, c);
       // a cut with a range function resolves only values below what passes the cube over
-      // (rotary sweeps, with their local plane: only the voxels' steps credit the cut)
+      // (rotary sweeps, with their local plane: only the voxels' steps credit the cut); others
+      // give their sdf
       Entry e{i, 0.0, 0, 0.0, {0.0, 0.0, 0.0}};
-      if (cut.range_plane != nullptr && cut.range != nullptr && !p.plain)
-        e.plane = cut_value_plane(p, cut, q, -HUGE_VAL, kMargin + rv - low[c], rv, e.d, e.pd, e.g);
-      else
-        e.d = cut.sdf(cut.ctx, q.x(), q.y(), q.z());
+      e.plane = cut_value_plane(p, cut, q, -HUGE_VAL, kMargin + rv - low[c], rv, e.d, e.pd, e.g);
       if (e.d - rv + low[c] >= kMargin) continue;
       if (p.support != nullptr && p.support[w.pairs[i].cut] != nullptr) e.plane = -1;
       list[c].push_back(e);

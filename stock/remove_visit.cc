@@ -101,6 +101,23 @@ struct CutAt {
   double g[3];
 };
 
+/// Cut k's value at c, whose voxels lie at most r away, as the visits ask it:
+/// its supporting plane where it has a support function (3-axis moves), else
+/// cut_value_plane with the window (lo, hi) and, where the cut gives one, a
+/// local plane.
+inline void cut_at(const Pass &p, uint32_t k, const Vec3d &c, double lo, double hi, double r,
+                   CutAt &o) {
+  const swarf_stock_cut &cut = p.cuts[k];
+  const swarf_stock_support_fn f = p.support ? p.support[k] : nullptr;
+  o.cut = &cut;
+  if (f != nullptr) {
+    o.plane = f(cut.ctx, c.x(), c.y(), c.z(), &o.d, o.g) == 1;
+    o.pd = o.d;
+  } else {
+    o.plane = cut_value_plane(p, cut, c, lo, hi, r, o.d, o.pd, o.g);
+  }
+}
+
 /// An octant's cuts deepest first (a NaN sdf first), sorted lazily: the
 /// cubes walk the order from its start and most stop after a few cuts, so
 /// the order is drawn from a heap only as far as some cube reads it
@@ -249,14 +266,7 @@ void visit_cube_cuts(const Pass &p, const Block &b, OctOrder &oct, int x0, int y
       continue;
     }
     CutAt k;
-    const swarf_stock_support_fn f = p.support ? p.support[o.cut - p.cuts] : nullptr;
-    k.cut = o.cut;
-    if (f != nullptr) {
-      k.plane = f(o.cut->ctx, c.x(), c.y(), c.z(), &k.d, k.g) == 1;
-      k.pd = k.d;
-    } else {
-      k.plane = cut_value_plane(p, *o.cut, c, cube_lo, cube_hi, rv, k.d, k.pd, k.g);
-    }
+    cut_at(p, uint32_t(o.cut - p.cuts), c, cube_lo, cube_hi, rv, k);
     if (k.d - rv + bv.mlo[ci] >= kMargin) continue; // may_raise, for the lowest value: false
     visit_cube(p, b, k, x0, y0, z0, bv);
   }
@@ -314,16 +324,8 @@ void visit_octant(const Pass &p, const Block &b, int x0, int y0, int z0, BlockVa
       if (bv.planes != nullptr) bv.planes->at(octant, i - b.begin).state = OctantPlanes::kOut;
       continue;
     }
-    const swarf_stock_cut &cut = p.cuts[w.pairs[i].cut];
-    const swarf_stock_support_fn f = p.support ? p.support[w.pairs[i].cut] : nullptr;
     CutAt &o = oct[n++];
-    o.cut = &cut;
-    if (f != nullptr) {
-      o.plane = f(cut.ctx, c.x(), c.y(), c.z(), &o.d, o.g) == 1;
-      o.pd = o.d;
-    } else {
-      o.plane = cut_value_plane(p, cut, c, oct_lo, oct_hi, roct, o.d, o.pd, o.g);
-    }
+    cut_at(p, w.pairs[i].cut, c, oct_lo, oct_hi, roct, o);
     if (bv.planes != nullptr) {
       OctantPlanes::Entry &r = bv.planes->at(octant, i - b.begin);
       r.state = o.plane ? OctantPlanes::kPlane : OctantPlanes::kNoPlane;

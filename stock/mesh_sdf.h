@@ -18,7 +18,8 @@ namespace swarf {
 
 /// A mesh's triangles kept for exact distance queries far from the surface,
 /// where a band holds only +-its half-width (designs: deepest gouges and
-/// largest excesses beyond the band). Index space, as mesh_band's points.
+/// largest excesses beyond the band). Index space, as mesh_band's points
+/// (mesh_surface.cc).
 struct MeshSurface;
 
 /// The surface of the mesh (index-space points, triangles), for queries;

@@ -29,7 +29,7 @@ namespace swarf {
 struct MeshSurface; // mesh_sdf.h
 
 /// Exact distance (mm, >= 0) from world point w to the surface of design d
-/// (d.surface non-null; mesh_sdf.cc).
+/// (d.surface non-null; mesh_surface.cc).
 double surface_distance_exact(const swarf_stock &d, const openvdb::Vec3d &w);
 /// The same at a voxel centre w of d, rounded as a band of
 /// SWARF_STOCK_DESIGN_BAND voxels stores it within that band (a float, from

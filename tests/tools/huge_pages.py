@@ -12,6 +12,9 @@ names a script that writes its environment to a file and fails, and
 - with SWARF_HUGEPAGES=0 it sees no GLIBC_TUNABLES;
 - a caller's own GLIBC_TUNABLES reaches it unchanged;
 - the outcome (exit status 2, the reader's failure named) is the same each time.
+And by the dynamic loader's own account (LD_DEBUG=files names each program it
+starts): `info` starts twice, `parse`, `envelope` and `--help` once (they make
+no grid, and the restart would cost them more than it saves).
 """
 import os
 import shutil
@@ -58,5 +61,25 @@ check("GLIBC_TUNABLES" not in seen, "SWARF_HUGEPAGES=0: no tunable set (%s)" % s
 seen = child_env("caller's", GLIBC_TUNABLES="glibc.malloc.arena_max=2")
 check(seen.get("GLIBC_TUNABLES") == "glibc.malloc.arena_max=2",
       "a caller's GLIBC_TUNABLES is kept as it is (%s)" % seen.get("GLIBC_TUNABLES"))
+
+
+def starts(*args):
+    """How many times the loader started swarf itself for `swarf args`."""
+    env = {k: v for k, v in os.environ.items() if k not in ("GLIBC_TUNABLES", "SWARF_HUGEPAGES")}
+    env.update(LD_DEBUG="files", SWARF_VDB_READER=script, HUGE_PAGES_ENV=os.path.join(d, "x.env"))
+    p = subprocess.run([swarf] + list(args), cwd=d, env=env, capture_output=True, text=True,
+                       timeout=60)
+    name = os.path.basename(swarf)
+    return sum(1 for line in p.stderr.splitlines()
+               if "transferring control:" in line and
+               os.path.basename(line.split("transferring control:")[1].strip()) == name)
+
+
+with open(os.path.join(d, "p.ngc"), "w") as f:
+    f.write("G21 G90\nG1 X1 F100\nM2\n")
+check(starts("info", "x.vdb") == 2, "info: started twice (restarted with the tunable)")
+for args in (["parse", "p.ngc"], ["--help"], ["envelope", "--help"]):
+    n = starts(*args)
+    check(n == 1, "%s: started once, no restart (%d)" % (" ".join(args), n))
 shutil.rmtree(d, ignore_errors=True)
 sys.exit(done())

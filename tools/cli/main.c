@@ -33,20 +33,27 @@ static const char usage[] =
     "  help [COMMAND]     this text, or a command's options\n"
     "\n"
     "`swarf COMMAND --help` explains each command. Units: mm, degrees, seconds.\n"
-    "Environment: swarf runs malloc on transparent huge pages (it restarts itself\n"
-    "once with GLIBC_TUNABLES=glibc.malloc.hugetlb=1) unless GLIBC_TUNABLES is set\n"
-    "or SWARF_HUGEPAGES=0.\n";
+    "Environment: simulate, info, render and compare run malloc on transparent huge\n"
+    "pages (swarf restarts itself once with GLIBC_TUNABLES=glibc.malloc.hugetlb=1)\n"
+    "unless GLIBC_TUNABLES is set or SWARF_HUGEPAGES=0.\n";
 
 /* Transparent huge pages for malloc's heaps. A run touches its grid's leaves
  * once each, and on the virtual machines we measure on every fresh page costs
  * a paravirtualized fault: with glibc's tunable (read only at start-up, hence
  * the one re-execution, which keeps the process and its arguments) bear at
  * 0.2 mm takes 9 % less wall time, the tiger at 0.5 mm 3 %, for 2-3 MB more
- * peak memory. A caller's own GLIBC_TUNABLES (this re-execution's included)
- * is left alone; if the re-execution fails, the run goes on as it is. */
-static void huge_pages(char **argv) {
+ * peak memory. Only the commands that make or read grids restart: the
+ * re-execution costs ~18 ms, which is all of `swarf --help` and nothing
+ * returns it to `parse` or `envelope`. A caller's own GLIBC_TUNABLES (this
+ * re-execution's included) is left alone; if the re-execution fails, the run
+ * goes on as it is. */
+static void huge_pages(const char *cmd, char **argv) {
+  static const char *const grids[] = {"simulate", "info", "render", "compare"};
   const char *off = getenv("SWARF_HUGEPAGES");
-  if (getenv("GLIBC_TUNABLES") != NULL || (off != NULL && !strcmp(off, "0"))) return;
+  int takes = 0;
+  for (size_t i = 0; cmd != NULL && i < sizeof grids / sizeof grids[0]; i++)
+    takes |= !strcmp(cmd, grids[i]);
+  if (!takes || getenv("GLIBC_TUNABLES") != NULL || (off != NULL && !strcmp(off, "0"))) return;
   if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1) != 0) return;
   execv("/proc/self/exe", argv);
   unsetenv("GLIBC_TUNABLES");
@@ -54,7 +61,7 @@ static void huge_pages(char **argv) {
 
 int main(int argc, char **argv) {
   const char *cmd = argc > 1 ? argv[1] : NULL;
-  huge_pages(argv);
+  huge_pages(cmd, argv);
   if (cmd == NULL || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) {
     fputs(usage, cmd ? stdout : stderr);
     return cmd ? 0 : 2;

@@ -11,6 +11,12 @@
 /// one whose voxels all lie near its surface (bear's box at 0.1 mm: 0.5 s of
 /// a 1.1 s start).
 ///
+/// A box's blocks take its outside by rows: per axis, the distance beyond the
+/// nearer face depends on that coordinate alone (8 values a block and axis,
+/// then a sum of squares or a max per voxel, the doubles box_outside gives).
+/// Bear's box at 0.1 mm, an empty program: 1.01 -> 0.81 s CPU with the
+/// reserved list of blocks.
+///
 /// Blocks are computed in parallel into leaves of their own (no tree access),
 /// then put into the tree serially: a block whose centre lies deeper inside
 /// the shape than its half diagonal plus the band keeps the fill, one as far
@@ -20,6 +26,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -39,8 +46,34 @@ struct BlockFill {
   std::unique_ptr<Leaf> leaf; ///< kLeaf
 };
 
-/// The block at b.origin: its centre value decides, else every voxel.
-void fill_block(const swarf_stock &s, swarf_stock_sdf_fn outside, const void *ctx, BlockFill &b) {
+/// A box's outside at the voxels of one block, as box_outside (stock.cc)
+/// gives it, the same doubles: per axis, the voxel's signed distance beyond
+/// the nearer face is that of its coordinate on the axis alone, so the 8
+/// of each axis are taken once for the block's 512 voxels.
+struct BoxRows {
+  double q[3][8];
+  void init(const swarf_stock &s, const ShapeBox &box, const openvdb::Coord &o) {
+    for (int k = 0; k < 3; k++)
+      for (int i = 0; i < 8; i++) {
+        // block_point's coordinate (the same double)
+        const double p = s.origin[k] + s.voxel * (double(o[k]) + double(i));
+        q[k][i] = std::max(box.lo[k] - p, p - box.hi[k]);
+      }
+  }
+  double outside(int x, int y, int z) const {
+    const double qx = q[0][x], qy = q[1][y], qz = q[2][z];
+    double out2 = 0.0;
+    if (qx > 0.0) out2 += qx * qx;
+    if (qy > 0.0) out2 += qy * qy;
+    if (qz > 0.0) out2 += qz * qz;
+    return -(out2 > 0.0 ? std::sqrt(out2) : std::max(std::max(qx, qy), qz));
+  }
+};
+
+/// The block at b.origin: its centre value decides, else every voxel (with
+/// box, by rows).
+void fill_block(const swarf_stock &s, swarf_stock_sdf_fn outside, const void *ctx,
+                const ShapeBox *box, BlockFill &b) {
   const double v = s.voxel, bg = s.background;
   const double reach = 3.5 * std::sqrt(3.0) * v + bg;
   // voxel centres as remove.cc's block_point computes them (the same doubles)
@@ -59,11 +92,19 @@ void fill_block(const swarf_stock &s, swarf_stock_sdf_fn outside, const void *ct
   float *data = b.leaf->buffer().data();
   Leaf::NodeMaskType &on = b.leaf->getValueMask();
   bool any_on = false, uniform = true;
+  BoxRows rows;
+  if (box != nullptr) rows.init(s, *box, b.origin);
   for (int x = 0; x < 8; x++)
     for (int y = 0; y < 8; y++)
       for (int z = 0; z < 8; z++) {
-        const openvdb::Vec3d q = at(x, y, z);
-        const double m = std::max(-bg, -outside(ctx, q.x(), q.y(), q.z()));
+        double o;
+        if (box != nullptr) {
+          o = rows.outside(x, y, z);
+        } else {
+          const openvdb::Vec3d q = at(x, y, z);
+          o = outside(ctx, q.x(), q.y(), q.z());
+        }
+        const double m = std::max(-bg, -o);
         const float val = stored(m, bgf);
         const openvdb::Index n = (x << 6) | (y << 3) | z; // LeafNode<float, 3>'s offset
         data[n] = val;
@@ -81,9 +122,11 @@ void fill_block(const swarf_stock &s, swarf_stock_sdf_fn outside, const void *ct
 } // namespace
 
 void fill_shape(swarf_stock &s, swarf_stock_sdf_fn outside, const void *ctx,
-                const openvdb::CoordBBox &blocks) {
+                const openvdb::CoordBBox &blocks, const ShapeBox *box) {
   if (blocks.empty()) return;
   std::vector<BlockFill> fill;
+  const openvdb::Coord dim = blocks.dim();
+  fill.reserve(size_t(dim.x() / 8) * size_t(dim.y() / 8) * size_t(dim.z() / 8));
   for (int x = blocks.min().x(); x <= blocks.max().x(); x += 8)
     for (int y = blocks.min().y(); y <= blocks.max().y(); y += 8)
       for (int z = blocks.min().z(); z <= blocks.max().z(); z += 8) {
@@ -93,7 +136,7 @@ void fill_shape(swarf_stock &s, swarf_stock_sdf_fn outside, const void *ctx,
   tbb::parallel_for(tbb::blocked_range<size_t>(0, fill.size(), 64),
                     [&](const tbb::blocked_range<size_t> &r) {
                       for (size_t i = r.begin(); i != r.end(); ++i)
-                        fill_block(s, outside, ctx, fill[i]);
+                        fill_block(s, outside, ctx, box, fill[i]);
                     });
   openvdb::FloatTree &tree = s.grid->tree();
   for (BlockFill &b : fill) {

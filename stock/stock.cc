@@ -47,9 +47,7 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr size_t kLevelSetChecks = 8;
 
 /// The stock box [lo, hi] (mm) and its exact signed distance.
-struct Box {
-  double lo[3], hi[3];
-};
+using Box = ShapeBox;
 
 double box_sdf(const Box &b, const double p[3]) {
   double out2 = 0.0, in = -std::numeric_limits<double>::infinity();
@@ -199,7 +197,8 @@ swarf_stock *make_shape(const double lo[3], const double hi[3], double voxel, in
     cut.ctx = ctx;
     remove_cuts(*s, &cut, 1);
   } else {
-    fill_shape(*s, outside, ctx, region);
+    fill_shape(*s, outside, ctx, region,
+               outside == box_outside ? static_cast<const Box *>(ctx) : nullptr);
   }
   if (rlo != nullptr)
     openvdb::tools::prune(grid->tree());

@@ -164,11 +164,17 @@ template <class F> void in_arena(swarf_stock &s, F &&f) {
 /// serial loop (write_leaves.cc).
 openvdb::FloatGrid::Ptr leaf_parallel_copy(const swarf_stock &s);
 
+/// A box stock's faces (mm): box_outside's context (stock.cc).
+struct ShapeBox {
+  double lo[3], hi[3];
+};
+
 /// The band of a new stock holding -background in the block-aligned index
 /// box `blocks` (and nothing else): as removing the cut {outside < 0} there
-/// (shape.cc; bit for bit what remove_cuts gives).
+/// (shape.cc; bit for bit what remove_cuts gives). box: where outside is a
+/// box's (box_outside), its faces, which fill the blocks row by row.
 void fill_shape(swarf_stock &s, swarf_stock_sdf_fn outside, const void *ctx,
-                const openvdb::CoordBBox &blocks);
+                const openvdb::CoordBBox &blocks, const ShapeBox *box = nullptr);
 
 /// Apply stock = max(stock, -sdf) for every cut (remove.cc). Arguments are
 /// assumed checked. On an exception the stock may be partly cut but stays a

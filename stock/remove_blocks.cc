@@ -72,7 +72,7 @@ inline bool pair_less(const BlockCut &a, const BlockCut &b) {
 /// sort on their block, when the blocks' box holds at most kSlots blocks: a
 /// histogram, its prefix sums, one scatter. Stable, so each block's cuts stay
 /// in the order made. False (nothing done) for a larger box.
-bool counting_sort(std::vector<BlockCut> &pairs, const int32_t lo[3], const int32_t hi[3]) {
+bool counting_sort(ScratchVector<BlockCut> &pairs, const int32_t lo[3], const int32_t hi[3]) {
   constexpr uint64_t kSlots = uint64_t(1) << 20; // 4 MB of counts
   const uint64_t ny = uint64_t(hi[1] - lo[1]) / 8 + 1, nz = uint64_t(hi[2] - lo[2]) / 8 + 1;
   const uint64_t slots = (uint64_t(hi[0] - lo[0]) / 8 + 1) * ny * nz;
@@ -82,7 +82,7 @@ bool counting_sort(std::vector<BlockCut> &pairs, const int32_t lo[3], const int3
            (uint64_t(q.z - lo[2]) >> 3);
   };
   thread_local std::vector<uint32_t> count; // this thread's buffers
-  thread_local std::vector<BlockCut> sorted;
+  thread_local ScratchVector<BlockCut> sorted;
   count.assign(slots + 1, 0);
   for (const BlockCut &q : pairs)
     count[slot(q) + 1]++;
@@ -101,7 +101,7 @@ bool counting_sort(std::vector<BlockCut> &pairs, const int32_t lo[3], const int3
 /// of its time in a comparison sort), or, for a box of more blocks, sorted as
 /// 64-bit keys (block offsets from the least block, then the cut): 2x faster
 /// than the comparison of the fields.
-void sort_pairs(std::vector<BlockCut> &pairs, size_t ncuts) {
+void sort_pairs(ScratchVector<BlockCut> &pairs, size_t ncuts) {
   struct Span {
     int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
     int32_t unaligned = 0; // block origins are multiples of 8
@@ -134,7 +134,7 @@ void sort_pairs(std::vector<BlockCut> &pairs, size_t ncuts) {
     return;
   }
   if (counting_sort(pairs, lo, hi)) return;
-  thread_local std::vector<uint64_t> keys_v; // this thread's buffer
+  thread_local ScratchVector<uint64_t> keys_v; // this thread's buffer
   keys_v.resize(pairs.size());
   uint64_t *const keys = keys_v.data(); // the workers see the caller's buffer through it
   tbb::parallel_for(all, [&](const tbb::blocked_range<size_t> &r) {
@@ -208,7 +208,7 @@ void list_pairs(Pass &p, size_t ncuts) {
           size_t((b.z() - a.z()) / 8 + 1);
     at[i + 1] = at[i] + n;
   }
-  w.pairs.resize(at[ncuts]); // no clear(): growing zero-fills only what is new
+  w.pairs.resize(at[ncuts]); // written below, in parallel
   tbb::parallel_for(tbb::blocked_range<size_t>(0, ncuts, 8),
                     [&](const tbb::blocked_range<size_t> &r) {
                       for (size_t i = r.begin(); i != r.end(); ++i) {

@@ -71,7 +71,10 @@ inline bool pair_less(const BlockCut &a, const BlockCut &b) {
 /// The pairs (made cut by cut: list_pairs) in pair_less order by a counting
 /// sort on their block, when the blocks' box holds at most kSlots blocks: a
 /// histogram, its prefix sums, one scatter. Stable, so each block's cuts stay
-/// in the order made. False (nothing done) for a larger box.
+/// in the order made. False (nothing done) for a larger box. The pairs of a
+/// big batch (millions at 0.1 mm) are counted and scattered in chunks on the
+/// stock's threads, each chunk's elements of a block after the previous
+/// chunk's: the order a serial pass gives.
 bool counting_sort(ScratchVector<BlockCut> &pairs, const int32_t lo[3], const int32_t hi[3]) {
   constexpr uint64_t kSlots = uint64_t(1) << 20; // 4 MB of counts
   const uint64_t ny = uint64_t(hi[1] - lo[1]) / 8 + 1, nz = uint64_t(hi[2] - lo[2]) / 8 + 1;
@@ -81,16 +84,34 @@ bool counting_sort(ScratchVector<BlockCut> &pairs, const int32_t lo[3], const in
     return ((uint64_t(q.x - lo[0]) >> 3) * ny + (uint64_t(q.y - lo[1]) >> 3)) * nz +
            (uint64_t(q.z - lo[2]) >> 3);
   };
-  thread_local std::vector<uint32_t> count; // this thread's buffers
+  // chunks of at least 64 k pairs, at most 16, their counts within 4 MB
+  const size_t np = pairs.size();
+  const size_t nchunk = slots <= (uint64_t(1) << 16) ? std::clamp<size_t>(np >> 16, 1, 16) : 1;
+  thread_local std::vector<uint32_t> count_v; // this thread's buffers
   thread_local ScratchVector<BlockCut> sorted;
-  count.assign(slots + 1, 0);
-  for (const BlockCut &q : pairs)
-    count[slot(q) + 1]++;
-  for (uint64_t i = 0; i < slots; i++)
-    count[i + 1] += count[i];
-  sorted.resize(pairs.size());
-  for (const BlockCut &q : pairs)
-    sorted[count[slot(q)]++] = q;
+  count_v.assign(nchunk * slots, 0);
+  sorted.resize(np);
+  uint32_t *const count = count_v.data(); // the workers see the caller's buffers through these
+  const BlockCut *const in = pairs.data();
+  BlockCut *const out = sorted.data();
+  auto first = [&](size_t c) { return c * np / nchunk; };
+  tbb::parallel_for(size_t(0), nchunk, [&](size_t c) {
+    uint32_t *n = count + c * slots;
+    for (size_t i = first(c); i < first(c + 1); i++)
+      n[slot(in[i])]++;
+  });
+  uint32_t at = 0; // each (slot, chunk)'s first place, slot by slot
+  for (uint64_t k = 0; k < slots; k++)
+    for (size_t c = 0; c < nchunk; c++) {
+      const uint32_t n = count[c * slots + k];
+      count[c * slots + k] = at;
+      at += n;
+    }
+  tbb::parallel_for(size_t(0), nchunk, [&](size_t c) {
+    uint32_t *n = count + c * slots;
+    for (size_t i = first(c); i < first(c + 1); i++)
+      out[n[slot(in[i])]++] = in[i];
+  });
   pairs.swap(sorted);
   return true;
 }

@@ -26,7 +26,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -47,26 +46,18 @@ struct BlockFill {
 };
 
 /// A box's outside at the voxels of one block, as box_outside (stock.cc)
-/// gives it, the same doubles: per axis, the voxel's signed distance beyond
-/// the nearer face is that of its coordinate on the axis alone, so the 8
-/// of each axis are taken once for the block's 512 voxels.
+/// gives it, the same doubles: per axis, how far a voxel lies beyond the
+/// nearer face depends on its coordinate on that axis alone (block_point's),
+/// so the 8 of each axis are taken once for the block's 512 voxels.
 struct BoxRows {
   double q[3][8];
   void init(const swarf_stock &s, const ShapeBox &box, const openvdb::Coord &o) {
     for (int k = 0; k < 3; k++)
-      for (int i = 0; i < 8; i++) {
-        // block_point's coordinate (the same double)
-        const double p = s.origin[k] + s.voxel * (double(o[k]) + double(i));
-        q[k][i] = std::max(box.lo[k] - p, p - box.hi[k]);
-      }
+      for (int i = 0; i < 8; i++)
+        q[k][i] = box.beyond(k, s.origin[k] + s.voxel * (double(o[k]) + double(i)));
   }
   double outside(int x, int y, int z) const {
-    const double qx = q[0][x], qy = q[1][y], qz = q[2][z];
-    double out2 = 0.0;
-    if (qx > 0.0) out2 += qx * qx;
-    if (qy > 0.0) out2 += qy * qy;
-    if (qz > 0.0) out2 += qz * qz;
-    return -(out2 > 0.0 ? std::sqrt(out2) : std::max(std::max(qx, qy), qz));
+    return -ShapeBox::distance(q[0][x], q[1][y], q[2][z]);
   }
 };
 

@@ -50,13 +50,7 @@ constexpr size_t kLevelSetChecks = 8;
 using Box = ShapeBox;
 
 double box_sdf(const Box &b, const double p[3]) {
-  double out2 = 0.0, in = -std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; k++) {
-    const double q = std::max(b.lo[k] - p[k], p[k] - b.hi[k]);
-    if (q > 0.0) out2 += q * q;
-    in = std::max(in, q);
-  }
-  return out2 > 0.0 ? std::sqrt(out2) : in;
+  return Box::distance(b.beyond(0, p[0]), b.beyond(1, p[1]), b.beyond(2, p[2]));
 }
 
 /// The volume removed to carve the box: everything outside it.

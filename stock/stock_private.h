@@ -14,6 +14,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -185,6 +186,17 @@ openvdb::FloatGrid::Ptr leaf_parallel_copy(const swarf_stock &s);
 /// A box stock's faces (mm): box_outside's context (stock.cc).
 struct ShapeBox {
   double lo[3], hi[3];
+  /// How far coordinate p on axis k lies beyond the nearer of the box's two
+  /// faces across that axis (negative between them).
+  double beyond(int k, double p) const { return std::max(lo[k] - p, p - hi[k]); }
+  /// The box's exact signed distance from a point's beyond() on the three axes.
+  static double distance(double qx, double qy, double qz) {
+    double out2 = 0.0;
+    if (qx > 0.0) out2 += qx * qx;
+    if (qy > 0.0) out2 += qy * qy;
+    if (qz > 0.0) out2 += qz * qz;
+    return out2 > 0.0 ? std::sqrt(out2) : std::max(std::max(qx, qy), qz);
+  }
 };
 
 /// The band of a new stock holding -background in the block-aligned index

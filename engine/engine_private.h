@@ -339,7 +339,9 @@ typedef struct {
  * |omega| and vd, wd of their alpha-derivatives; beyond `far` mm a lower
  * bound is returned. A ball end mill (ball = 1; sweep_rigid_ball.c): cv and
  * cvmin bound the speed |c'| of its centre c = t + U (0, 0, R) from above and
- * below, ca its acceleration |c''|, ck the part of c' along the tool axis.
+ * below, ca its acceleration |c''|, ck the part of c' along the tool axis; a
+ * flat or bull end mill (ball = 2) the same for c at its corner radius R: the
+ * start of the axis of the capsule of radius D/2 that holds it.
  * id: this sweep's number for its motion's pose table (unique to each init:
  * swarf_motion_pose_table_id). */
 typedef struct {

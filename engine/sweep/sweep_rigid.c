@@ -41,7 +41,9 @@
  *     certificate.)
  * A ball end mill takes sweep_rigid_ball.c first (the characteristic
  * circles at the time steps, a local refinement certified by convexity) and
- * comes here only where that path cannot certify its preconditions.
+ * comes here only where that path cannot certify its preconditions; a flat
+ * or bull end mill takes it for the capsule that holds it, and comes here
+ * where the capsule's value is not its own (the bottom or a corner nearest).
  * Beyond FAR (72 voxels, more than any narrow band plus a block) the value
  * is the lower bound of the coarse intervals only. Nothing allocates here
  * (the pose table belongs to the thread's cache); pure function of the sweep
@@ -331,8 +333,8 @@ int swarf_sweep_rigid_range_plane(const swarf_sweep *s, const double p[3], doubl
                                   double r, double *d, double *pd, double g[3]) {
   const int k = swarf_sweep_rigid_ball_plane(s, p, lo, hi, r, d, pd, g);
   if (k >= 0) return k;
-  /* a ball's path has tried its ends' bounds already */
-  *d = rsearch(s, cutter_body, s->cutter, p, lo, hi + EPS, !swarf_sweep_cdata(s)->u.rigid.ball,
+  /* a ball's path has tried its ends' bounds already (a flat's or bull's capsule: not its own) */
+  *d = rsearch(s, cutter_body, s->cutter, p, lo, hi + EPS, swarf_sweep_cdata(s)->u.rigid.ball != 1,
                NULL);
   return 0;
 }

@@ -2,7 +2,8 @@
 /* sweep_rigid_ball.c -- the volume swept by a ball end mill under a rigid
  * motion with rotation, built from the characteristic circles at the time
  * steps: per point a local refinement certified by convexity
- * instead of the general search over the move (sweep_rigid.c).
+ * instead of the general search over the move (sweep_rigid.c). Flat and
+ * bull end mills take it too, as bounds (body_kind, at the end).
  *
  * The cutter is a capsule: the points within R of its axis segment from the
  * ball's centre (0, 0, R) up to (0, 0, L - R) (swarf_cutter_sdf_rz). Under
@@ -74,9 +75,9 @@ typedef struct {
 
 typedef struct {
   const double *p;
-  double R, seg;                 /* ball radius, axis segment length L - 2R */
-  double mu;                     /* G'' >= mu > 0 over the move */
-  const swarf_pose *table;       /* the poses at the N + 1 time steps i / N */
+  double R, off, seg;      /* capsule radius; its axis segment's start above the tip and length */
+  double mu;               /* G'' >= mu > 0 over the move */
+  const swarf_pose *table; /* the poses at the N + 1 time steps i / N */
   const swarf_pose_rates *rates; /* and their rates */
   int N;
 } bctx;
@@ -96,7 +97,7 @@ static inline double max2(double a, double b) {
  * k . k' = 0). */
 static bsample bsample_at(const bctx *b, double a, const swarf_pose *P,
                           const swarf_pose_rates *Pr) {
-  const double *U = P->U, *td = Pr->tdot, *kd = Pr->kdot, *p = b->p, R = b->R;
+  const double *U = P->U, *td = Pr->tdot, *kd = Pr->kdot, *p = b->p, R = b->off;
   const double k[3] = {U[2], U[5], U[8]};
   const double d[3] = {p[0] - P->t[0] - R * k[0], p[1] - P->t[1] - R * k[1],
                        p[2] - P->t[2] - R * k[2]};
@@ -262,7 +263,7 @@ static double curvature(const swarf_sweep_rigid *x, const bctx *b, const bsample
   hlo -= lh, hhi += lh;
   if (!(hhi < b->seg)) return 0.0; /* the top end may be nearest */
   if (hlo <= 0.0 && !((mu = 2.0 * (x->cvmin * x->cvmin - D * x->ca)) > 0.0)) return 0.0;
-  if (hhi > 0.0) mu = min2(mu, shank_mu(x, b->R, smp, n, w, D, max2(hlo, 0.0), hhi));
+  if (hhi > 0.0) mu = min2(mu, shank_mu(x, b->off, smp, n, w, D, max2(hlo, 0.0), hhi));
   return mu > 0.0 ? mu : 0.0;
 }
 
@@ -409,7 +410,7 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
 static int ball_plane(const swarf_sweep_rigid *x, const bctx *b, const bsample *ends,
                       const bsample *bs, double r, double *pd, double g[3]) {
   const double *U = bs->P->U, *t = bs->P->t, k3[3] = {U[2], U[5], U[8]};
-  const double z = bs->h <= 0.0 ? 0.0 : bs->h < b->seg ? bs->h : b->seg, zc = b->R + z;
+  const double z = bs->h <= 0.0 ? 0.0 : bs->h < b->seg ? bs->h : b->seg, zc = b->off + z;
   const double e[3] = {b->p[0] - t[0] - zc * k3[0], b->p[1] - t[1] - zc * k3[1],
                        b->p[2] - t[2] - zc * k3[2]}; /* p less its nearest axis point */
   const double W = x->w, D = sqrt(max2(ends[0].f, ends[1].f)) + 0.5 * x->cv;
@@ -426,9 +427,41 @@ static int ball_plane(const swarf_sweep_rigid *x, const bctx *b, const bsample *
   return 1;
 }
 
+/* A flat or bull end mill's own value at time a (a table step's pose if it is one), for
+ * the capsule's result there (ball_eval). */
+static double body_at(const swarf_sweep *s, const bctx *b, double a) {
+  const int i = (int)(a * b->N + 0.5);
+  const swarf_pose *P = &b->table[i];
+  swarf_pose off;
+  double d[3], q[3], g[3];
+  if (!((double)i / b->N == a)) {
+    swarf_motion_pose(s->motion, a, &off);
+    P = &off;
+  }
+  for (int k = 0; k < 3; k++)
+    d[k] = b->p[k] - P->t[k];
+  for (int k = 0; k < 3; k++)
+    q[k] = P->U[k] * d[0] + P->U[3 + k] * d[1] + P->U[6 + k] * d[2];
+  return swarf_cutter_sdf_grad(s->cutter, q, g); /* the general search's instance value */
+}
+
+/* A flat or bull end mill lies inside the capsule of radius D/2 about its axis from the
+ * corner radius up (ball = 2), and shares that capsule's side: the capsule's value is a
+ * lower bound of the cutter's everywhere (kept: B_ABOVE, and its plane), and the cutter's
+ * own at the capsule's time a its value where the two agree (to TIGHT: both certified to
+ * 2 TIGHT) or its bound at or below lo. Otherwise (the bottom or a corner nearest) B_FAIL. */
+static bkind body_kind(const swarf_sweep *s, const bctx *b, bkind kind, double lo, double *v,
+                       double a) {
+  if (kind == B_ABOVE || kind == B_FAIL) return kind;
+  const double u = body_at(s, b, a);
+  if (kind == B_BELOW) return u <= lo ? (*v = u, B_BELOW) : B_FAIL;
+  return u - *v <= TIGHT ? (*v = u, B_VALUE) : B_FAIL;
+}
+
 /* The ball's path at p for the window (lo, hi); with r > 0, a plane valid within r of p
  * where the whole move's convexity gave the value (ball_plane). -1: not certified (the
- * caller searches); 0: the value; 1: the value and the plane. */
+ * caller searches); 0: the value; 1: the value and the plane. A flat or bull end mill
+ * takes its capsule's path, then body_kind. */
 static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double hi, double r,
                      double *value, double *alpha, double *pd, double g[3]) {
   const swarf_sweep_rigid *x = &swarf_sweep_cdata(s)->u.rigid;
@@ -442,7 +475,8 @@ static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double 
   bkind kind;
   if (!x->ball || swarf_motion_pose_table_rates(s->motion, n, x->id, &table, &rates) != SWARF_OK)
     return -1;
-  b.p = p, b.R = 0.5 * s->cutter->diameter, b.seg = s->cutter->length - s->cutter->diameter;
+  b.p = p, b.R = 0.5 * s->cutter->diameter, b.off = s->cutter->corner_radius;
+  b.seg = s->cutter->length - 2.0 * b.off;
   b.table = table, b.rates = rates, b.N = n;
   /* the ends first: their bounds over the whole move often certify it */
   smp[0] = bsample_at(&b, 0.0, &table[0], &rates[0]);
@@ -453,6 +487,7 @@ static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double 
     if (kind == B_VALUE && r > 0.0) plane = ball_plane(x, &b, smp, &bs, r, pd, g);
   }
   if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, n, lo, hi, &v, &at);
+  if (x->ball == 2) kind = body_kind(s, &b, kind, lo, &v, at);
   if (kind == B_FAIL) return -1;
   *value = v;
   if (alpha != NULL) *alpha = at;

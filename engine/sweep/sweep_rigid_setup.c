@@ -9,7 +9,8 @@
  * 64 probes and a factor 1.25 (1.5 on the derivatives) cover them for any
  * turn a single move makes (tested, tests/engine/test_sweep_rigid.c).
  * A ball end mill's path (sweep_rigid_ball.c) gets the speed of the ball's
- * centre and its derivative from the same probes, with the same factors.
+ * centre and its derivative from the same probes, with the same factors (a
+ * flat or bull end mill: of its axis point at the corner radius).
  */
 #include <math.h>
 #include <stdatomic.h>
@@ -42,14 +43,17 @@ static void centre_speed(const double U[9], const double v[3], const double w[3]
 
 /* The ball path's constants (ball, cv, cvmin, ca, ck) from the
  * centre's speeds at the nprobe + 1 probes (u cutter frame, cp workpiece
- * frame) and the bounds already set. */
+ * frame) and the bounds already set. The centre: the ball's, or for a flat
+ * or bull end mill (ball = 2) the start of its capsule's axis, the corner
+ * radius R above the tip (sweep_rigid_ball.c). */
 static void ball_init(swarf_sweep *s, const double (*u)[3], const double (*cp)[3], int nprobe) {
   const swarf_cutter *c = s->cutter;
   swarf_sweep_rigid *x = &swarf_sweep_data_of(s)->u.rigid;
-  double R = 0.5 * c->diameter, vmax = 0.0, vmin = INFINITY, dmax = 0.0, kmax = 0.0, general;
+  double R = c->corner_radius, vmax = 0.0, vmin = INFINITY, dmax = 0.0, kmax = 0.0, general;
+  const int shape = c->shape;
   x->ball = 0;
-  if (!c->fast || c->shape != SWARF_CUTTER_BALL || !(c->length >= c->diameter) ||
-      swarf_reference_on(SWARF_REFERENCE_SWEEP_GENERAL))
+  if (!c->fast || !(c->length >= 2.0 * R) || swarf_reference_on(SWARF_REFERENCE_SWEEP_GENERAL) ||
+      (shape != SWARF_CUTTER_BALL && shape != SWARF_CUTTER_FLAT && shape != SWARF_CUTTER_BULL))
     return;
   for (int i = 0; i <= nprobe; i++) {
     double sp = norm3(cp[i]);
@@ -64,7 +68,7 @@ static void ball_init(swarf_sweep *s, const double (*u)[3], const double (*cp)[3
   /* between probes: |c''| <= ca, and u' = U^T c'' - omega x u */
   x->cvmin = fmax(vmin - 0.5 * x->ca / nprobe, 0.0);
   x->ck = kmax + 0.5 * (x->ca + x->w * x->cv) / nprobe;
-  x->ball = 1;
+  x->ball = shape == SWARF_CUTTER_BALL ? 1 : 2;
 }
 
 /* Widen the box by the cutter's axis segment at the pose (t, U). */
@@ -94,7 +98,7 @@ void swarf_sweep_rigid_init(swarf_sweep *s, double voxel) {
     swarf_motion_eval(s->motion, a, t, U);
     swarf_motion_velocity(s->motion, a, NULL, v, w);
     include_pose(x, c, t, U);
-    centre_speed(U, v, w, 0.5 * c->diameter, u[i], cp[i]);
+    centre_speed(U, v, w, c->corner_radius, u[i], cp[i]);
     V = fmax(V, norm3(v));
     W = fmax(W, norm3(w));
     if (i > 0) VD = fmax(VD, dist3(v, pv) * PROBE), WD = fmax(WD, dist3(w, pw) * PROBE);

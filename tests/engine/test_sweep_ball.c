@@ -14,6 +14,10 @@
  * above the value: the lower bounds that end a call early must stay below
  * it) and the instant returned. Each case states how many points the path
  * certified itself (the rest fell back).
+ * Flat and bull end mills take the path of the capsule of radius D/2 about
+ * their axis from the corner radius up (it holds them and shares their side),
+ * then their own value at its instant: the same checks, on the impeller's
+ * moves, with points about the bottom and corners as well as the side.
  * The local planes (swarf_sweep_range_plane) at each point, for the radii the
  * removal asks (a 2^3 cube's and a 4^3 octant's voxels from their centre):
  * the value as the range's, and the sweep at points within the radius (the
@@ -266,9 +270,39 @@ static void test_machines(void) {
   CHECK(took > 150, "the path takes most points on the other machines (%d of 180)", took);
 }
 
+/* Flat and bull end mills on the impeller's moves: exact everywhere (the path
+ * where the capsule's value is theirs, the general search elsewhere); the
+ * path takes most points beside the side and leaves the bottom's. */
+static void test_flat_bull(void) {
+  static const double a[6] = {6.302, -11.560, 27.743, -71.841, 0, -35.930};
+  static const double b[6] = {6.358, -12.418, 26.178, -71.266, 0, -32.919};
+  static const double far[6] = {2.0, -16.0, 20.0, -60.0, 0, -10.0};
+  const swarf_motion m = make("xyzac-trt", a, b), longer = make("xyzac-trt", a, far);
+  const struct {
+    const char *name;
+    swarf_cutter_shape shape;
+    double r;
+  } cutters[2] = {{"flat", SWARF_CUTTER_FLAT, 0.0}, {"bull R1", SWARF_CUTTER_BULL, 1.0}};
+  for (int k = 0; k < 2; k++) {
+    swarf_cutter c;
+    char name[64];
+    int side;
+    swarf_cutter_init(&c, cutters[k].shape, 4.0, cutters[k].r, 30.0, NULL);
+    snprintf(name, sizeof name, "impeller move 1, %s", cutters[k].name);
+    run(name, &c, &m, 0.2, NEAR_SURFACE, 120, 41 + k);
+    snprintf(name, sizeof name, "impeller move 1, %s, at the side", cutters[k].name);
+    side = run(name, &c, &m, 0.2, NEAR_SHANK, 100, 43 + k);
+    CHECK(side > 80, "%s: the path takes points beside the side (%d of 100)", cutters[k].name,
+          side);
+    snprintf(name, sizeof name, "longer move, %s", cutters[k].name);
+    run(name, &c, &longer, 0.2, NEAR_SURFACE, 60, 45 + k);
+  }
+}
+
 int main(void) {
   test_impeller();
   test_adversarial();
   test_machines();
+  test_flat_bull();
   return check_done();
 }

@@ -80,6 +80,8 @@ typedef struct {
   const swarf_pose *table; /* the poses at the N + 1 time steps i / N */
   const swarf_pose_rates *rates; /* and their rates */
   int N;
+  bsample *bs;      /* non-NULL: bwindow's refinements keep their best sample in it */
+  swarf_pose *keep; /* and its pose there when it is off the table */
 } bctx;
 
 typedef enum { B_VALUE, B_BELOW, B_ABOVE, B_FAIL } bkind;
@@ -380,14 +382,14 @@ static bkind bwindow(bctx *b, const swarf_sweep *s, int n, double lo, double hi,
   j0 = j0 < jb ? j0 : jb, j1 = j1 > jb ? j1 : jb;
   if (S > 1) { /* convex over the coarse window: the refinement takes the steps it needs */
     b->mu = curvature(x, b, &c[j0], j1 - j0, (double)S / n);
-    if (b->mu > 0.0) return bmin(b, s->motion, &c[j0], j1 - j0, lo, hi, v, at, NULL, NULL);
+    if (b->mu > 0.0) return bmin(b, s->motion, &c[j0], j1 - j0, lo, hi, v, at, b->bs, b->keep);
   }
   j0 *= S, j1 = j1 * S < n ? j1 * S : n; /* now steps */
   if (j1 - j0 <= MAXW) {
     for (int i = j0; i <= j1; i++)
       smp[i - j0] = bstep(b, i);
     b->mu = curvature(x, b, smp, j1 - j0, 1.0 / n);
-    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at, NULL, NULL);
+    if (b->mu > 0.0) return bmin(b, s->motion, smp, j1 - j0, lo, hi, v, at, b->bs, b->keep);
   }
   return bbounds(x, b, c, nc, (double)S / n, lo, hi, v, at);
 }
@@ -427,14 +429,15 @@ static int ball_plane(const swarf_sweep_rigid *x, const bctx *b, const bsample *
   return 1;
 }
 
-/* A flat or bull end mill's own value at time a (a table step's pose if it is one), for
- * the capsule's result there (ball_eval). */
-static double body_at(const swarf_sweep *s, const bctx *b, double a) {
+/* A flat or bull end mill's own value at time a, for the capsule's result there
+ * (ball_eval): at the pose P if given (the refinement's), else a table step's if a is
+ * one. */
+static double body_at(const swarf_sweep *s, const bctx *b, double a, const swarf_pose *P) {
   const int i = (int)(a * b->N + 0.5);
-  const swarf_pose *P = &b->table[i];
   swarf_pose off;
   double d[3], q[3], g[3];
-  if (!((double)i / b->N == a)) {
+  if (P == NULL && (double)i / b->N == a) P = &b->table[i];
+  if (P == NULL) {
     swarf_motion_pose(s->motion, a, &off);
     P = &off;
   }
@@ -451,9 +454,9 @@ static double body_at(const swarf_sweep *s, const bctx *b, double a) {
  * own at the capsule's time a its value where the two agree (to TIGHT: both certified to
  * 2 TIGHT) or its bound at or below lo. Otherwise (the bottom or a corner nearest) B_FAIL. */
 static bkind body_kind(const swarf_sweep *s, const bctx *b, bkind kind, double lo, double *v,
-                       double a) {
+                       double a, const bsample *bs) {
   if (kind == B_ABOVE || kind == B_FAIL) return kind;
-  const double u = body_at(s, b, a);
+  const double u = body_at(s, b, a, bs->a == a ? bs->P : NULL);
   if (kind == B_BELOW) return u <= lo ? (*v = u, B_BELOW) : B_FAIL;
   return u - *v <= TIGHT ? (*v = u, B_VALUE) : B_FAIL;
 }
@@ -478,16 +481,18 @@ static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double 
   b.p = p, b.R = 0.5 * s->cutter->diameter, b.off = s->cutter->corner_radius;
   b.seg = s->cutter->length - 2.0 * b.off;
   b.table = table, b.rates = rates, b.N = n;
+  b.bs = x->ball == 2 ? &bs : NULL, b.keep = &keep;
+  bs.a = -1.0, bs.P = NULL;
   /* the ends first: their bounds over the whole move often certify it */
   smp[0] = bsample_at(&b, 0.0, &table[0], &rates[0]);
   smp[1] = bsample_at(&b, 1.0, &table[n], &rates[n]);
   kind = bends(x, &b, smp, lo, hi, &v, &at);
   if (kind == B_FAIL && (b.mu = curvature(x, &b, smp, 1, 1.0)) > 0.0) {
-    kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at, r > 0.0 ? &bs : NULL, &keep);
+    kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at, r > 0.0 || b.bs ? &bs : NULL, &keep);
     if (kind == B_VALUE && r > 0.0) plane = ball_plane(x, &b, smp, &bs, r, pd, g);
   }
   if (kind == B_FAIL && n > 1) kind = bwindow(&b, s, n, lo, hi, &v, &at);
-  if (x->ball == 2) kind = body_kind(s, &b, kind, lo, &v, at);
+  if (x->ball == 2) kind = body_kind(s, &b, kind, lo, &v, at, &bs);
   if (kind == B_FAIL) return -1;
   *value = v;
   if (alpha != NULL) *alpha = at;

@@ -487,6 +487,9 @@ static int ball_eval(const swarf_sweep *s, const double p[3], double lo, double 
   smp[0] = bsample_at(&b, 0.0, &table[0], &rates[0]);
   smp[1] = bsample_at(&b, 1.0, &table[n], &rates[n]);
   kind = bends(x, &b, smp, lo, hi, &v, &at);
+  /* a flat's or bull's: below the capsule's equator at both ends, its bottom or a corner is
+   * nearest, where the capsule's value is not the cutter's (the general search's) */
+  if (kind == B_FAIL && x->ball == 2 && smp[0].h < 0.0 && smp[1].h < 0.0) return -1;
   if (kind == B_FAIL && (b.mu = curvature(x, &b, smp, 1, 1.0)) > 0.0) {
     kind = bmin(&b, s->motion, smp, 1, lo, hi, &v, &at, r > 0.0 || b.bs ? &bs : NULL, &keep);
     if (kind == B_VALUE && r > 0.0) plane = ball_plane(x, &b, smp, &bs, r, pd, g);
